@@ -1,0 +1,45 @@
+// ddtup: magnify images by data-dependent triangulation.
+#include <cstdio>
+#include <iostream>
+
+#include "cli.h"
+#include "upscale_job.h"
+
+namespace {
+
+void printStats(const ddt::JobReport& report) {
+    const ddt::OptimizeStats& s = report.stats;
+    std::printf("output         %u x %u\n", report.out.width, report.out.height);
+    std::printf("cost-init      %.6f\n", s.cost_init);
+    std::printf("cost-final     %.6f\n", s.cost_final);
+    std::printf("improvement    %.3f %%\n", s.improvement());
+    std::printf("flips          %llu\n", static_cast<unsigned long long>(s.flips));
+    std::printf("iterations     %u%s\n", s.iterations, s.capped ? " (safety cap reached)" : "");
+    std::printf("time-init      %.3f s  (load + build mesh)\n", report.times.init_s);
+    std::printf("time-comp      %.3f s  (optimize)\n", report.times.comp_s);
+    std::printf("time-final     %.3f s  (render + save image; the paper's time-final saved the mesh)\n",
+                report.times.final_s);
+    std::printf("time-sum       %.3f s\n", report.times.init_s + report.times.comp_s + report.times.final_s);
+}
+
+int run(const ddt::Settings& settings) {
+    try {
+        ddt::JobReport report = ddt::runUpscaleJob(settings);
+        if (!settings.quiet)
+            for (const std::string& note : report.notes) std::cerr << "ddtup: note: " << note << "\n";
+        if (settings.stats) printStats(report);
+        return 0;
+    } catch (const ddt::UserError& error) {
+        std::cerr << "ddtup: " << error.what() << "\n";
+        return 1;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int exit_code = 0;
+    std::optional<ddt::Settings> settings = ddt::parseCommandLine(argc, argv, exit_code);
+    if (!settings) return exit_code;
+    return run(*settings);
+}

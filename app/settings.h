@@ -1,0 +1,21 @@
+// Everything the command line can set, filled by parseCommandLine and validated before any
+// work starts.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace ddt {
+
+struct Settings {
+    std::string input;
+    std::string output;
+    double scale = 0.0;       // 0: not given
+    uint32_t width = 0;       // 0: not given
+    uint32_t height = 0;      // 0: not given
+    std::string backend = "cpu";
+    bool stats = false;
+    bool quiet = false;
+};
+
+}  // namespace ddt

@@ -1,0 +1,78 @@
+#include "upscale_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+namespace ddt {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Bands of at most this many floats keep memory flat for huge outputs.
+const size_t kBandFloats = size_t(16) << 20;
+
+void checkNotOverwritingInput(const std::string& input, const std::string& output) {
+    std::error_code ec;
+    bool same = fs::exists(output, ec) ? fs::equivalent(input, output, ec)
+                                       : fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec);
+    if (same) throw UserError(output + ": output is the input file; refusing to overwrite it");
+}
+
+}  // namespace
+
+OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_t height) {
+    if (settings.width && settings.height) return {settings.width, settings.height};
+    if (settings.width) return outputSizeForWidth(width, height, settings.width);
+    if (settings.height) return outputSizeForHeight(width, height, settings.height);
+    return scaledOutputSize(width, height, settings.scale);
+}
+
+std::unique_ptr<Backend> makeBackend(const Settings& settings) {
+    (void)settings;
+    return makeCpuBackend();
+}
+
+JobReport runUpscaleJob(const Settings& settings) {
+    JobReport report;
+    checkNotOverwritingInput(settings.input, settings.output);
+
+    auto start = std::chrono::steady_clock::now();
+    const Image image = readImage(settings.input);
+    if (image.width < 2 || image.height < 2)
+        throw UserError(settings.input + ": DDT needs at least 2×2 pixels (got " + std::to_string(image.width) + "×" +
+                        std::to_string(image.height) + ")");
+    report.out = requestedOutputSize(settings, image.width, image.height);
+    if (std::string problem = checkOutputSize(image.width, image.height, report.out); !problem.empty())
+        throw UserError(settings.input + ": " + problem);
+    // Open the output first: an unwritable path fails before the long part.
+    ImageWriter writer(settings.output, report.out.width, report.out.height, image);
+    std::unique_ptr<Backend> backend = makeBackend(settings);
+    backend->prepare(image);
+    report.times.init_s = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    report.stats = backend->optimize();
+    report.times.comp_s = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    const size_t row_floats = size_t(report.out.width) * image.channels;
+    const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
+    std::vector<float> band(size_t(std::min(band_rows, report.out.height)) * row_floats);
+    for (uint32_t y = 0; y < report.out.height; y += band_rows) {
+        uint32_t y_end = std::min(report.out.height, y + band_rows);
+        backend->renderRows(report.out, y, y_end, band.data());
+        writer.writeRows(y, y_end, band.data());
+    }
+    writer.commit();
+    report.times.final_s = secondsSince(start);
+    report.notes = writer.notes();
+    return report;
+}
+
+}  // namespace ddt

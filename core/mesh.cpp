@@ -1,0 +1,244 @@
+#include "mesh.h"
+
+#include <algorithm>
+#include <cassert>
+#include <sstream>
+
+namespace ddt {
+
+namespace {
+
+// Edge ids of the initial grid (see mesh.h): row y < h−1 holds, per vertex, right, down and
+// diagonal (the last column only down): 3w − 2 edges; the last row holds w − 1 right edges.
+struct GridEdgeIds {
+    uint32_t width, height;
+
+    uint32_t rowBase(uint32_t y) const { return y * (3 * width - 2); }
+    uint32_t right(uint32_t x, uint32_t y) const {
+        return y + 1 < height ? rowBase(y) + 3 * x : rowBase(y) + x;
+    }
+    uint32_t down(uint32_t x, uint32_t y) const { return rowBase(y) + 3 * x + (x + 1 < width ? 1 : 0); }
+    uint32_t diagonal(uint32_t x, uint32_t y) const { return rowBase(y) + 3 * x + 2; }
+};
+
+// Records the positive triangle (p, q, t) on the side of edge pq (id e_pq) where it lies;
+// e_qt and e_tp are its other two edges.
+void attachTriangle(Mesh& mesh, uint32_t e_pq, uint32_t p, uint32_t t, uint32_t e_qt, uint32_t e_tp) {
+    EdgeVertices& v = mesh.vertices[e_pq];
+    EdgeNeighbours& n = mesh.neighbours[e_pq];
+    if (v.a == p) {  // (a, b, t) is the left triangle
+        v.l = t;
+        n.bl = e_qt;
+        n.la = e_tp;
+    } else {  // (b, a, t) is the right triangle
+        v.r = t;
+        n.ar = e_qt;
+        n.rb = e_tp;
+    }
+}
+
+void attachTriangle3(Mesh& mesh, uint32_t p0, uint32_t p1, uint32_t p2, uint32_t e01, uint32_t e12, uint32_t e20) {
+    attachTriangle(mesh, e01, p0, p2, e12, e20);
+    attachTriangle(mesh, e12, p1, p0, e20, e01);
+    attachTriangle(mesh, e20, p2, p1, e01, e12);
+}
+
+// After e's flip, the neighbour edge n (whose triangle with e had third vertex old_near) lies
+// in a new triangle with third vertex new_near; the slot that held e now holds `successor`,
+// the one that held the other old edge now holds e.
+void patchNeighbour(Mesh& mesh, uint32_t n, uint32_t e, uint32_t old_near, uint32_t new_near, uint32_t successor) {
+    if (n == kNone) return;
+    EdgeVertices& v = mesh.vertices[n];
+    EdgeNeighbours& nb = mesh.neighbours[n];
+    uint32_t* slot0 = &nb.bl;
+    uint32_t* slot1 = &nb.la;
+    if (v.l == old_near) {
+        v.l = new_near;
+    } else {
+        assert(v.r == old_near);
+        v.r = new_near;
+        slot0 = &nb.ar;
+        slot1 = &nb.rb;
+    }
+    *slot0 = *slot0 == e ? successor : e;
+    *slot1 = *slot1 == e ? successor : e;
+}
+
+bool onHullSegment(uint32_t p, uint32_t q, uint32_t width, uint32_t height) {
+    uint32_t px = p % width, py = p / width, qx = q % width, qy = q / width;
+    bool horizontal = py == qy && (py == 0 || py == height - 1) && (px + 1 == qx || qx + 1 == px);
+    bool vertical = px == qx && (px == 0 || px == width - 1) && (py + 1 == qy || qy + 1 == py);
+    return horizontal || vertical;
+}
+
+bool joins(const EdgeVertices& v, uint32_t p, uint32_t q) {
+    return (v.a == p && v.b == q) || (v.a == q && v.b == p);
+}
+
+}  // namespace
+
+uint64_t gridEdgeCount(uint32_t width, uint32_t height) {
+    return uint64_t(height - 1) * (3 * uint64_t(width) - 2) + (width - 1);
+}
+
+Mesh buildGridMesh(uint32_t width, uint32_t height) {
+    assert(width >= 2 && height >= 2);
+    Mesh mesh;
+    mesh.width = width;
+    mesh.height = height;
+    const uint64_t edge_count = gridEdgeCount(width, height);
+    mesh.vertices.reserve(edge_count);
+    const EdgeNeighbours no_neighbours = {kNone, kNone, kNone, kNone};
+    mesh.neighbours.assign(edge_count, no_neighbours);
+
+    for (uint32_t y = 0; y < height; ++y) {
+        for (uint32_t x = 0; x < width; ++x) {
+            uint32_t v = y * width + x;
+            if (x + 1 < width) mesh.vertices.push_back({v, v + 1, kNone, kNone});
+            if (y + 1 < height) mesh.vertices.push_back({v, v + width, kNone, kNone});
+            if (x + 1 < width && y + 1 < height) mesh.vertices.push_back({v, v + width + 1, kNone, kNone});
+        }
+    }
+    assert(mesh.vertices.size() == edge_count);
+
+    const GridEdgeIds ids{width, height};
+    for (uint32_t y = 0; y + 1 < height; ++y) {
+        for (uint32_t x = 0; x + 1 < width; ++x) {
+            uint32_t p00 = y * width + x, p10 = p00 + 1, p01 = p00 + width, p11 = p01 + 1;
+            // Upper-right triangle (p00, p10, p11) and lower-left (p00, p11, p01), both positive.
+            attachTriangle3(mesh, p00, p10, p11, ids.right(x, y), ids.down(x + 1, y), ids.diagonal(x, y));
+            attachTriangle3(mesh, p00, p11, p01, ids.diagonal(x, y), ids.right(x, y + 1), ids.down(x, y));
+        }
+    }
+    return mesh;
+}
+
+void flipEdge(Mesh& mesh, uint32_t e) {
+    const EdgeVertices v = mesh.vertices[e];
+    const EdgeNeighbours n = mesh.neighbours[e];
+    assert(v.l != kNone && v.r != kNone);
+    mesh.vertices[e] = {v.r, v.l, v.a, v.b};
+    mesh.neighbours[e] = {n.la, n.ar, n.rb, n.bl};
+    // New triangles: (r, b, l) holds bl and rb, (l, a, r) holds la and ar.
+    patchNeighbour(mesh, n.bl, e, v.a, v.r, n.rb);
+    patchNeighbour(mesh, n.la, e, v.b, v.r, n.ar);
+    patchNeighbour(mesh, n.ar, e, v.b, v.l, n.la);
+    patchNeighbour(mesh, n.rb, e, v.a, v.l, n.bl);
+}
+
+uint32_t farVertex(const Mesh& mesh, uint32_t neighbour, uint32_t near) {
+    if (neighbour == kNone) return kNone;
+    const EdgeVertices& v = mesh.vertices[neighbour];
+    return v.l == near ? v.r : v.l;
+}
+
+FlipStencil flipStencil(const Mesh& mesh, uint32_t e) {
+    const EdgeVertices& v = mesh.vertices[e];
+    const EdgeNeighbours& n = mesh.neighbours[e];
+    return {v.a,
+            v.b,
+            v.l,
+            v.r,
+            farVertex(mesh, n.bl, v.a),
+            farVertex(mesh, n.la, v.b),
+            farVertex(mesh, n.ar, v.b),
+            farVertex(mesh, n.rb, v.a)};
+}
+
+std::vector<uint32_t> regionOf(const Mesh& mesh, uint32_t e, int degree) {
+    std::vector<uint32_t> region{e};
+    size_t frontier_begin = 0;
+    for (int step = 0; step < degree; ++step) {
+        size_t frontier_end = region.size();
+        for (size_t i = frontier_begin; i < frontier_end; ++i) {
+            for (int k = 0; k < 4; ++k) {
+                uint32_t f = neighbourAt(mesh.neighbours[region[i]], k);
+                if (f != kNone && std::find(region.begin(), region.end(), f) == region.end()) region.push_back(f);
+            }
+        }
+        frontier_begin = frontier_end;
+    }
+    region.erase(region.begin());
+    std::sort(region.begin(), region.end());
+    return region;
+}
+
+std::vector<Triangle> listTriangles(const Mesh& mesh) {
+    std::vector<Triangle> triangles;
+    triangles.reserve(2 * size_t(mesh.width - 1) * (mesh.height - 1));
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        const EdgeVertices& v = mesh.vertices[e];
+        const EdgeNeighbours& n = mesh.neighbours[e];
+        if (v.l != kNone && e < n.bl && e < n.la) triangles.push_back({v.a, v.b, v.l});
+        if (v.r != kNone && e < n.ar && e < n.rb) triangles.push_back({v.b, v.a, v.r});
+    }
+    return triangles;
+}
+
+namespace {
+
+// Checks one side of edge e: the triangle (p, q, t) with its other edges e_qt, e_tp.
+std::string checkSide(const Mesh& mesh, uint32_t e, uint32_t p, uint32_t q, uint32_t t, uint32_t e_qt, uint32_t e_tp) {
+    const uint32_t w = mesh.width;
+    if (t == kNone) {
+        if (e_qt != kNone || e_tp != kNone) return "missing triangle but neighbour edges set";
+        if (!onHullSegment(p, q, w, mesh.height)) return "one-sided edge not on the hull";
+        return "";
+    }
+    if (t >= mesh.vertexCount()) return "adjacent vertex out of range";
+    if (orientation(p, q, t, w) <= 0.0) return "triangle not positive";
+    if (e_qt == kNone || e_tp == kNone || e_qt >= mesh.edgeCount() || e_tp >= mesh.edgeCount())
+        return "neighbour edge missing or out of range";
+    if (!joins(mesh.vertices[e_qt], q, t) || !joins(mesh.vertices[e_tp], t, p)) return "neighbour edge has wrong vertices";
+    // Symmetry: each neighbour must see the same triangle, with e and the other edge as its slots.
+    for (uint32_t f : {e_qt, e_tp}) {
+        uint32_t other = f == e_qt ? e_tp : e_qt;
+        uint32_t near = f == e_qt ? p : q;
+        const EdgeVertices& fv = mesh.vertices[f];
+        const EdgeNeighbours& fn = mesh.neighbours[f];
+        uint32_t s0 = fv.l == near ? fn.bl : fv.r == near ? fn.ar : kNone;
+        uint32_t s1 = fv.l == near ? fn.la : fv.r == near ? fn.rb : kNone;
+        if (!((s0 == e && s1 == other) || (s0 == other && s1 == e))) return "neighbour links not symmetric";
+    }
+    return "";
+}
+
+}  // namespace
+
+std::string checkMesh(const Mesh& mesh) {
+    const uint32_t w = mesh.width, h = mesh.height;
+    if (w < 2 || h < 2) return "mesh smaller than 2x2";
+    if (mesh.vertices.size() != gridEdgeCount(w, h) || mesh.neighbours.size() != mesh.vertices.size())
+        return "wrong number of edges";
+    std::vector<uint64_t> keys;
+    keys.reserve(mesh.edgeCount());
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        const EdgeVertices& v = mesh.vertices[e];
+        const EdgeNeighbours& n = mesh.neighbours[e];
+        std::string problem;
+        if (v.a >= mesh.vertexCount() || v.b >= mesh.vertexCount() || v.a == v.b)
+            problem = "main vertices invalid";
+        else if (v.l == kNone && v.r == kNone)
+            problem = "edge without triangles";
+        if (problem.empty()) problem = checkSide(mesh, e, v.a, v.b, v.l, n.bl, n.la);
+        if (problem.empty()) problem = checkSide(mesh, e, v.b, v.a, v.r, n.ar, n.rb);
+        if (!problem.empty()) {
+            std::ostringstream out;
+            out << "edge " << e << " (" << v.a << ", " << v.b << ", " << v.l << ", " << v.r << "): " << problem;
+            return out.str();
+        }
+        keys.push_back(uint64_t(std::min(v.a, v.b)) << 32 | std::max(v.a, v.b));
+    }
+    std::sort(keys.begin(), keys.end());
+    if (std::adjacent_find(keys.begin(), keys.end()) != keys.end()) return "duplicate edge";
+
+    const std::vector<Triangle> triangles = listTriangles(mesh);
+    const uint64_t cells = uint64_t(w - 1) * (h - 1);
+    if (triangles.size() != 2 * cells) return "wrong number of triangles";
+    double twice_area = 0.0;
+    for (const Triangle& t : triangles) twice_area += orientation(t.v0, t.v1, t.v2, w);
+    if (twice_area != 2.0 * double(cells)) return "total area differs from (w-1)(h-1)";
+    return "";
+}
+
+}  // namespace ddt

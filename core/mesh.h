@@ -1,0 +1,93 @@
+// The triangulation of the pixel grid, stored edge-centric as in the paper's Sec. 4.1.
+//
+// Glossary (the code uses these words only in these senses):
+// - vertex: a pixel centre (x, y), integer coordinates, id = y * width + x. y grows downwards.
+// - orientation: orient(p, q, r) = (q - p) × (r - p) = (qx-px)(ry-py) - (qy-py)(rx-px).
+//   "Positive" triangles have orient > 0 (counter-clockwise in a y-up frame, clockwise on
+//   screen). Every triangle of a valid mesh is positive.
+// - main vertices of an edge: its endpoints a, b. adjacent vertices: l, the third vertex of
+//   the left triangle (a, b, l), and r, of the right triangle (b, a, r); both triangles are
+//   positive. A boundary edge (on the hull) has only one of them, the other is kNone.
+// - neighbour edges: the other edges of those triangles, kept in the order
+//   bl (b–l), la (l–a), ar (a–r), rb (r–b); kNone on the missing side.
+// - 1-region of e: its neighbour edges. n-region: the (n−1)-region plus the neighbours of its
+//   edges. ROI (region of influence): the edges whose flip can change e's gain — the
+//   2-region, 12 edges, e itself excluded. closed n-region: the n-region plus e.
+// - far vertex of a neighbour edge: its adjacent vertex on the side away from e.
+// - flip of e: the quadrilateral a, r, b, l gets its other diagonal. Stored as a rotation of
+//   the record: (a, b, l, r) -> (r, l, a, b), neighbours (bl, la, ar, rb) -> (la, ar, rb, bl).
+//   The edge keeps its id. Only e's record and the facing halves of its four neighbours'
+//   records change (its closed 1-region).
+//
+// Edge ids are stable and fixed by the initial grid: vertices in row-major order, for each
+// vertex its edge to the right, then down, then the diagonal to (x+1, y+1) (paper Fig. 7).
+// This fixes the serial sweep order and the parallel variants' id keys.
+//
+// The arrays are structure-of-arrays and are uploaded to the GPU as they are.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sederberg.h"
+
+namespace ddt {
+
+struct EdgeVertices {
+    uint32_t a, b, l, r;
+};
+
+struct EdgeNeighbours {
+    uint32_t bl, la, ar, rb;
+};
+
+struct Mesh {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<EdgeVertices> vertices;
+    std::vector<EdgeNeighbours> neighbours;
+
+    uint32_t edgeCount() const { return uint32_t(vertices.size()); }
+    uint32_t vertexCount() const { return width * height; }
+};
+
+// Number of edges of the grid triangulation of a width × height image.
+uint64_t gridEdgeCount(uint32_t width, uint32_t height);
+
+// The initial triangulation: every grid cell split by the diagonal (x, y)–(x+1, y+1).
+// Needs width, height >= 2.
+Mesh buildGridMesh(uint32_t width, uint32_t height);
+
+// Flips edge e (the caller checks that its quadrilateral is strictly convex).
+void flipEdge(Mesh& mesh, uint32_t e);
+
+// The vertices a flip of e reads: its quadrilateral and the far vertices of its neighbours.
+FlipStencil flipStencil(const Mesh& mesh, uint32_t e);
+
+// Far vertex of neighbour edge `neighbour` as seen from the triangle whose third vertex is
+// `near` (kNone if the neighbour is kNone or a boundary edge).
+uint32_t farVertex(const Mesh& mesh, uint32_t neighbour, uint32_t near);
+
+// The neighbours of e (kNone entries included), in bl, la, ar, rb order.
+inline uint32_t neighbourAt(const EdgeNeighbours& n, int i) {
+    return i == 0 ? n.bl : i == 1 ? n.la : i == 2 ? n.ar : n.rb;
+}
+
+// The ROI of e: its 2-region (degree 2) or 3-region (degree 3), e excluded, each edge once,
+// sorted by id.
+std::vector<uint32_t> regionOf(const Mesh& mesh, uint32_t e, int degree);
+
+// A triangle of the mesh, positive, listed once: it is reported by the lowest-id edge among
+// its three edges.
+struct Triangle {
+    uint32_t v0, v1, v2;
+};
+std::vector<Triangle> listTriangles(const Mesh& mesh);
+
+// Checks the mesh: every record consistent with its neighbours, every triangle positive,
+// interior edges shared by two triangles, boundary edges on the hull with one, total area
+// (w−1)(h−1), no duplicate edge. Returns "" if valid, else the first problem found.
+std::string checkMesh(const Mesh& mesh);
+
+}  // namespace ddt

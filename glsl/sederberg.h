@@ -1,0 +1,137 @@
+// Sederberg's cost function (SCF) and the gain of an edge flip, written once in the
+// common subset of C++ and GLSL: core/cost.cpp and the kernels include this file, so the
+// serial reference and the Vulkan backend evaluate numerically the same formula.
+// Paper: Červeňanský et al., "Parallel GPU-based data-dependent triangulations", Sec. 2.1.
+//
+// Vertices are pixel centres on the integer grid, identified by id = y * width + x.
+// A triangle is passed in positive orientation (see core/mesh.h for the convention).
+#ifndef DDTUP_SEDERBERG_H
+#define DDTUP_SEDERBERG_H
+
+#ifdef __cplusplus
+#include <cmath>
+#include <cstdint>
+namespace ddt {
+typedef uint32_t uint;
+#define DDT_FN inline
+#define DDT_PRECISE
+#define DDT_DOUBLE(x) x
+using std::sqrt;
+#else
+#define DDT_FN
+// `precise` forbids fused multiply-add contraction, so a kernel rounds exactly like the
+// C++ code compiled for x86-64 (no FMA without -mfma).
+#define DDT_PRECISE precise
+#define DDT_DOUBLE(x) x##lf
+#endif
+
+// A missing vertex or edge (the outer side of a boundary edge).
+const uint kNone = 0xFFFFFFFFu;
+
+// An edge is flipped only when its gain exceeds this. With a bare "gain > 0" rule, rounding
+// noise of ~1e-16 makes an edge flip back and forth forever; a flip's gain is a sum of five
+// edge costs of at most ~8 each, so its rounding error stays below ~1e-14.
+const double kFlipGainThreshold = DDT_DOUBLE(1e-12);
+
+struct Gradient {
+    double x;
+    double y;
+};
+
+// Gradient (a, b) of the plane z = a x + b y + c through three vertices with values z0..z2.
+// The triangle is first rotated so its smallest vertex id comes first (orientation kept):
+// every edge that asks for this triangle then gets a bit-identical gradient.
+DDT_FN Gradient planeGradient(uint i0, uint i1, uint i2, float z0, float z1, float z2, uint width) {
+    if (i1 < i0 && i1 < i2) {
+        uint t = i0; i0 = i1; i1 = i2; i2 = t;
+        float s = z0; z0 = z1; z1 = z2; z2 = s;
+    } else if (i2 < i0 && i2 < i1) {
+        uint t = i0; i0 = i2; i2 = i1; i1 = t;
+        float s = z0; z0 = z2; z2 = z1; z1 = s;
+    }
+    DDT_PRECISE double dx1 = double(i1 % width) - double(i0 % width);
+    DDT_PRECISE double dy1 = double(i1 / width) - double(i0 / width);
+    DDT_PRECISE double dx2 = double(i2 % width) - double(i0 % width);
+    DDT_PRECISE double dy2 = double(i2 / width) - double(i0 / width);
+    DDT_PRECISE double dz1 = double(z1) - double(z0);
+    DDT_PRECISE double dz2 = double(z2) - double(z0);
+    DDT_PRECISE double twice_area = dx1 * dy2 - dx2 * dy1;
+    Gradient g;
+    g.x = (dz1 * dy2 - dz2 * dy1) / twice_area;
+    g.y = (dz2 * dx1 - dz1 * dx2) / twice_area;
+    return g;
+}
+
+// SCF of an edge between two triangles: |∇P1|·|∇P2| − ∇P1·∇P2 (zero when the planes are
+// parallel, largest when they fold against each other). Symmetric in its two arguments.
+DDT_FN double sederbergCost(Gradient g1, Gradient g2) {
+    DDT_PRECISE double norms = sqrt(g1.x * g1.x + g1.y * g1.y) * sqrt(g2.x * g2.x + g2.y * g2.y);
+    DDT_PRECISE double dot = g1.x * g2.x + g1.y * g2.y;
+    return norms - dot;
+}
+
+// Twice the signed area of (i0, i1, i2); positive for positive orientation. Coordinates are
+// integers below 2^17, so every product is exact in double.
+DDT_FN double orientation(uint i0, uint i1, uint i2, uint width) {
+    DDT_PRECISE double dx1 = double(i1 % width) - double(i0 % width);
+    DDT_PRECISE double dy1 = double(i1 / width) - double(i0 / width);
+    DDT_PRECISE double dx2 = double(i2 % width) - double(i0 % width);
+    DDT_PRECISE double dy2 = double(i2 / width) - double(i0 / width);
+    return dx1 * dy2 - dx2 * dy1;
+}
+
+// The vertices a flip of edge e reads: its quadrilateral a, b, l, r and the far vertices of
+// its four neighbour edges b–l, l–a, a–r, r–b (kNone where a neighbour is a boundary edge).
+struct FlipStencil {
+    uint a, b, l, r;
+    uint far_bl, far_la, far_ar, far_rb;
+};
+
+// Values of one channel at the stencil's vertices (0 where the vertex is kNone).
+struct StencilValues {
+    float a, b, l, r;
+    float far_bl, far_la, far_ar, far_rb;
+};
+
+// A flip is allowed only across a strictly convex quadrilateral a, r, b, l: both new
+// triangles (r, b, l) and (l, a, r) must have positive area. Exact integer test.
+DDT_FN bool flipIsConvex(FlipStencil s, uint width) {
+    return s.l != kNone && s.r != kNone &&
+           orientation(s.r, s.b, s.l, width) > 0.0 && orientation(s.l, s.a, s.r, width) > 0.0;
+}
+
+// SCF of a neighbour edge between an inner triangle (gradient g) and its outer triangle
+// (i0, i1, far); a boundary neighbour (far == kNone) costs 0.
+DDT_FN double neighbourCost(Gradient g, uint i0, uint i1, uint far, float z0, float z1, float zfar, uint width) {
+    if (far == kNone) return 0.0;
+    return sederbergCost(g, planeGradient(i0, i1, far, z0, z1, zfar, width));
+}
+
+// Cost decrease over the five edges a flip changes (the edge and its four neighbours) for
+// one channel. The caller checks flipIsConvex first.
+//   before: triangles (a, b, l) and (b, a, r)   after: (r, b, l) and (l, a, r)
+DDT_FN double flipGain(FlipStencil s, StencilValues z, uint width) {
+    Gradient left = planeGradient(s.a, s.b, s.l, z.a, z.b, z.l, width);
+    Gradient right = planeGradient(s.b, s.a, s.r, z.b, z.a, z.r, width);
+    Gradient new_rbl = planeGradient(s.r, s.b, s.l, z.r, z.b, z.l, width);
+    Gradient new_lar = planeGradient(s.l, s.a, s.r, z.l, z.a, z.r, width);
+    // Each outer triangle lies across one neighbour edge, listed in positive orientation.
+    DDT_PRECISE double before = sederbergCost(left, right) +
+                                neighbourCost(left, s.l, s.b, s.far_bl, z.l, z.b, z.far_bl, width) +
+                                neighbourCost(left, s.a, s.l, s.far_la, z.a, z.l, z.far_la, width) +
+                                neighbourCost(right, s.r, s.a, s.far_ar, z.r, z.a, z.far_ar, width) +
+                                neighbourCost(right, s.b, s.r, s.far_rb, z.b, z.r, z.far_rb, width);
+    DDT_PRECISE double after = sederbergCost(new_rbl, new_lar) +
+                               neighbourCost(new_rbl, s.l, s.b, s.far_bl, z.l, z.b, z.far_bl, width) +
+                               neighbourCost(new_lar, s.a, s.l, s.far_la, z.a, z.l, z.far_la, width) +
+                               neighbourCost(new_lar, s.r, s.a, s.far_ar, z.r, z.a, z.far_ar, width) +
+                               neighbourCost(new_rbl, s.b, s.r, s.far_rb, z.b, z.r, z.far_rb, width);
+    return before - after;
+}
+
+#ifdef __cplusplus
+}  // namespace ddt
+#endif
+#undef DDT_FN
+#undef DDT_PRECISE
+#endif
