@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <iostream>
+
+#include "vulkan_backend.h"
 
 namespace ddt {
 
@@ -34,8 +37,17 @@ OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_
 }
 
 std::unique_ptr<Backend> makeBackend(const Settings& settings) {
-    (void)settings;
-    return makeCpuBackend();
+    if (settings.backend == "cpu") return makeCpuBackend();
+    VulkanOptions options;
+    if (!settings.variant.empty()) options.rule = settings.variant;
+    options.active_set = settings.active_set;
+    options.device_index = settings.device;
+    auto backend = std::make_unique<VulkanBackend>(options);
+    // Users of other Vulkan upscalers were silently given a software device and thought it hung.
+    if (backend->device().isCpu() && !settings.quiet)
+        std::cerr << "ddtup: note: running on " << backend->device().name
+                  << ", a CPU Vulkan device (no GPU found); expect it to be slower than a GPU\n";
+    return backend;
 }
 
 JobReport runUpscaleJob(const Settings& settings) {
@@ -53,7 +65,11 @@ JobReport runUpscaleJob(const Settings& settings) {
     // Open the output first: an unwritable path fails before the long part.
     ImageWriter writer(settings.output, report.out.width, report.out.height, image);
     std::unique_ptr<Backend> backend = makeBackend(settings);
-    backend->prepare(image);
+    try {
+        backend->prepare(image);
+    } catch (const UserError& error) {
+        throw UserError(settings.input + ": " + error.what());
+    }
     report.times.init_s = secondsSince(start);
 
     start = std::chrono::steady_clock::now();

@@ -17,6 +17,7 @@ struct OptimizeStats {
     uint64_t flips = 0;
     uint32_t iterations = 0;  // serial: sweeps; parallel: candidate/select/flip iterations
     uint64_t rounds = 0;      // parallel only: accept/reject rounds over all iterations
+    uint32_t max_rounds_in_iteration = 0;  // parallel only
     uint64_t dispatches = 0;  // Vulkan only: kernel dispatches recorded
     double device_ms = 0.0;   // Vulkan only: optimize time from GPU timestamps
     bool capped = false;      // stopped by a safety cap before reaching a local optimum

@@ -15,14 +15,12 @@ namespace ddt {
 typedef uint32_t uint;
 #define DDT_FN inline
 #define DDT_PRECISE
-#define DDT_DOUBLE(x) x
 using std::sqrt;
 #else
 #define DDT_FN
 // `precise` forbids fused multiply-add contraction, so a kernel rounds exactly like the
 // C++ code compiled for x86-64 (no FMA without -mfma).
 #define DDT_PRECISE precise
-#define DDT_DOUBLE(x) x##lf
 #endif
 
 // A missing vertex or edge (the outer side of a boundary edge).
@@ -31,7 +29,11 @@ const uint kNone = 0xFFFFFFFFu;
 // An edge is flipped only when its gain exceeds this. With a bare "gain > 0" rule, rounding
 // noise of ~1e-16 makes an edge flip back and forth forever; a flip's gain is a sum of five
 // edge costs of at most ~8 each, so its rounding error stays below ~1e-14.
-const double kFlipGainThreshold = DDT_DOUBLE(1e-12);
+#ifdef __cplusplus
+const double kFlipGainThreshold = 1e-12;
+#else
+const double kFlipGainThreshold = 1e-12lf;  // lf: a plain 1e-12 would be a float literal
+#endif
 
 struct Gradient {
     double x;

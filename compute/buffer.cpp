@@ -1,0 +1,112 @@
+#include "buffer.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "commands.h"
+#include "vulkan_error.h"
+
+namespace ddt {
+
+namespace {
+
+uint32_t findMemoryType(const VulkanContext& context, uint32_t allowed, Placement placement) {
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    // Preferences in order; the first type that matches one wins.
+    const VkMemoryPropertyFlags device_wanted[] = {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0};
+    const VkMemoryPropertyFlags readback_wanted[] = {host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, host};
+    const VkMemoryPropertyFlags* wanted = placement == Placement::Device ? device_wanted : readback_wanted;
+    for (int preference = 0; preference < 2; ++preference) {
+        for (uint32_t i = 0; i < context.memory.memoryTypeCount; ++i) {
+            const VkMemoryPropertyFlags flags = context.memory.memoryTypes[i].propertyFlags;
+            if ((allowed & (1u << i)) && (flags & wanted[preference]) == wanted[preference]) return i;
+        }
+    }
+    throw UserError("Vulkan: no suitable memory type on " + context.info.name);
+}
+
+// Copies between a device-only buffer and the host through a staging buffer, in chunks.
+const VkDeviceSize kStagingChunk = VkDeviceSize(32) << 20;
+
+}  // namespace
+
+Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placement) {
+    Buffer buffer;
+    buffer.size = size;
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = std::max<VkDeviceSize>(size, 16);
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                 VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                 VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VK_CHECK(vkCreateBuffer(context.device, &info, nullptr, &buffer.buffer));
+
+    VkMemoryRequirements requirements;
+    vkGetBufferMemoryRequirements(context.device, buffer.buffer, &requirements);
+    const uint32_t type = findMemoryType(context, requirements.memoryTypeBits, placement);
+    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    allocate.pNext = &flags;
+    allocate.allocationSize = requirements.size;
+    allocate.memoryTypeIndex = type;
+    VkResult result = vkAllocateMemory(context.device, &allocate, nullptr, &buffer.memory);
+    if (result != VK_SUCCESS) {
+        vkDestroyBuffer(context.device, buffer.buffer, nullptr);
+        VK_CHECK(result);
+    }
+    VK_CHECK(vkBindBufferMemory(context.device, buffer.buffer, buffer.memory, 0));
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    if ((context.memory.memoryTypes[type].propertyFlags & host) == host)
+        VK_CHECK(vkMapMemory(context.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
+
+    VkBufferDeviceAddressInfo address{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    address.buffer = buffer.buffer;
+    buffer.address = vkGetBufferDeviceAddress(context.device, &address);
+    return buffer;
+}
+
+void destroyBuffer(VulkanContext& context, Buffer& buffer) {
+    if (buffer.buffer) vkDestroyBuffer(context.device, buffer.buffer, nullptr);
+    if (buffer.memory) vkFreeMemory(context.device, buffer.memory, nullptr);
+    buffer = Buffer{};
+}
+
+// Only host-coherent memory is mapped, so no flush or invalidate is needed; every command
+// batch ends with a barrier to the host (CommandBatch).
+void uploadToBuffer(VulkanContext& context, Buffer& buffer, const void* data, VkDeviceSize size) {
+    if (buffer.mapped) {
+        std::memcpy(buffer.mapped, data, size);
+        return;
+    }
+    Buffer staging = createBuffer(context, std::min(size, kStagingChunk), Placement::Readback);
+    for (VkDeviceSize offset = 0; offset < size; offset += kStagingChunk) {
+        const VkDeviceSize chunk = std::min(kStagingChunk, size - offset);
+        std::memcpy(staging.mapped, static_cast<const char*>(data) + offset, chunk);
+        CommandBatch commands(context);
+        VkBufferCopy region{0, offset, chunk};
+        vkCmdCopyBuffer(commands.buffer(), staging.buffer, buffer.buffer, 1, &region);
+        commands.submitAndWait();
+    }
+    destroyBuffer(context, staging);
+}
+
+void downloadFromBuffer(VulkanContext& context, const Buffer& buffer, void* data, VkDeviceSize size,
+                        VkDeviceSize offset) {
+    if (buffer.mapped) {
+        std::memcpy(data, static_cast<const char*>(buffer.mapped) + offset, size);
+        return;
+    }
+    Buffer staging = createBuffer(context, std::min(size, kStagingChunk), Placement::Readback);
+    for (VkDeviceSize done = 0; done < size; done += kStagingChunk) {
+        const VkDeviceSize chunk = std::min(kStagingChunk, size - done);
+        CommandBatch commands(context);
+        VkBufferCopy region{offset + done, 0, chunk};
+        vkCmdCopyBuffer(commands.buffer(), buffer.buffer, staging.buffer, 1, &region);
+        commands.submitAndWait();
+        std::memcpy(static_cast<char*>(data) + done, staging.mapped, chunk);
+    }
+    destroyBuffer(context, staging);
+}
+
+}  // namespace ddt

@@ -1,0 +1,34 @@
+// The compute kernels of glsl/, compiled to SPIR-V at build time and embedded in the
+// binary. All share one pipeline layout: push constants only (every buffer is reached by
+// device address through DeviceParams).
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+#include "context.h"
+
+namespace ddt {
+
+// Specialization constants of the accept/reject kernels (see glsl/select.comp).
+struct SelectRule {
+    uint32_t key_by_gain = 0;   // MaxGain: higher gain wins; else lower id
+    uint32_t single_round = 0;  // local-max: one round per iteration
+};
+
+struct Kernels {
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline plan = VK_NULL_HANDLE;
+    VkPipeline candidates = VK_NULL_HANDLE;
+    VkPipeline select = VK_NULL_HANDLE;
+    VkPipeline flip = VK_NULL_HANDLE;
+    VkPipeline edge_cost = VK_NULL_HANDLE;
+    VkPipeline row_spans = VK_NULL_HANDLE;
+    VkPipeline render = VK_NULL_HANDLE;
+};
+
+Kernels createKernels(VulkanContext& context, const SelectRule& rule);
+void destroyKernels(VulkanContext& context, Kernels& kernels);
+
+}  // namespace ddt

@@ -1,0 +1,448 @@
+#include "vulkan_backend.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+#include "buffer.h"
+#include "commands.h"
+#include "kernels.h"
+#include "layout.h"
+#include "raster.h"
+#include "vulkan_error.h"
+
+namespace ddt {
+
+static_assert(sizeof(EdgeVertices) == 16 && sizeof(EdgeNeighbours) == 16, "edge records are uploaded as uvec4");
+
+namespace {
+
+// Workgroups of the cost reduction: enough to fill a GPU, few partial sums for the host.
+const uint32_t kCostGroups = 1024;
+// Largest band of rendered rows held on the device at once.
+const VkDeviceSize kBandBytes = VkDeviceSize(64) << 20;
+
+// How many accept/reject rounds and iterations one submit records. Local-max needs one
+// round per iteration; the round-based rules need more rounds, and MaxGain far fewer than
+// lowest-id keys (~11 vs ~160 per iteration on a 1024-wide input). Empty dispatches after
+// convergence cost little, a host round trip per round would cost more.
+struct BatchShape {
+    uint32_t rounds_per_iteration;
+    uint32_t iterations;
+};
+
+BatchShape batchShapeFor(const FlipRule& rule) {
+    if (rule.single_round) return {1, 8};
+    if (rule.key_by_gain) return {8, 2};
+    return {32, 1};
+}
+
+uint32_t groupsFor(uint64_t count) {
+    return uint32_t(std::min<uint64_t>((count + kGroupSize - 1) / kGroupSize, kMaxGroups));
+}
+
+std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
+
+}  // namespace
+
+struct VulkanBackend::State {
+    VulkanOptions options;
+    FlipRule rule;
+    std::unique_ptr<VulkanContext> context;
+    Kernels kernels;
+    VkQueryPool timestamps = VK_NULL_HANDLE;
+
+    const Image* image = nullptr;
+    uint32_t width = 0, height = 0, edge_count = 0;
+
+    Buffer edge_vertices, edge_neighbours, luma, alpha, gain, status[2], mark, active_list[2], candidate_list,
+        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans, params;
+    std::vector<uint32_t> spans;  // row_spans downloaded; empty when stale
+
+    std::vector<Buffer*> buffers() {
+        return {&edge_vertices, &edge_neighbours, &luma,          &alpha,        &gain,          &status[0],
+                &status[1],     &mark,            &active_list[0], &active_list[1], &candidate_list, &round_list[0],
+                &round_list[1], &control,         &control_readback, &args,      &partial_sums,  &pixels,
+                &band,          &row_spans,       &params};
+    }
+
+    void releaseBuffers() {
+        for (Buffer* buffer : buffers()) destroyBuffer(*context, *buffer);
+        spans.clear();
+    }
+
+    PushConstants push() const {
+        PushConstants p{};
+        p.params = params.address;
+        return p;
+    }
+
+    void checkMemory(uint64_t edges, uint64_t vertices, uint32_t channels);
+    void createBuffers(const Image& image);
+    void uploadParams();
+    void resetOptimisation();
+    double meshCost();
+    Control readControl();
+    void recordStep(VkCommandBuffer commands, uint32_t step, VkPipeline kernel);
+    void recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip);
+    void recordControlReadback(VkCommandBuffer commands);
+    void computeRowSpans();
+    void renderBand(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows);
+    OptimizeStats finishStats(const Control& control, double cost_init, uint64_t dispatches, double device_ns);
+};
+
+VulkanBackend::VulkanBackend(const VulkanOptions& options) : state_(std::make_unique<State>()) {
+    State& s = *state_;
+    s.options = options;
+    std::optional<FlipRule> rule = parseFlipRule(options.rule);
+    if (!rule) throw UserError("--variant " + options.rule + ": unknown flip rule");
+    s.rule = *rule;
+    s.context = createContext({options.device_index, options.validation});
+    s.kernels = createKernels(*s.context, {s.rule.key_by_gain ? 1u : 0u, s.rule.single_round ? 1u : 0u});
+    if (s.context->timestamps) {
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = 2;
+        VK_CHECK(vkCreateQueryPool(s.context->device, &info, nullptr, &s.timestamps));
+    }
+}
+
+VulkanBackend::~VulkanBackend() {
+    State& s = *state_;
+    vkDeviceWaitIdle(s.context->device);
+    s.releaseBuffers();
+    if (s.timestamps) vkDestroyQueryPool(s.context->device, s.timestamps, nullptr);
+    destroyKernels(*s.context, s.kernels);
+}
+
+std::string VulkanBackend::name() const { return "vulkan " + state_->rule.name; }
+const DeviceInfo& VulkanBackend::device() const { return state_->context->info; }
+uint32_t VulkanBackend::validationMessages() const { return state_->context->validation_messages.load(); }
+
+// Refuses, before allocating anything, a job the device cannot hold.
+void VulkanBackend::State::checkMemory(uint64_t edges, uint64_t vertices, uint32_t channels) {
+    VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &maintenance;
+    vkGetPhysicalDeviceProperties2(context->physical, &properties);
+
+    const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 4 + (options.active_set ? 2 * 4 : 0) +
+                              (rule.single_round ? 0 : 2 * 4);
+    const uint64_t largest = edges * 16;
+    const uint64_t total = edges * per_edge + vertices * 4 * (2 + channels) + kBandBytes;
+    std::string problem;
+    if (edges >= kCopyEntry) problem = "more edges than the kernels can index";
+    else if (largest > maintenance.maxMemoryAllocationSize)
+        problem = "its edge arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
+                  mebibytes(maintenance.maxMemoryAllocationSize);
+    else if (total > context->info.memory_bytes)
+        problem = "it needs " + mebibytes(total) + " of device memory, more than the " +
+                  mebibytes(context->info.memory_bytes) + " available";
+    if (!problem.empty())
+        throw UserError(std::to_string(width) + "×" + std::to_string(height) + " image too large for " +
+                        context->info.name + ": " + problem + "; try --backend cpu or a smaller image");
+}
+
+void VulkanBackend::State::createBuffers(const Image& img) {
+    VulkanContext& c = *context;
+    const uint64_t edges = edge_count, vertices = uint64_t(width) * height;
+    edge_vertices = createBuffer(c, edges * 16);
+    edge_neighbours = createBuffer(c, edges * 16);
+    luma = createBuffer(c, vertices * 4);
+    alpha = createBuffer(c, img.hasAlpha() ? vertices * 4 : 4);
+    gain = createBuffer(c, edges * 8);
+    for (Buffer& b : status) b = createBuffer(c, edges * 4);
+    mark = createBuffer(c, edges * 4);
+    for (Buffer& b : active_list) b = createBuffer(c, options.active_set ? edges * 4 : 4);
+    candidate_list = createBuffer(c, edges * 4);
+    for (Buffer& b : round_list) b = createBuffer(c, rule.single_round ? 4 : edges * 4);
+    control = createBuffer(c, sizeof(Control));
+    control_readback = createBuffer(c, sizeof(Control), Placement::Readback);
+    args = createBuffer(c, kArgsCount * 16);
+    partial_sums = createBuffer(c, kCostGroups * 8);
+    pixels = createBuffer(c, vertices * img.channels * 4);
+    row_spans = createBuffer(c, uint64_t(height) * 8);
+    params = createBuffer(c, sizeof(DeviceParams));
+}
+
+void VulkanBackend::State::uploadParams() {
+    DeviceParams p{};
+    p.edge_vertices = edge_vertices.address;
+    p.edge_neighbours = edge_neighbours.address;
+    p.luma = luma.address;
+    p.alpha = alpha.address;
+    p.gain = gain.address;
+    p.status[0] = status[0].address;
+    p.status[1] = status[1].address;
+    p.mark = mark.address;
+    p.active_list[0] = active_list[0].address;
+    p.active_list[1] = active_list[1].address;
+    p.candidate_list = candidate_list.address;
+    p.round_list[0] = round_list[0].address;
+    p.round_list[1] = round_list[1].address;
+    p.control = control.address;
+    p.args = args.address;
+    p.partial_sums = partial_sums.address;
+    p.pixels = pixels.address;
+    p.band = band.address;
+    p.row_spans = row_spans.address;
+    p.width = width;
+    p.height = height;
+    p.edge_count = edge_count;
+    p.has_alpha = image->hasAlpha() ? 1 : 0;
+    p.active_set = options.active_set ? 1 : 0;
+    p.exproi_iterations = rule.exproi_iterations;
+    p.max_iterations = options.max_iterations;
+    p.max_rounds = options.max_rounds;
+    p.channels = image->channels;
+    uploadToBuffer(*context, params, &p, sizeof(p));
+}
+
+void VulkanBackend::prepare(const Image& image) {
+    State& s = *state_;
+    s.releaseBuffers();
+    s.image = &image;
+    s.width = image.width;
+    s.height = image.height;
+    const uint64_t edges = gridEdgeCount(image.width, image.height);
+    s.edge_count = uint32_t(std::min<uint64_t>(edges, UINT32_MAX));
+    s.checkMemory(edges, uint64_t(image.width) * image.height, image.channels);
+
+    const Mesh mesh = buildGridMesh(image.width, image.height);
+    const CostField field = costFieldOf(image);
+    s.createBuffers(image);
+    VulkanContext& c = *s.context;
+    uploadToBuffer(c, s.edge_vertices, mesh.vertices.data(), s.edge_vertices.size);
+    uploadToBuffer(c, s.edge_neighbours, mesh.neighbours.data(), s.edge_neighbours.size);
+    uploadToBuffer(c, s.luma, field.luma.data(), s.luma.size);
+    if (image.hasAlpha()) uploadToBuffer(c, s.alpha, field.alpha.data(), s.alpha.size);
+    uploadToBuffer(c, s.pixels, image.pixels.data(), s.pixels.size);
+    s.uploadParams();
+}
+
+// Zeroes the statuses, marks and counters: the state at the start of an optimisation.
+void VulkanBackend::State::resetOptimisation() {
+    CommandBatch commands(*context);
+    for (Buffer* b : {&status[0], &status[1], &mark, &control})
+        vkCmdFillBuffer(commands.buffer(), b->buffer, 0, VK_WHOLE_SIZE, 0);
+    computeBarrier(commands.buffer());
+    commands.submitAndWait();
+    spans.clear();
+}
+
+double VulkanBackend::State::meshCost() {
+    CommandBatch commands(*context);
+    dispatch(commands.buffer(), kernels.edge_cost, kernels.layout, push(), kCostGroups);
+    commands.submitAndWait();
+    std::vector<double> sums(kCostGroups);
+    downloadFromBuffer(*context, partial_sums, sums.data(), sums.size() * 8);
+    return std::accumulate(sums.begin(), sums.end(), 0.0);
+}
+
+double VulkanBackend::deviceMeshCost() { return state_->meshCost(); }
+
+Control VulkanBackend::State::readControl() {
+    Control c;
+    downloadFromBuffer(*context, control_readback, &c, sizeof(c));
+    return c;
+}
+
+// A planned step: the plan kernel sizes the step's indirect dispatch, then the step runs.
+void VulkanBackend::State::recordStep(VkCommandBuffer commands, uint32_t step, VkPipeline kernel) {
+    PushConstants p = push();
+    p.step = step;
+    dispatch(commands, kernels.plan, kernels.layout, p, 1);
+    dispatchIndirect(commands, kernel, kernels.layout, p, args, step);
+}
+
+void VulkanBackend::State::recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip) {
+    if (candidates) recordStep(commands, kArgsCandidates, kernels.candidates);
+    for (uint32_t r = 0; r < rounds; ++r) recordStep(commands, kArgsSelect, kernels.select);
+    if (flip) recordStep(commands, kArgsFlip, kernels.flip);
+}
+
+void VulkanBackend::State::recordControlReadback(VkCommandBuffer commands) {
+    VkBufferCopy region{0, 0, sizeof(Control)};
+    vkCmdCopyBuffer(commands, control.buffer, control_readback.buffer, 1, &region);
+}
+
+OptimizeStats VulkanBackend::State::finishStats(const Control& c, double cost_init, uint64_t dispatches,
+                                                double device_ns) {
+    OptimizeStats stats;
+    stats.cost_init = cost_init;
+    stats.cost_final = meshCost();
+    stats.flips = uint64_t(c.total_flips_high) << 32 | c.total_flips_low;
+    // Like the serial sweeps, count the last iteration, which found no candidate.
+    stats.iterations = c.iteration + (c.capped ? 0 : 1);
+    stats.rounds = c.total_rounds;
+    stats.max_rounds_in_iteration = c.max_rounds_in_iteration;
+    stats.dispatches = dispatches;
+    stats.device_ms = device_ns * 1e-6;
+    stats.capped = c.capped != 0 || c.phase != kPhaseDone;
+    spans.clear();
+    return stats;
+}
+
+OptimizeStats VulkanBackend::optimize() {
+    State& s = *state_;
+    VulkanContext& c = *s.context;
+    s.resetOptimisation();
+    const double cost_init = s.meshCost();
+
+    const BatchShape shape = batchShapeFor(s.rule);
+    CommandBatch batch(c);
+    VkCommandBuffer commands = batch.buffer();
+    if (s.timestamps) {
+        vkCmdResetQueryPool(commands, s.timestamps, 0, 2);
+        vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.timestamps, 0);
+    }
+    for (uint32_t i = 0; i < shape.iterations; ++i) s.recordIteration(commands, shape.rounds_per_iteration, true, true);
+    if (s.timestamps) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.timestamps, 1);
+    s.recordControlReadback(commands);
+    batch.finishRecording();
+    const uint64_t dispatches_per_batch = uint64_t(shape.iterations) * 2 * (2 + shape.rounds_per_iteration);
+
+    // Each submit advances the device's state machine; a loop that cannot end otherwise
+    // is bounded by the caps on iterations and rounds.
+    const uint64_t max_batches =
+        (uint64_t(s.options.max_iterations) + 1) * (s.options.max_rounds / shape.rounds_per_iteration + 2);
+    uint64_t batches = 0;
+    double device_ns = 0.0;
+    Control control{};
+    do {
+        batch.submitAndWait();
+        ++batches;
+        if (s.timestamps) {
+            uint64_t ticks[2];
+            VK_CHECK(vkGetQueryPoolResults(c.device, s.timestamps, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+            device_ns += double(ticks[1] - ticks[0]) * c.properties.limits.timestampPeriod;
+        }
+        control = s.readControl();
+    } while (control.phase != kPhaseDone && batches < max_batches);
+    return s.finishStats(control, cost_init, batches * dispatches_per_batch, device_ns);
+}
+
+OptimizeStats VulkanBackend::optimizeStepwise(const std::function<void(const IterationSnapshot&)>& inspect) {
+    State& s = *state_;
+    VulkanContext& c = *s.context;
+    s.resetOptimisation();
+    const double cost_init = s.meshCost();
+    uint64_t dispatches = 0;
+    auto run = [&](uint32_t rounds, bool candidates, bool flip) {
+        CommandBatch batch(c);
+        s.recordIteration(batch.buffer(), rounds, candidates, flip);
+        s.recordControlReadback(batch.buffer());
+        batch.submitAndWait();
+        dispatches += 2 * (rounds + candidates + flip);
+        return s.readControl();
+    };
+    auto download = [&](const Buffer& buffer, uint32_t count) {
+        std::vector<uint32_t> values(count);
+        if (count) downloadFromBuffer(c, buffer, values.data(), count * 4);
+        return values;
+    };
+
+    Control control = run(1, true, false);
+    while (control.phase != kPhaseDone) {
+        while (!s.rule.single_round && control.undecided_count[control.round & 1] > 0 &&
+               control.round < s.options.max_rounds)
+            control = run(1, false, false);
+
+        IterationSnapshot snapshot;
+        snapshot.iteration = control.iteration;
+        snapshot.rounds = control.round;
+        snapshot.mesh = mesh();
+        snapshot.candidates = download(s.candidate_list, control.candidate_count);
+        std::sort(snapshot.candidates.begin(), snapshot.candidates.end());
+        const std::vector<uint32_t> status = download(s.status[control.round & 1], s.edge_count);
+        std::vector<double> gains(s.edge_count);
+        downloadFromBuffer(c, s.gain, gains.data(), gains.size() * 8);
+        for (uint32_t e : snapshot.candidates) {
+            snapshot.candidate_gains.push_back(gains[e]);
+            if (status[e] == kStatusAccepted) snapshot.accepted.push_back(e);
+            if (status[e] == kStatusUndecided) snapshot.undecided.push_back(e);
+        }
+        inspect(snapshot);
+
+        run(0, false, true);
+        control = run(1, true, false);
+    }
+    return s.finishStats(control, cost_init, dispatches, 0.0);
+}
+
+Mesh VulkanBackend::mesh() {
+    State& s = *state_;
+    Mesh mesh;
+    mesh.width = s.width;
+    mesh.height = s.height;
+    mesh.vertices.resize(s.edge_count);
+    mesh.neighbours.resize(s.edge_count);
+    downloadFromBuffer(*s.context, s.edge_vertices, mesh.vertices.data(), s.edge_vertices.size);
+    downloadFromBuffer(*s.context, s.edge_neighbours, mesh.neighbours.data(), s.edge_neighbours.size);
+    return mesh;
+}
+
+void VulkanBackend::State::computeRowSpans() {
+    std::vector<uint32_t> initial(2 * size_t(height));
+    for (uint32_t y = 0; y < height; ++y) initial[2 * y] = kNone;  // first row: min over none yet
+    uploadToBuffer(*context, row_spans, initial.data(), initial.size() * 4);
+    CommandBatch commands(*context);
+    dispatch(commands.buffer(), kernels.row_spans, kernels.layout, push(), groupsFor(edge_count));
+    commands.submitAndWait();
+    spans.resize(initial.size());
+    downloadFromBuffer(*context, row_spans, spans.data(), spans.size() * 4);
+}
+
+void VulkanBackend::State::renderBand(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
+    // Input rows the band samples, and the edge rows whose triangles touch them.
+    const int64_t unit = vertexCoord(1, out.height);
+    const uint32_t v_first = uint32_t(sampleCoord(y_begin, height, out.height) / unit);
+    const uint32_t v_last = uint32_t((sampleCoord(y_end - 1, height, out.height) + unit - 1) / unit);
+    uint32_t first_row = height, last_row = 0;
+    for (uint32_t y = 0; y < height; ++y) {
+        if (spans[2 * y] <= v_last && spans[2 * y + 1] >= v_first) {
+            first_row = std::min(first_row, y);
+            last_row = std::max(last_row, y);
+        }
+    }
+    if (first_row > last_row) return;
+    const uint32_t first_edge = first_row * (3 * width - 2);
+    const uint32_t end_edge = last_row + 1 < height ? (last_row + 1) * (3 * width - 2) : edge_count;
+
+    PushConstants p = push();
+    p.first_edge = first_edge;
+    p.edge_range = end_edge - first_edge;
+    p.first_row = y_begin;
+    p.row_count = y_end - y_begin;
+    p.out_width = out.width;
+    p.out_height = out.height;
+    CommandBatch commands(*context);
+    dispatch(commands.buffer(), kernels.render, kernels.layout, p, groupsFor(p.edge_range));
+    commands.submitAndWait();
+    downloadFromBuffer(*context, band, rows, VkDeviceSize(y_end - y_begin) * out.width * image->channels * 4);
+}
+
+void VulkanBackend::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
+    State& s = *state_;
+    const VkDeviceSize row_bytes = VkDeviceSize(out.width) * s.image->channels * 4;
+    const uint32_t band_rows = uint32_t(std::max<VkDeviceSize>(1, kBandBytes / row_bytes));
+    if (!s.band.buffer || s.band.size < std::min<VkDeviceSize>(y_end - y_begin, band_rows) * row_bytes) {
+        destroyBuffer(*s.context, s.band);
+        // The host reads every rendered row: keep the band in host-visible memory.
+        s.band = createBuffer(*s.context, std::min<VkDeviceSize>(band_rows, out.height) * row_bytes, Placement::Readback);
+        s.uploadParams();
+    }
+    if (s.spans.empty()) s.computeRowSpans();
+    for (uint32_t y = y_begin; y < y_end; y += band_rows) {
+        const uint32_t band_end = std::min(y_end, y + band_rows);
+        s.renderBand(out, y, band_end, rows + size_t(y - y_begin) * out.width * s.image->channels);
+    }
+}
+
+std::unique_ptr<Backend> makeVulkanBackend(const VulkanOptions& options) {
+    return std::make_unique<VulkanBackend>(options);
+}
+
+}  // namespace ddt

@@ -1,0 +1,62 @@
+// The Vulkan backend: the paper's parallel Lawson optimisation (Sec. 3–5) in compute
+// kernels over the edge arrays of core/mesh.h, and rendering on the device. Each iteration
+// runs the same steps as the paper: candidates, accept/reject rounds (select), flip.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backend.h"
+#include "context.h"
+#include "flip_rule.h"
+
+namespace ddt {
+
+struct VulkanOptions {
+    std::string rule = kDefaultFlipRule;
+    bool active_set = true;  // after the first iteration, test only edges a flip may have changed
+    int device_index = -1;   // -1: choose
+    bool validation = false;
+    uint32_t max_iterations = 100000;  // safety caps, reported in OptimizeStats::capped
+    uint32_t max_rounds = 100000;      // accept/reject rounds per iteration
+};
+
+// One iteration's decisions, just before its flips (for tests).
+struct IterationSnapshot {
+    uint32_t iteration = 0;
+    uint32_t rounds = 0;
+    Mesh mesh;                             // before the flips
+    std::vector<uint32_t> candidates;      // sorted
+    std::vector<double> candidate_gains;   // gains from the candidate step, same order
+    std::vector<uint32_t> accepted;        // sorted
+    std::vector<uint32_t> undecided;       // left undecided (local-max, or a round cap)
+};
+
+class VulkanBackend final : public Backend {
+public:
+    explicit VulkanBackend(const VulkanOptions& options);
+    ~VulkanBackend() override;
+
+    std::string name() const override;
+    void prepare(const Image& image) override;
+    OptimizeStats optimize() override;
+    void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) override;
+    Mesh mesh() override;
+
+    // Like optimize(), one submit per step, showing each iteration before its flips.
+    OptimizeStats optimizeStepwise(const std::function<void(const IterationSnapshot&)>& inspect);
+    // The mesh cost as the kernels compute it.
+    double deviceMeshCost();
+    const DeviceInfo& device() const;
+    uint32_t validationMessages() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+std::unique_ptr<Backend> makeVulkanBackend(const VulkanOptions& options);
+
+}  // namespace ddt

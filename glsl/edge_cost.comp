@@ -1,0 +1,22 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The mesh cost (cost-init, cost-final): every workgroup sums the Sederberg cost of a fixed,
+// strided set of edges and reduces it in shared memory; the host adds the partial sums.
+// Fixed assignment and reduction order make the result deterministic.
+#include "common.glsl"
+
+shared double partial[kGroupSize];
+
+void main() {
+    params = push.params;
+    const uint lane = gl_LocalInvocationID.x;
+    precise double sum = 0.0lf;
+    for (uint e = gl_GlobalInvocationID.x; e < params.edge_count; e += invocationStride()) sum += edgeCostOf(e);
+    partial[lane] = sum;
+    barrier();
+    for (uint width = kGroupSize / 2; width > 0; width /= 2) {
+        if (lane < width) partial[lane] += partial[lane + width];
+        barrier();
+    }
+    if (lane == 0) params.partial_sums.at[gl_WorkGroupID.x] = partial[0];
+}

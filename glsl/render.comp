@@ -1,0 +1,63 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Renders one band of output rows from the optimised mesh: one thread per edge rasterises
+// the triangles that edge owns (the lowest-id edge of each triangle), with the exact
+// coverage tests of raster.h, so each pixel is written by exactly one thread and the
+// result does not depend on timing. Same sampling convention as core/render.cpp.
+#include "common.glsl"
+#include "raster.h"
+
+void renderTriangle(uint i0, uint i1, uint i2) {
+    const uint w = params.width, h = params.height, c = params.channels;
+    const uint out_w = push.out_width, out_h = push.out_height;
+    const uint ids[3] = uint[3](i0, i1, i2);
+    int64_t px[3], py[3];
+    uint x0 = w, x1 = 0, y0 = h, y1 = 0;
+    for (int k = 0; k < 3; ++k) {
+        const uint x = ids[k] % w, y = ids[k] / w;
+        px[k] = vertexCoord(x, out_w);
+        py[k] = vertexCoord(y, out_h);
+        x0 = min(x0, x); x1 = max(x1, x);
+        y0 = min(y0, y); y1 = max(y1, y);
+    }
+    const uint band_end = push.first_row + push.row_count;
+    const uint x_lo = firstSampleAtOrAfter(x0, w, out_w);
+    const uint x_hi = min(lastSampleAtOrBefore(x1, w, out_w), out_w - 1);
+    const uint y_lo = max(firstSampleAtOrAfter(y0, h, out_h), push.first_row);
+    const uint y_hi = min(lastSampleAtOrBefore(y1, h, out_h), band_end - 1);
+    for (uint y = y_lo; y <= y_hi && y_lo <= y_hi; ++y) {
+        const int64_t sv = sampleCoord(y, h, out_h);
+        const int dir_v = sampleDirection(sv, h, out_h);
+        for (uint x = x_lo; x <= x_hi && x_lo <= x_hi; ++x) {
+            const int64_t su = sampleCoord(x, w, out_w);
+            const int dir_u = sampleDirection(su, w, out_w);
+            int64_t weight[3];  // edge function opposite each vertex = barycentric weight × 2·area
+            bool inside = true;
+            for (int k = 0; k < 3; ++k) {
+                const int p = (k + 1) % 3, q = (k + 2) % 3;
+                inside = inside && sampleSide(px[p], py[p], px[q], py[q], su, sv, dir_u, dir_v) > 0;
+                weight[k] = (px[q] - px[p]) * (sv - py[p]) - (py[q] - py[p]) * (su - px[p]);
+            }
+            if (!inside) continue;
+            const float total = float(weight[0] + weight[1] + weight[2]);
+            const vec3 lambda = vec3(float(weight[0]), float(weight[1]), float(weight[2])) / total;
+            const uint pixel = ((y - push.first_row) * out_w + x) * c;
+            for (uint k = 0; k < c; ++k) {
+                params.band.at[pixel + k] = lambda.x * params.pixels.at[ids[0] * c + k] +
+                                            lambda.y * params.pixels.at[ids[1] * c + k] +
+                                            lambda.z * params.pixels.at[ids[2] * c + k];
+            }
+        }
+    }
+}
+
+void main() {
+    params = push.params;
+    for (uint i = gl_GlobalInvocationID.x; i < push.edge_range; i += invocationStride()) {
+        const uint e = push.first_edge + i;
+        const uvec4 v = verticesOf(e);
+        const uvec4 n = neighboursOf(e);
+        if (v.z != kNone && e < n.x && e < n.y) renderTriangle(v.x, v.y, v.z);
+        if (v.w != kNone && e < n.z && e < n.w) renderTriangle(v.y, v.x, v.w);
+    }
+}

@@ -1,0 +1,30 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Before rendering: for each edge row (the edges the initial grid gave to one vertex row),
+// the first and last vertex row its triangles touch. Flips move edges only locally, so the
+// host can pick, for every output band, the few edge rows whose triangles may cover it.
+// Slots: row_spans[2y] = first row (atomicMin), row_spans[2y + 1] = last row (atomicMax).
+#include "common.glsl"
+
+void main() {
+    params = push.params;
+    const uint w = params.width;
+    for (uint e = gl_GlobalInvocationID.x; e < params.edge_count; e += invocationStride()) {
+        const uvec4 v = verticesOf(e);
+        const uvec4 n = neighboursOf(e);
+        uint first = kNone, last = 0;
+        // Each triangle is owned by the lowest-id edge among its three (as core's listTriangles).
+        if (v.z != kNone && e < n.x && e < n.y) {
+            first = min(first, min(min(v.x / w, v.y / w), v.z / w));
+            last = max(last, max(max(v.x / w, v.y / w), v.z / w));
+        }
+        if (v.w != kNone && e < n.z && e < n.w) {
+            first = min(first, min(min(v.x / w, v.y / w), v.w / w));
+            last = max(last, max(max(v.x / w, v.y / w), v.w / w));
+        }
+        if (first > last) continue;
+        const uint row = min(e / (3 * w - 2), params.height - 1);
+        atomicMin(params.row_spans.at[2 * row], first);
+        atomicMax(params.row_spans.at[2 * row + 1], last);
+    }
+}
