@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <numeric>
 
 #include "buffer.h"
@@ -38,9 +39,10 @@ BatchShape batchShapeFor(const FlipRule& rule) {
     return {32, 1};
 }
 
-uint32_t groupsFor(uint64_t count) {
-    return uint32_t(std::min<uint64_t>((count + kGroupSize - 1) / kGroupSize, kMaxGroups));
-}
+// Workgroups per dispatch. lavapipe runs each workgroup as a task with a fixed cost of
+// several microseconds, so on CPU devices a few workgroups per thread that loop over the
+// range are much faster; GPUs want enough groups to fill every compute unit.
+uint32_t maxGroupsFor(const DeviceInfo& device) { return device.isCpu() ? 64 : 8192; }
 
 std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 
@@ -51,7 +53,16 @@ struct VulkanBackend::State {
     FlipRule rule;
     std::unique_ptr<VulkanContext> context;
     Kernels kernels;
-    VkQueryPool timestamps = VK_NULL_HANDLE;
+    VkQueryPool timestamps = VK_NULL_HANDLE;      // two per optimisation batch: its start and end
+    VkQueryPool step_timestamps = VK_NULL_HANDLE; // with profiling: one after every dispatch
+    std::vector<const char*> step_labels;         // the kernel each step timestamp closes
+    std::map<std::string, KernelTime> kernel_times;
+
+    uint32_t max_groups = kMaxGroups;
+
+    uint32_t groupsFor(uint64_t count) const {
+        return uint32_t(std::min<uint64_t>((count + kGroupSize - 1) / kGroupSize, max_groups));
+    }
 
     const Image* image = nullptr;
     uint32_t width = 0, height = 0, edge_count = 0;
@@ -84,7 +95,9 @@ struct VulkanBackend::State {
     void resetOptimisation();
     double meshCost();
     Control readControl();
+    void markStep(VkCommandBuffer commands, const char* label);
     void recordStep(VkCommandBuffer commands, uint32_t step, VkPipeline kernel);
+    void collectStepTimes();
     void recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip);
     void recordControlReadback(VkCommandBuffer commands);
     void computeRowSpans();
@@ -99,6 +112,7 @@ VulkanBackend::VulkanBackend(const VulkanOptions& options) : state_(std::make_un
     if (!rule) throw UserError("--variant " + options.rule + ": unknown flip rule");
     s.rule = *rule;
     s.context = createContext({options.device_index, options.validation});
+    s.max_groups = maxGroupsFor(s.context->info);
     s.kernels = createKernels(*s.context, {s.rule.key_by_gain ? 1u : 0u, s.rule.single_round ? 1u : 0u});
     if (s.context->timestamps) {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -113,6 +127,7 @@ VulkanBackend::~VulkanBackend() {
     vkDeviceWaitIdle(s.context->device);
     s.releaseBuffers();
     if (s.timestamps) vkDestroyQueryPool(s.context->device, s.timestamps, nullptr);
+    if (s.step_timestamps) vkDestroyQueryPool(s.context->device, s.step_timestamps, nullptr);
     destroyKernels(*s.context, s.kernels);
 }
 
@@ -196,6 +211,7 @@ void VulkanBackend::State::uploadParams() {
     p.max_iterations = options.max_iterations;
     p.max_rounds = options.max_rounds;
     p.channels = image->channels;
+    p.max_groups = max_groups;
     uploadToBuffer(*context, params, &p, sizeof(p));
 }
 
@@ -242,18 +258,56 @@ double VulkanBackend::State::meshCost() {
 
 double VulkanBackend::deviceMeshCost() { return state_->meshCost(); }
 
+std::vector<double> VulkanBackend::deviceEdgeCosts() {
+    State& s = *state_;
+    CommandBatch commands(*s.context);
+    PushConstants p = s.push();
+    p.step = 1;
+    dispatch(commands.buffer(), s.kernels.edge_cost, s.kernels.layout, p, kCostGroups);
+    commands.submitAndWait();
+    std::vector<double> costs(s.edge_count);
+    downloadFromBuffer(*s.context, s.gain, costs.data(), costs.size() * 8);
+    return costs;
+}
+
+std::vector<std::pair<std::string, KernelTime>> VulkanBackend::kernelTimes() const {
+    return {state_->kernel_times.begin(), state_->kernel_times.end()};
+}
+
 Control VulkanBackend::State::readControl() {
     Control c;
     downloadFromBuffer(*context, control_readback, &c, sizeof(c));
     return c;
 }
 
+void VulkanBackend::State::markStep(VkCommandBuffer commands, const char* label) {
+    if (!step_timestamps) return;
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, step_timestamps, uint32_t(step_labels.size()));
+    step_labels.push_back(label);
+}
+
 // A planned step: the plan kernel sizes the step's indirect dispatch, then the step runs.
 void VulkanBackend::State::recordStep(VkCommandBuffer commands, uint32_t step, VkPipeline kernel) {
+    static const char* const kLabels[] = {"candidates", "select", "flip"};
     PushConstants p = push();
     p.step = step;
     dispatch(commands, kernels.plan, kernels.layout, p, 1);
+    markStep(commands, "plan");
     dispatchIndirect(commands, kernel, kernels.layout, p, args, step);
+    markStep(commands, kLabels[step]);
+}
+
+void VulkanBackend::State::collectStepTimes() {
+    if (!step_timestamps || step_labels.size() < 2) return;
+    std::vector<uint64_t> ticks(step_labels.size());
+    VK_CHECK(vkGetQueryPoolResults(context->device, step_timestamps, 0, uint32_t(ticks.size()),
+                                   ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    for (size_t i = 1; i < ticks.size(); ++i) {
+        KernelTime& t = kernel_times[step_labels[i]];
+        t.dispatches += 1;
+        t.ms += double(ticks[i] - ticks[i - 1]) * context->properties.limits.timestampPeriod * 1e-6;
+    }
 }
 
 void VulkanBackend::State::recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip) {
@@ -291,17 +345,27 @@ OptimizeStats VulkanBackend::optimize() {
     const double cost_init = s.meshCost();
 
     const BatchShape shape = batchShapeFor(s.rule);
+    const uint64_t dispatches_per_batch = uint64_t(shape.iterations) * 2 * (2 + shape.rounds_per_iteration);
     CommandBatch batch(c);
     VkCommandBuffer commands = batch.buffer();
     if (s.timestamps) {
         vkCmdResetQueryPool(commands, s.timestamps, 0, 2);
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.timestamps, 0);
     }
+    if (s.options.profile && s.context->timestamps) {
+        if (s.step_timestamps) vkDestroyQueryPool(c.device, s.step_timestamps, nullptr);
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = uint32_t(dispatches_per_batch + 1);
+        VK_CHECK(vkCreateQueryPool(c.device, &info, nullptr, &s.step_timestamps));
+        vkCmdResetQueryPool(commands, s.step_timestamps, 0, info.queryCount);
+        s.step_labels.clear();
+        s.markStep(commands, "start");
+    }
     for (uint32_t i = 0; i < shape.iterations; ++i) s.recordIteration(commands, shape.rounds_per_iteration, true, true);
     if (s.timestamps) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.timestamps, 1);
     s.recordControlReadback(commands);
     batch.finishRecording();
-    const uint64_t dispatches_per_batch = uint64_t(shape.iterations) * 2 * (2 + shape.rounds_per_iteration);
 
     // Each submit advances the device's state machine; a loop that cannot end otherwise
     // is bounded by the caps on iterations and rounds.
@@ -319,6 +383,7 @@ OptimizeStats VulkanBackend::optimize() {
                                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
             device_ns += double(ticks[1] - ticks[0]) * c.properties.limits.timestampPeriod;
         }
+        s.collectStepTimes();
         control = s.readControl();
     } while (control.phase != kPhaseDone && batches < max_batches);
     return s.finishStats(control, cost_init, batches * dispatches_per_batch, device_ns);

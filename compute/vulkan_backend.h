@@ -21,6 +21,13 @@ struct VulkanOptions {
     bool validation = false;
     uint32_t max_iterations = 100000;  // safety caps, reported in OptimizeStats::capped
     uint32_t max_rounds = 100000;      // accept/reject rounds per iteration
+    bool profile = false;              // time every dispatch (kernelTimes); costs a little
+};
+
+// Device time spent in one kernel, summed over an optimisation (profile on).
+struct KernelTime {
+    uint64_t dispatches = 0;
+    double ms = 0.0;
 };
 
 // One iteration's decisions, just before its flips (for tests).
@@ -47,8 +54,11 @@ public:
 
     // Like optimize(), one submit per step, showing each iteration before its flips.
     OptimizeStats optimizeStepwise(const std::function<void(const IterationSnapshot&)>& inspect);
-    // The mesh cost as the kernels compute it.
+    // The mesh cost, and every edge's cost, as the kernels compute them.
     double deviceMeshCost();
+    std::vector<double> deviceEdgeCosts();
+    // Per-kernel device time of the optimisations so far (VulkanOptions::profile).
+    std::vector<std::pair<std::string, KernelTime>> kernelTimes() const;
     const DeviceInfo& device() const;
     uint32_t validationMessages() const;
 

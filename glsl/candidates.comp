@@ -7,7 +7,7 @@
 #include "common.glsl"
 
 void main() {
-    params = push.params;
+    loadParams();
     Control control = params.control;
     const uint iteration = control.iteration;
     const bool from_list = params.active_set != 0 && iteration > 0;

@@ -12,14 +12,32 @@ layout(push_constant) uniform Push {
     PushConstants push;
 };
 
-// Every kernel starts with `params = push.params;`.
+// Every kernel starts with loadParams(). The hot addresses and sizes are copied into
+// private variables once: lavapipe re-reads every `params.x` from memory, lane by lane,
+// since stores elsewhere might alias it, and those reloads dominated the kernels' time.
 DeviceParams params;
+UVec4Array edge_vertices;
+UVec4Array edge_neighbours;
+FloatArray luma;
+FloatArray alpha;
+uint width;
+bool has_alpha;
+
+void loadParams() {
+    params = push.params;
+    edge_vertices = params.edge_vertices;
+    edge_neighbours = params.edge_neighbours;
+    luma = params.luma;
+    alpha = params.alpha;
+    width = params.width;
+    has_alpha = params.has_alpha != 0;
+}
 
 // Invocations of the whole dispatch, for loops over ranges larger than one dispatch.
 uint invocationStride() { return gl_NumWorkGroups.x * kGroupSize; }
 
-uvec4 verticesOf(uint e) { return params.edge_vertices.at[e]; }
-uvec4 neighboursOf(uint e) { return params.edge_neighbours.at[e]; }
+uvec4 verticesOf(uint e) { return edge_vertices.at[e]; }
+uvec4 neighboursOf(uint e) { return edge_neighbours.at[e]; }
 
 // Far vertex of neighbour edge n as seen from the triangle whose third vertex is `near`.
 uint farVertex(uint n, uint near) {
@@ -62,15 +80,15 @@ StencilValues stencilValues(FloatArray channel, FlipStencil s) {
 // below any threshold (core returns -infinity, which GLSL cannot spell).
 double flipGainOf(uint e) {
     FlipStencil s = flipStencilOf(e);
-    if (!flipIsConvex(s, params.width)) return -1.0lf;
-    precise double gain = flipGain(s, stencilValues(params.luma, s), params.width);
-    if (params.has_alpha != 0) gain += flipGain(s, stencilValues(params.alpha, s), params.width);
+    if (!flipIsConvex(s, width)) return -1.0lf;
+    precise double gain = flipGain(s, stencilValues(luma, s), width);
+    if (has_alpha) gain += flipGain(s, stencilValues(alpha, s), width);
     return gain;
 }
 
 double channelEdgeCost(FloatArray z, uvec4 v) {
-    Gradient left = planeGradient(v.x, v.y, v.z, z.at[v.x], z.at[v.y], z.at[v.z], params.width);
-    Gradient right = planeGradient(v.y, v.x, v.w, z.at[v.y], z.at[v.x], z.at[v.w], params.width);
+    Gradient left = planeGradient(v.x, v.y, v.z, z.at[v.x], z.at[v.y], z.at[v.z], width);
+    Gradient right = planeGradient(v.y, v.x, v.w, z.at[v.y], z.at[v.x], z.at[v.w], width);
     return sederbergCost(left, right);
 }
 
@@ -78,10 +96,10 @@ double channelEdgeCost(FloatArray z, uvec4 v) {
 double edgeCostOf(uint e) {
     uvec4 v = verticesOf(e);
     if (v.z == kNone || v.w == kNone) return 0.0lf;
-    precise double cost = channelEdgeCost(params.luma, v);
-    if (params.has_alpha != 0) cost += channelEdgeCost(params.alpha, v);
+    precise double cost = channelEdgeCost(luma, v);
+    if (has_alpha) cost += channelEdgeCost(alpha, v);
     return cost;
 }
 
-// Workgroups for `count` items (the kernels loop when it exceeds kMaxGroups).
-uint groupsFor(uint count) { return min((count + kGroupSize - 1) / kGroupSize, kMaxGroups); }
+// Workgroups for `count` items, at most the device's max_groups (the kernels loop).
+uint groupsFor(uint count) { return min((count + kGroupSize - 1) / kGroupSize, params.max_groups); }

@@ -2,16 +2,21 @@
 #extension GL_GOOGLE_include_directive : require
 // The mesh cost (cost-init, cost-final): every workgroup sums the Sederberg cost of a fixed,
 // strided set of edges and reduces it in shared memory; the host adds the partial sums.
-// Fixed assignment and reduction order make the result deterministic.
+// Fixed assignment and reduction order make the result deterministic. With push.step = 1 it
+// also stores every edge's cost in the gain array (tests compare them with core's).
 #include "common.glsl"
 
 shared double partial[kGroupSize];
 
 void main() {
-    params = push.params;
+    loadParams();
     const uint lane = gl_LocalInvocationID.x;
     precise double sum = 0.0lf;
-    for (uint e = gl_GlobalInvocationID.x; e < params.edge_count; e += invocationStride()) sum += edgeCostOf(e);
+    for (uint e = gl_GlobalInvocationID.x; e < params.edge_count; e += invocationStride()) {
+        const double cost = edgeCostOf(e);
+        sum += cost;
+        if (push.step != 0) params.gain.at[e] = cost;
+    }
     partial[lane] = sum;
     barrier();
     for (uint width = kGroupSize / 2; width > 0; width /= 2) {

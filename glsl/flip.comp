@@ -32,16 +32,16 @@ void patchNeighbour(uint n, uint e, uint old_near, uint new_near, uint successor
         nb.z = nb.z == e ? successor : e;
         nb.w = nb.w == e ? successor : e;
     }
-    params.edge_vertices.at[n] = v;
-    params.edge_neighbours.at[n] = nb;
+    edge_vertices.at[n] = v;
+    edge_neighbours.at[n] = nb;
 }
 
 // (a, b, l, r) -> (r, l, a, b) and (bl, la, ar, rb) -> (la, ar, rb, bl), as core's flipEdge.
 void flipEdge(uint e) {
     const uvec4 v = verticesOf(e);
     const uvec4 n = neighboursOf(e);
-    params.edge_vertices.at[e] = uvec4(v.w, v.z, v.x, v.y);
-    params.edge_neighbours.at[e] = uvec4(n.y, n.z, n.w, n.x);
+    edge_vertices.at[e] = uvec4(v.w, v.z, v.x, v.y);
+    edge_neighbours.at[e] = uvec4(n.y, n.z, n.w, n.x);
     patchNeighbour(n.x, e, v.x, v.w, n.w);
     patchNeighbour(n.y, e, v.y, v.w, n.z);
     patchNeighbour(n.z, e, v.y, v.z, n.y);
@@ -70,7 +70,7 @@ void activateClosed2Region(uint e, uint iteration) {
 }
 
 void main() {
-    params = push.params;
+    loadParams();
     Control control = params.control;
     const uint count = control.candidate_count;
     const uint final_status = control.round & 1;

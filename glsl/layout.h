@@ -95,7 +95,7 @@ DDT_BLOCK(DeviceParams) {
     uint max_iterations;       // safety caps, reported when reached
     uint max_rounds;
     uint channels;
-    uint pad0;
+    uint max_groups;           // workgroups per dispatch; larger ranges are looped over
 };
 
 // Push constants of every kernel.

@@ -72,7 +72,7 @@ void planFlip(Control c) {
 }
 
 void main() {
-    params = push.params;
+    loadParams();
     if (gl_GlobalInvocationID.x != 0) return;
     Control c = params.control;
     if (push.step == kArgsCandidates) planCandidates(c);

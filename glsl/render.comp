@@ -52,7 +52,7 @@ void renderTriangle(uint i0, uint i1, uint i2) {
 }
 
 void main() {
-    params = push.params;
+    loadParams();
     for (uint i = gl_GlobalInvocationID.x; i < push.edge_range; i += invocationStride()) {
         const uint e = push.first_edge + i;
         const uvec4 v = verticesOf(e);

@@ -7,7 +7,7 @@
 #include "common.glsl"
 
 void main() {
-    params = push.params;
+    loadParams();
     const uint w = params.width;
     for (uint e = gl_GlobalInvocationID.x; e < params.edge_count; e += invocationStride()) {
         const uvec4 v = verticesOf(e);

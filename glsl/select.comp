@@ -61,7 +61,7 @@ uint decide(uint e, UintArray status_in, uint degree) {
 }
 
 void main() {
-    params = push.params;
+    loadParams();
     Control control = params.control;
     const uint round = control.round - 1;  // the plan step counted this round already
     const uint count = round == 0 ? control.candidate_count : control.round_count[round & 1];

@@ -1,0 +1,368 @@
+// The Vulkan backend on lavapipe, checked against core (the serial reference) and against
+// itself. Every backend here runs with the Khronos validation layer and synchronization
+// validation; each test requires zero validation messages.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+#include "cost.h"
+#include "flip_rule.h"
+#include "lawson.h"
+#include "mesh.h"
+#include "render.h"
+#include "context.h"
+#include "vulkan_backend.h"
+
+namespace {
+
+using namespace ddt;
+
+// Gains are computed in fp64 by the same code (glsl/sederberg.h) on both sides, but a
+// device may round division and square root differently in the last bit; a gain sums ten
+// terms below ~8, so such differences stay far below 1e-12.
+const double kGainTolerance = 1e-12;
+
+Image randomImage(uint32_t width, uint32_t height, uint32_t channels, uint32_t seed, int levels = 0) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> value(0.0f, 1.0f);
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.pixels.resize(size_t(width) * height * channels);
+    // Few levels give many equal gains, which exercises the tie rules.
+    for (float& v : image.pixels) v = levels ? float(int(value(rng) * levels)) / float(levels - 1) : value(rng);
+    if (image.hasAlpha())  // premultiplied: colour at most alpha
+        for (size_t i = 0; i < image.pixels.size(); i += channels)
+            for (uint32_t k = 0; k + 1 < channels; ++k) image.pixels[i + k] *= image.pixels[i + channels - 1];
+    return image;
+}
+
+Image fixture(const char* name) { return readImage(std::string(DDTUP_TEST_DATA) + "/" + name); }
+
+struct TestImage {
+    const char* label;
+    Image image;
+};
+
+std::vector<TestImage> testImages() {
+    return {{"random RGB 13x9", randomImage(13, 9, 3, 1)},
+            {"random grey 24x17", randomImage(24, 17, 1, 2)},
+            {"four-level grey 20x20", randomImage(20, 20, 1, 3, 4)},
+            {"random RGBA 11x14", randomImage(11, 14, 4, 4)},
+            {"astronaut crop 32x32", fixture("crop32_astronaut.png")}};
+}
+
+VulkanBackend makeBackend(const std::string& rule, bool active_set = true) {
+    VulkanOptions options;
+    options.rule = rule;
+    options.active_set = active_set;
+    options.validation = true;
+    return VulkanBackend(options);
+}
+
+double largestGain(const Mesh& mesh, const CostField& field) {
+    double largest = -1.0;
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) largest = std::max(largest, flipGainOf(mesh, field, e));
+    return largest;
+}
+
+bool sameMesh(const Mesh& a, const Mesh& b) {
+    auto same_vertices = [](const EdgeVertices& x, const EdgeVertices& y) {
+        return x.a == y.a && x.b == y.b && x.l == y.l && x.r == y.r;
+    };
+    auto same_neighbours = [](const EdgeNeighbours& x, const EdgeNeighbours& y) {
+        return x.bl == y.bl && x.la == y.la && x.ar == y.ar && x.rb == y.rb;
+    };
+    return a.width == b.width && a.height == b.height &&
+           std::equal(a.vertices.begin(), a.vertices.end(), b.vertices.begin(), b.vertices.end(), same_vertices) &&
+           std::equal(a.neighbours.begin(), a.neighbours.end(), b.neighbours.begin(), b.neighbours.end(),
+                      same_neighbours);
+}
+
+}  // namespace
+
+TEST_CASE("vulkan: every rule yields a valid, locally optimal mesh") {
+    const std::vector<TestImage> images = testImages();
+    for (const std::string& rule : tableFlipRules()) {
+        VulkanBackend backend = makeBackend(rule);
+        for (const TestImage& test : images) {
+            INFO(rule << " on " << test.label);
+            backend.prepare(test.image);
+            const OptimizeStats stats = backend.optimize();
+            const Mesh mesh = backend.mesh();
+            const CostField field = costFieldOf(test.image);
+            CHECK(checkMesh(mesh) == "");
+            CHECK_FALSE(stats.capped);
+            CHECK(largestGain(mesh, field) <= kFlipGainThreshold + kGainTolerance);
+            CHECK(stats.flips > 0);
+            CHECK(stats.cost_final < stats.cost_init);
+            // The device's cost sums agree with core's on both meshes (summation order differs).
+            CHECK(stats.cost_init == Approx(meshCost(buildGridMesh(test.image.width, test.image.height), field)).epsilon(1e-12));
+            CHECK(stats.cost_final == Approx(meshCost(mesh, field)).epsilon(1e-12));
+        }
+        CHECK(backend.validationMessages() == 0);
+    }
+}
+
+TEST_CASE("vulkan: the kernels' edge costs equal core's") {
+    VulkanBackend backend = makeBackend("localmax");
+    for (const TestImage& test : testImages()) {
+        INFO(test.label);
+        backend.prepare(test.image);
+        backend.optimize();  // compare on an optimised mesh, where flipped edges are long and slanted
+        const Mesh mesh = backend.mesh();
+        const CostField field = costFieldOf(test.image);
+        const std::vector<double> device_costs = backend.deviceEdgeCosts();
+        double worst = 0.0;
+        for (uint32_t e = 0; e < mesh.edgeCount(); ++e)
+            worst = std::max(worst, std::abs(device_costs[e] - edgeCost(mesh, field, e)));
+        // Same formula and operation order, contraction forbidden: only a last-bit difference
+        // in the device's division or square root could remain (costs are below ~8).
+        CHECK(worst <= 1e-14);
+    }
+    CHECK(backend.validationMessages() == 0);
+}
+
+TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains are exact") {
+    const std::vector<TestImage> images = testImages();
+    for (const char* rule : {"basic", "exproi", "maxgain", "exproi2-maxgain", "localmax"}) {
+        const FlipRule flip_rule = *parseFlipRule(rule);
+        VulkanBackend backend = makeBackend(rule);
+        for (const TestImage& test : images) {
+            INFO(rule << " on " << test.label);
+            backend.prepare(test.image);
+            const CostField field = costFieldOf(test.image);
+            Mesh expected_next;  // the previous iteration's mesh with its flips applied on the host
+            uint32_t iterations = 0;
+            backend.optimizeStepwise([&](const IterationSnapshot& snapshot) {
+                ++iterations;
+                if (snapshot.iteration > 0) CHECK(sameMesh(snapshot.mesh, expected_next));
+                const int degree = snapshot.iteration < flip_rule.exproi_iterations ? 3 : 2;
+                const std::vector<uint32_t>& accepted = snapshot.accepted;
+                REQUIRE_FALSE(accepted.empty());
+                for (uint32_t e : accepted)
+                    for (uint32_t f : regionOf(snapshot.mesh, e, degree))
+                        CHECK_FALSE(std::binary_search(accepted.begin(), accepted.end(), f));
+
+                // Flip the accepted edges one after another on the host: each gain, recomputed
+                // just before its own flip, equals the candidate step's, so the cost falls by
+                // their sum.
+                Mesh mesh = snapshot.mesh;
+                double gain_sum = 0.0;
+                const double cost_before = meshCost(mesh, field);
+                for (uint32_t e : accepted) {
+                    const size_t i = std::lower_bound(snapshot.candidates.begin(), snapshot.candidates.end(), e) -
+                                     snapshot.candidates.begin();
+                    CHECK(std::abs(flipGainOf(mesh, field, e) - snapshot.candidate_gains[i]) <= kGainTolerance);
+                    gain_sum += snapshot.candidate_gains[i];
+                    flipEdge(mesh, e);
+                }
+                // Summation order differs between the two sides: relative 1e-12 of the total.
+                CHECK(meshCost(mesh, field) == Approx(cost_before - gain_sum).epsilon(1e-12).margin(1e-12));
+                CHECK(checkMesh(mesh) == "");
+                expected_next = std::move(mesh);
+            });
+            CHECK(iterations > 0);
+            CHECK(sameMesh(backend.mesh(), expected_next));
+        }
+        CHECK(backend.validationMessages() == 0);
+    }
+}
+
+TEST_CASE("vulkan: the active set changes nothing but the work") {
+    const std::vector<TestImage> images = testImages();
+    for (const std::string& rule : tableFlipRules()) {
+        VulkanBackend with = makeBackend(rule, true);
+        VulkanBackend without = makeBackend(rule, false);
+        for (const TestImage& test : images) {
+            INFO(rule << " on " << test.label);
+            with.prepare(test.image);
+            without.prepare(test.image);
+            const OptimizeStats a = with.optimize();
+            const OptimizeStats b = without.optimize();
+            CHECK(sameMesh(with.mesh(), without.mesh()));
+            CHECK(a.flips == b.flips);
+            CHECK(a.iterations == b.iterations);
+            CHECK(a.rounds == b.rounds);
+        }
+        CHECK(with.validationMessages() == 0);
+        CHECK(without.validationMessages() == 0);
+    }
+}
+
+TEST_CASE("vulkan: ExpROI with N = 0 is basic") {
+    VulkanBackend basic = makeBackend("basic");
+    VulkanBackend exproi0 = makeBackend("exproi-0-maxgain");
+    VulkanBackend maxgain = makeBackend("maxgain");
+    VulkanBackend exproi0_basic = makeBackend("exproi0");
+    for (const TestImage& test : testImages()) {
+        INFO(test.label);
+        for (VulkanBackend* b : {&basic, &exproi0, &maxgain, &exproi0_basic}) {
+            b->prepare(test.image);
+            b->optimize();
+        }
+        CHECK(sameMesh(basic.mesh(), exproi0_basic.mesh()));
+        CHECK(sameMesh(maxgain.mesh(), exproi0.mesh()));
+    }
+}
+
+// Two candidates in each other's ROI, the one with the larger id having the larger gain.
+// A 4×4 grey image, white but for a black and a grey pixel:
+//
+//        x=0   x=1   x=2   x=3
+//   y=0   1     1     1     1
+//   y=1   1     0     1     1        e = edge 12, the diagonal (0,1)–(1,2)
+//   y=2   1    0.5    1     1        f = edge 23, the row edge (1,2)–(2,2)
+//   y=3   1     1     1     1
+//
+//   (0,1)      (1,1)                 Both want to flip; f lies in e's 2-region (both
+//     +---------+                    touch the grey vertex (1,2)), so at most one of them
+//     |  \   e  |                    flips in the first iteration.
+//     |     \   |
+//     +---------+---------+
+//   (0,2)    (1,2)   f    (2,2)
+TEST_CASE("vulkan: MaxGain and local-max prefer the larger gain over the lower id") {
+    Image image;
+    image.width = 4;
+    image.height = 4;
+    image.channels = 1;
+    image.pixels.assign(16, 1.0f);
+    image.pixels[1 * 4 + 1] = 0.0f;
+    image.pixels[2 * 4 + 1] = 0.5f;
+    const uint32_t e = 12, f = 23;
+
+    // The premise, from the serial reference: exactly these two candidates, in conflict.
+    const Mesh grid = buildGridMesh(4, 4);
+    const CostField field = costFieldOf(image);
+    for (uint32_t g = 0; g < grid.edgeCount(); ++g)
+        CHECK((flipGainOf(grid, field, g) > kFlipGainThreshold) == (g == e || g == f));
+    const std::vector<uint32_t> roi = regionOf(grid, e, 2);
+    REQUIRE(std::find(roi.begin(), roi.end(), f) != roi.end());
+    REQUIRE(flipGainOf(grid, field, f) > flipGainOf(grid, field, e));
+
+    auto first_iteration = [&](const std::string& rule) {
+        VulkanBackend backend = makeBackend(rule);
+        backend.prepare(image);
+        IterationSnapshot first;
+        backend.optimizeStepwise([&](const IterationSnapshot& s) {
+            if (s.iteration == 0) first = s;
+        });
+        CHECK(backend.validationMessages() == 0);
+        return first;
+    };
+    const IterationSnapshot basic = first_iteration("basic");
+    CHECK(basic.accepted == std::vector<uint32_t>{e});  // lowest id wins
+    const IterationSnapshot maxgain = first_iteration("maxgain");
+    CHECK(maxgain.accepted == std::vector<uint32_t>{f});  // larger gain wins, e rejected
+    CHECK(maxgain.undecided.empty());
+    const IterationSnapshot localmax = first_iteration("localmax");
+    CHECK(localmax.accepted == std::vector<uint32_t>{f});
+    CHECK(localmax.undecided == std::vector<uint32_t>{e});  // left for the next iteration, not rejected
+    CHECK(localmax.rounds == 1);
+}
+
+TEST_CASE("vulkan: results are the same on every run and with one or two lavapipe threads") {
+    const Image image = fixture("crop32_astronaut.png");
+    const OutputSize out = scaledOutputSize(image.width, image.height, 2.5);
+    const char* saved = std::getenv("LP_NUM_THREADS");
+    const std::string restore = saved ? saved : "";
+    for (const std::string& rule : tableFlipRules()) {
+        INFO(rule);
+        std::vector<Mesh> meshes;
+        std::vector<std::vector<float>> renders;
+        for (const char* threads : {"2", "1", "2"}) {
+            setenv("LP_NUM_THREADS", threads, 1);  // read when the device is created
+            VulkanBackend backend = makeBackend(rule);
+            backend.prepare(image);
+            backend.optimize();
+            meshes.push_back(backend.mesh());
+            std::vector<float> rows(size_t(out.width) * out.height * image.channels);
+            backend.renderRows(out, 0, out.height, rows.data());
+            renders.push_back(std::move(rows));
+        }
+        for (size_t i = 1; i < meshes.size(); ++i) {
+            CHECK(sameMesh(meshes[0], meshes[i]));
+            CHECK(renders[0] == renders[i]);
+        }
+    }
+    if (saved) setenv("LP_NUM_THREADS", restore.c_str(), 1);
+    else unsetenv("LP_NUM_THREADS");
+}
+
+TEST_CASE("vulkan: the device renderer matches core's on the same mesh") {
+    struct Case {
+        Image image;
+        double scale;
+    };
+    const std::vector<Case> cases = {{randomImage(13, 9, 3, 5), 1.0},  {randomImage(13, 9, 3, 5), 2.5},
+                                     {randomImage(7, 12, 1, 6), 3.0},  {randomImage(9, 9, 2, 7), 8.0},
+                                     {randomImage(10, 6, 4, 8), 2.0},  {fixture("crop32_astronaut.png"), 7.3}};
+    VulkanBackend backend = makeBackend("localmax");
+    for (const Case& c : cases) {
+        INFO(c.image.width << "x" << c.image.height << "x" << c.image.channels << " scaled " << c.scale);
+        backend.prepare(c.image);
+        backend.optimize();
+        const Mesh mesh = backend.mesh();
+        const OutputSize out = scaledOutputSize(c.image.width, c.image.height, c.scale);
+        const Image reference = renderImage(mesh, c.image, out);
+        std::vector<float> rows(reference.pixels.size(), std::nanf(""));
+        // Two bands, to cover the band split.
+        const uint32_t half = out.height / 2;
+        backend.renderRows(out, 0, half, rows.data());
+        backend.renderRows(out, half, out.height, rows.data() + size_t(half) * out.width * c.image.channels);
+        double worst = 0.0;
+        for (size_t i = 0; i < rows.size(); ++i) worst = std::max(worst, double(std::abs(rows[i] - reference.pixels[i])));
+        // The device interpolates in float, core in double; both are far inside 1/255.
+        CHECK(worst <= 1.0 / 255.0);
+        if (c.scale == 1.0) CHECK(rows == c.image.pixels);  // vertices are reproduced exactly
+    }
+    CHECK(backend.validationMessages() == 0);
+}
+
+TEST_CASE("vulkan: the validation messenger reports a deliberate error") {
+    // Shows the zero-message checks above can fail: an invalid call must be counted.
+    std::unique_ptr<VulkanContext> context = createContext({-1, true});
+    REQUIRE(context->validation_messages == 0);
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, nullptr, 0, 16, 0, VK_SHARING_MODE_EXCLUSIVE, 0, nullptr};
+    VkBuffer buffer = VK_NULL_HANDLE;  // usage 0 is invalid
+    if (vkCreateBuffer(context->device, &info, nullptr, &buffer) == VK_SUCCESS) vkDestroyBuffer(context->device, buffer, nullptr);
+    CHECK(context->validation_messages > 0);
+}
+
+TEST_CASE("vulkan: an input whose edge arrays exceed a 128 MiB binding runs and stays valid") {
+    // 2100² has 13.2 M edges: 211 MB per edge array. A few flat regions keep flips, and the
+    // test's time, small.
+    const uint32_t side = 2100;
+    Image image;
+    image.width = side;
+    image.height = side;
+    image.channels = 1;
+    image.pixels.resize(size_t(side) * side);
+    for (uint32_t y = 0; y < side; ++y)
+        for (uint32_t x = 0; x < side; ++x)
+            image.pixels[size_t(y) * side + x] = (x + y < side ? 0.2f : 0.9f) + (x < side / 3 ? 0.05f : 0.0f);
+    VulkanOptions options;
+    options.rule = "localmax";
+    VulkanBackend backend(options);
+    backend.prepare(image);
+    const OptimizeStats stats = backend.optimize();
+    CHECK_FALSE(stats.capped);
+    CHECK(stats.flips > 0);
+    const Mesh mesh = backend.mesh();
+    CHECK(checkMesh(mesh) == "");
+    CHECK(stats.cost_final < stats.cost_init);
+
+    // A band across the middle of a 2× output, against core's renderer on the same mesh.
+    const OutputSize out = scaledOutputSize(side, side, 2.0);
+    const uint32_t first = out.height / 2 - 8, rows = 16;
+    std::vector<float> device_rows(size_t(rows) * out.width), core_rows(device_rows.size());
+    backend.renderRows(out, first, first + rows, device_rows.data());
+    MeshRenderer(mesh, image, out).renderRows(first, first + rows, core_rows.data());
+    double worst = 0.0;
+    for (size_t i = 0; i < core_rows.size(); ++i) worst = std::max(worst, double(std::abs(device_rows[i] - core_rows[i])));
+    CHECK(worst <= 1.0 / 255.0);
+}
