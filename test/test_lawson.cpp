@@ -275,3 +275,64 @@ TEST_CASE("lawson: the sweep cap stops early and says so") {
     CHECK(calls == 2);
     CHECK(ddt::checkMesh(mesh) == "");
 }
+
+namespace {
+
+// Paper Fig. 3 as written: every sweep tests every edge in id order. optimizeSerial skips the
+// edges whose gain cannot have changed; it must flip exactly the same edges in the same order.
+ddt::OptimizeStats plainLawson(ddt::Mesh& mesh, const ddt::CostField& field, std::vector<ddt::Mesh>& after_sweeps) {
+    ddt::OptimizeStats stats;
+    stats.cost_init = ddt::meshCost(mesh, field);
+    bool flipped = true;
+    while (flipped) {
+        flipped = false;
+        for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+            if (ddt::flipGainOf(mesh, field, e) > ddt::kFlipGainThreshold) {
+                ddt::flipEdge(mesh, e);
+                ++stats.flips;
+                flipped = true;
+            }
+        }
+        ++stats.iterations;
+        after_sweeps.push_back(mesh);
+    }
+    stats.cost_final = ddt::meshCost(mesh, field);
+    return stats;
+}
+
+void checkSameAsPlainSweeps(const ddt::Image& image, const std::string& name) {
+    INFO(name);
+    const ddt::CostField field = ddt::costFieldOf(image);
+    ddt::Mesh plain = ddt::buildGridMesh(image.width, image.height);
+    ddt::Mesh fast = plain;
+    std::vector<ddt::Mesh> plain_sweeps, fast_sweeps;
+    const ddt::OptimizeStats expected = plainLawson(plain, field, plain_sweeps);
+    ddt::LawsonOptions options;
+    options.after_sweep = [&](uint32_t, const ddt::Mesh& mesh) { fast_sweeps.push_back(mesh); };
+    const ddt::OptimizeStats stats = ddt::optimizeSerial(fast, field, options);
+    CHECK(stats.flips == expected.flips);
+    CHECK(stats.iterations == expected.iterations);
+    CHECK(stats.cost_init == expected.cost_init);
+    CHECK(stats.cost_final == expected.cost_final);
+    REQUIRE(fast_sweeps.size() == plain_sweeps.size());
+    for (size_t i = 0; i < plain_sweeps.size(); ++i) {
+        INFO("after sweep " << i + 1);
+        CHECK(ddt::test::sameRecords(fast_sweeps[i], plain_sweeps[i]));
+    }
+    CHECK(ddt::test::sameRecords(fast, plain));
+}
+
+}  // namespace
+
+TEST_CASE("lawson: skipping unchanged edges flips exactly like testing every edge") {
+    std::mt19937 rng(8675309);
+    for (int i = 0; i < 24; ++i) {
+        const uint32_t w = 2 + uint32_t(rng() % 30), h = 2 + uint32_t(rng() % 20);
+        const uint32_t channels = 1 + i % 4, levels = i % 3 == 0 ? 0 : 2 + i % 5;
+        std::ostringstream name;
+        name << "random " << i << ": " << w << "x" << h << ", " << channels << " channels, levels " << levels;
+        checkSameAsPlainSweeps(ddt::test::randomImage(rng, w, h, channels, levels), name.str());
+    }
+    checkSameAsPlainSweeps(ddt::readImage(std::string(DDTUP_TEST_DATA) + "/crop32_astronaut.png"), "crop32_astronaut");
+    checkSameAsPlainSweeps(antiDiagonalStep(9, 7, 8, 0.0f, 1.0f), "anti-diagonal step");
+}
