@@ -1,0 +1,244 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "cost.h"
+#include "lawson.h"
+#include "mesh.h"
+#include "render.h"
+#include "test_support.h"
+
+using ddt::OutputSize;
+using ddt::test::makeImage;
+
+namespace ddt {
+// For CHECK(size == OutputSize{...}) (found by argument-dependent lookup).
+static bool operator==(OutputSize a, OutputSize b) { return a.width == b.width && a.height == b.height; }
+static std::ostream& operator<<(std::ostream& out, OutputSize s) { return out << s.width << "x" << s.height; }
+}  // namespace ddt
+
+namespace {
+
+// A mesh that is not the grid: random convex flips, so the renderer meets long and thin
+// triangles and all edge directions.
+ddt::Mesh scrambledMesh(uint32_t width, uint32_t height, std::mt19937& rng) {
+    ddt::Mesh mesh = ddt::buildGridMesh(width, height);
+    ddt::test::flipRandomEdges(mesh, rng, 4 * width * height);
+    return mesh;
+}
+
+// Sample coordinate of output index i in units of 1/(2·out): u = (i + 0.5)·in/out − 0.5,
+// clamped into [0, in − 1], times 2·out (written here from render.h's description).
+int64_t sampleUnits(uint32_t i, uint32_t in, uint32_t out) {
+    const int64_t u = (2 * int64_t(i) + 1) * in - out;
+    return std::clamp<int64_t>(u, 0, 2 * int64_t(out) * (in - 1));
+}
+
+// Counts the triangles containing each output sample under the tie rule of glsl/raster.h: a
+// sample on a triangle's edge is moved by (dir_u·ε, dir_v·ε²), dir = +1 except −1 on the last
+// row/column of the hull. Computed with a concrete ε: all coordinates are scaled by K² and
+// the sample moved by (dir_u·K, dir_v), K = 2^16 > every coordinate difference, so the sign
+// of each 128-bit edge function is that of the symbolic one.
+std::vector<int> coverageCounts(const ddt::Mesh& mesh, OutputSize out) {
+    const uint32_t w = mesh.width, h = mesh.height;
+    const __int128 k = __int128(1) << 16;
+    REQUIRE(2 * int64_t(out.width) * w < int64_t(k));
+    REQUIRE(2 * int64_t(out.height) * h < int64_t(k));
+    std::vector<int> counts(size_t(out.width) * out.height, 0);
+    for (const ddt::Triangle& t : ddt::listTriangles(mesh)) {
+        const uint32_t ids[3] = {t.v0, t.v1, t.v2};
+        __int128 px[3], py[3];
+        for (int i = 0; i < 3; ++i) {
+            px[i] = __int128(2 * int64_t(out.width) * (ids[i] % w)) * k * k;
+            py[i] = __int128(2 * int64_t(out.height) * (ids[i] / w)) * k * k;
+        }
+        for (uint32_t y = 0; y < out.height; ++y) {
+            const int64_t v = sampleUnits(y, h, out.height);
+            const int dir_v = v == 2 * int64_t(out.height) * (h - 1) ? -1 : 1;
+            for (uint32_t x = 0; x < out.width; ++x) {
+                const int64_t u = sampleUnits(x, w, out.width);
+                const int dir_u = u == 2 * int64_t(out.width) * (w - 1) ? -1 : 1;
+                const __int128 su = __int128(u) * k * k + dir_u * k, sv = __int128(v) * k * k + dir_v;
+                bool inside = true;
+                for (int i = 0; i < 3 && inside; ++i) {
+                    const int j = (i + 1) % 3;
+                    inside = (px[j] - px[i]) * (sv - py[i]) - (py[j] - py[i]) * (su - px[i]) > 0;
+                }
+                counts[size_t(y) * out.width + x] += inside;
+            }
+        }
+    }
+    return counts;
+}
+
+std::vector<float> renderInto(const ddt::Mesh& mesh, const ddt::Image& image, OutputSize out, float fill) {
+    std::vector<float> rows(size_t(out.width) * out.height * image.channels, fill);
+    ddt::MeshRenderer(mesh, image, out).renderRows(0, out.height, rows.data());
+    return rows;
+}
+
+}  // namespace
+
+TEST_CASE("render: output sizes are round(s*w) x round(s*h)") {
+    // 5×3 input.
+    CHECK(ddt::scaledOutputSize(5, 3, 1.0) == OutputSize{5, 3});
+    CHECK(ddt::scaledOutputSize(5, 3, 2.0) == OutputSize{10, 6});
+    CHECK(ddt::scaledOutputSize(5, 3, 2.5) == OutputSize{13, 8});  // 12.5 and 7.5 round half up
+    CHECK(ddt::scaledOutputSize(5, 3, 3.0) == OutputSize{15, 9});
+    CHECK(ddt::scaledOutputSize(5, 3, 8.0) == OutputSize{40, 24});
+    CHECK(ddt::scaledOutputSize(7, 5, 2.5) == OutputSize{18, 13});  // 17.5, 12.5
+    CHECK(ddt::scaledOutputSize(13, 9, 7.3) == OutputSize{95, 66});  // 94.9, 65.7
+    CHECK(ddt::scaledOutputSize(512, 512, 8.0) == OutputSize{4096, 4096});
+    // One side given, the other keeps the aspect: round(17·3/5) = round(10.2) = 10,
+    // round(11·5/3) = round(18.33) = 18, round(1000·480/640) = 750, round(1001·640/480) =
+    // round(1334.67) = 1335.
+    CHECK(ddt::outputSizeForWidth(5, 3, 17) == OutputSize{17, 10});
+    CHECK(ddt::outputSizeForHeight(5, 3, 11) == OutputSize{18, 11});
+    CHECK(ddt::outputSizeForWidth(640, 480, 1000) == OutputSize{1000, 750});
+    CHECK(ddt::outputSizeForHeight(640, 480, 1001) == OutputSize{1335, 1001});
+}
+
+TEST_CASE("render: checkOutputSize refuses shrinking and oversized outputs") {
+    CHECK(ddt::checkOutputSize(5, 3, {5, 3}) == "");
+    CHECK(ddt::checkOutputSize(5, 3, {40, 24}) == "");
+    CHECK(ddt::checkOutputSize(5, 3, {4, 3}) != "");
+    CHECK(ddt::checkOutputSize(5, 3, {5, 2}) != "");
+    CHECK(ddt::checkOutputSize(5, 3, {100, 2}) != "");
+    // The exact coverage arithmetic needs in_w·in_h·out_w·out_h < 2^60.
+    CHECK(ddt::checkOutputSize(1u << 15, (1u << 15) - 1, {1u << 15, (1u << 15) - 1}) == "");  // just below
+    CHECK(ddt::checkOutputSize(1u << 15, 1u << 15, {1u << 15, 1u << 15}) != "");
+}
+
+TEST_CASE("render: scale 1 reproduces the input exactly") {
+    // Each output sample is a vertex: one barycentric weight is the whole, the others 0.
+    std::mt19937 rng(2024);
+    for (uint32_t channels : {1u, 2u, 3u, 4u}) {
+        for (auto [w, h] : {std::pair{2u, 2u}, {5u, 3u}, {9u, 12u}}) {
+            ddt::Image image = ddt::test::randomImage(rng, w, h, channels);
+            INFO(w << "x" << h << ", " << channels << " channels");
+            ddt::Mesh grid = ddt::buildGridMesh(w, h);
+            CHECK(ddt::test::samePixels(ddt::renderImage(grid, image, {w, h}).pixels, image.pixels));
+            ddt::Mesh optimized = grid;
+            ddt::optimizeSerial(optimized, ddt::costFieldOf(image));
+            CHECK(ddt::test::samePixels(ddt::renderImage(optimized, image, {w, h}).pixels, image.pixels));
+            CHECK(ddt::test::samePixels(ddt::renderImage(scrambledMesh(w, h, rng), image, {w, h}).pixels, image.pixels));
+        }
+    }
+}
+
+TEST_CASE("render: every output pixel belongs to exactly one triangle and is written") {
+    // The buffer starts as NaN: a pixel no triangle writes stays NaN. Coverage is counted
+    // independently with the documented tie rule: exactly one triangle per sample, so no
+    // pixel can be written twice (the renderer decides inside-ness with that rule).
+    std::mt19937 rng(17);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    struct Case {
+        uint32_t w, h, out_w, out_h;
+    };
+    const Case cases[] = {{2, 2, 2, 2},   {2, 2, 3, 3},    {2, 2, 7, 5},   {5, 3, 17, 11}, {5, 3, 13, 8},
+                          {3, 7, 8, 19},  {13, 9, 95, 66}, {6, 4, 6, 29},  {4, 4, 32, 32}, {11, 5, 12, 6}};
+    for (const Case& c : cases) {
+        ddt::Image image = ddt::test::randomImage(rng, c.w, c.h, 3);
+        for (int variant = 0; variant < 2; ++variant) {
+            const ddt::Mesh mesh = variant == 0 ? ddt::buildGridMesh(c.w, c.h) : scrambledMesh(c.w, c.h, rng);
+            const OutputSize out{c.out_w, c.out_h};
+            INFO(c.w << "x" << c.h << " -> " << c.out_w << "x" << c.out_h << (variant ? " scrambled" : " grid"));
+            const std::vector<float> rows = renderInto(mesh, image, out, nan);
+            CHECK(std::none_of(rows.begin(), rows.end(), [](float v) { return std::isnan(v); }));
+            const std::vector<int> counts = coverageCounts(mesh, out);
+            CHECK(std::all_of(counts.begin(), counts.end(), [](int n) { return n == 1; }));
+        }
+    }
+}
+
+TEST_CASE("render: rendering in bands equals rendering at once, bit for bit") {
+    std::mt19937 rng(99);
+    for (auto [w, h, s] : {std::tuple{5u, 3u, 2.5}, {13u, 9u, 7.3}, {8u, 8u, 3.0}, {2u, 6u, 4.0}}) {
+        ddt::Image image = ddt::test::randomImage(rng, w, h, 4);
+        ddt::Mesh mesh = scrambledMesh(w, h, rng);
+        const OutputSize out = ddt::scaledOutputSize(w, h, s);
+        const std::vector<float> whole = renderInto(mesh, image, out, 0.0f);
+        const ddt::MeshRenderer renderer(mesh, image, out);
+        for (uint32_t band : {1u, 2u, 3u, 7u, out.height}) {
+            std::vector<float> banded(whole.size(), std::numeric_limits<float>::quiet_NaN());
+            const size_t row_floats = size_t(out.width) * image.channels;
+            for (uint32_t y = 0; y < out.height; y += band)
+                renderer.renderRows(y, std::min(y + band, out.height), banded.data() + y * row_floats);
+            INFO(w << "x" << h << " s=" << s << " bands of " << band);
+            CHECK(ddt::test::samePixels(banded, whole));
+        }
+    }
+}
+
+TEST_CASE("render: a linear image renders to the exact linear function") {
+    // z = c + a·x + b·y per channel (dyadic values, exact in float). Piecewise-linear
+    // interpolation reproduces a plane on any triangulation; the weights are exact integer
+    // edge functions divided once in double (~1e-16), and the output is a float (2^-24
+    // relative, < 6e-8 for values ≤ 1), so 1e-6 is a tolerance with margin.
+    std::mt19937 rng(5);
+    const double planes[3][3] = {{0.125, 1.0 / 64, 1.0 / 32}, {0.75, -1.0 / 32, 1.0 / 128}, {0.5, 0.0, -1.0 / 16}};
+    for (auto [w, h, s] : {std::tuple{9u, 7u, 2.5}, {5u, 8u, 7.3}, {4u, 4u, 8.0}}) {
+        std::vector<float> pixels;
+        for (uint32_t y = 0; y < h; ++y)
+            for (uint32_t x = 0; x < w; ++x)
+                for (const auto& p : planes) pixels.push_back(float(p[0] + p[1] * x + p[2] * y));
+        ddt::Image image = makeImage(w, h, 3, pixels);
+        const ddt::Mesh mesh = scrambledMesh(w, h, rng);
+        const OutputSize out = ddt::scaledOutputSize(w, h, s);
+        const ddt::Image rendered = ddt::renderImage(mesh, image, out);
+        double worst = 0.0;
+        for (uint32_t y = 0; y < out.height; ++y)
+            for (uint32_t x = 0; x < out.width; ++x) {
+                const double u = double(sampleUnits(x, w, out.width)) / (2.0 * out.width);
+                const double v = double(sampleUnits(y, h, out.height)) / (2.0 * out.height);
+                for (int k = 0; k < 3; ++k) {
+                    const double expected = planes[k][0] + planes[k][1] * u + planes[k][2] * v;
+                    worst = std::max(worst, std::abs(rendered.pixels[(size_t(y) * out.width + x) * 3 + k] - expected));
+                }
+            }
+        INFO(w << "x" << h << " s=" << s);
+        CHECK(worst < 1e-6);
+    }
+}
+
+TEST_CASE("render: values stay within the input's range per channel") {
+    // Barycentric weights are non-negative inside a triangle, so each output value is a
+    // convex combination of three input values (and rounding to float is monotone).
+    std::mt19937 rng(8);
+    for (uint32_t channels : {1u, 3u, 4u}) {
+        for (int round = 0; round < 4; ++round) {
+            const uint32_t w = 3 + round * 3, h = 2 + round * 2;
+            ddt::Image image = ddt::test::randomImage(rng, w, h, channels, round % 2 ? 4 : 0);
+            ddt::Mesh mesh = scrambledMesh(w, h, rng);
+            if (round == 3) {
+                mesh = ddt::buildGridMesh(w, h);
+                ddt::optimizeSerial(mesh, ddt::costFieldOf(image));
+            }
+            const ddt::Image rendered = ddt::renderImage(mesh, image, ddt::scaledOutputSize(w, h, 3.7));
+            for (uint32_t k = 0; k < channels; ++k) {
+                float lo = 1e30f, hi = -1e30f, out_lo = 1e30f, out_hi = -1e30f;
+                for (size_t i = k; i < image.pixels.size(); i += channels) lo = std::min(lo, image.pixels[i]), hi = std::max(hi, image.pixels[i]);
+                for (size_t i = k; i < rendered.pixels.size(); i += channels)
+                    out_lo = std::min(out_lo, rendered.pixels[i]), out_hi = std::max(out_hi, rendered.pixels[i]);
+                INFO(channels << " channels, round " << round << ", channel " << k);
+                CHECK(out_lo >= lo);
+                CHECK(out_hi <= hi);
+            }
+        }
+    }
+}
+
+TEST_CASE("render: the output keeps the input's layout") {
+    std::mt19937 rng(3);
+    ddt::Image image = ddt::test::randomImage(rng, 5, 3, 2);
+    image.sample_type = ddt::SampleType::UInt16;
+    const ddt::Image rendered = ddt::renderImage(ddt::buildGridMesh(5, 3), image, {13, 8});
+    CHECK(rendered.width == 13);
+    CHECK(rendered.height == 8);
+    CHECK(rendered.channels == 2);
+    CHECK(rendered.sample_type == ddt::SampleType::UInt16);
+    CHECK(rendered.pixels.size() == 13 * 8 * 2);
+}

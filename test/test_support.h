@@ -1,0 +1,55 @@
+// Helpers shared by the core tests: small images made in memory, edge look-up by endpoints,
+// random legal flips, and an invariant checker written independently of core's checkMesh
+// (its own orientation arithmetic), so the two can vouch for each other.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "image.h"
+#include "mesh.h"
+
+namespace ddt::test {
+
+// A width × height image made in memory; `pixels` row-major, `channels` floats per pixel.
+Image makeImage(uint32_t width, uint32_t height, uint32_t channels, std::vector<float> pixels);
+
+// A grey image from rows of values written as a picture: rows[y][x].
+Image greyImage(const std::vector<std::vector<float>>& rows);
+
+// Random values in [0, 1]; with levels > 0 only the values k / (levels − 1), which creates
+// many exact ties in the cost.
+Image randomImage(std::mt19937& rng, uint32_t width, uint32_t height, uint32_t channels, uint32_t levels = 0);
+
+// Vertex id of pixel centre (x, y).
+inline uint32_t vertexAt(const Mesh& mesh, uint32_t x, uint32_t y) { return y * mesh.width + x; }
+
+// Id of the edge joining vertices p and q, or kNone (a search over the records).
+uint32_t edgeBetween(const Mesh& mesh, uint32_t p, uint32_t q);
+
+// Twice the signed area of (p, q, r), computed here from the vertex ids (y grows downwards;
+// positive = the mesh's positive orientation).
+int64_t twiceArea(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r);
+
+// Whether e has two triangles and the quadrilateral a, r, b, l is strictly convex (both
+// new triangles (r, b, l) and (l, a, r) positive), computed here.
+bool quadIsStrictlyConvex(const Mesh& mesh, uint32_t e);
+
+// Flips `count` random edges whose quadrilateral is strictly convex; returns the flips done.
+uint32_t flipRandomEdges(Mesh& mesh, std::mt19937& rng, uint32_t count);
+
+// Independent invariant check: every edge joins two distinct vertices and appears once;
+// each side's triangle is positive and listed by all three of its edges with the right
+// neighbour links; hull edges have one triangle, others two; 2(w−1)(h−1) triangles whose
+// areas add up to (w−1)(h−1). Returns "" or the first problem.
+std::string triangulationProblem(const Mesh& mesh);
+
+// Records equal field by field.
+bool sameRecords(const Mesh& a, const Mesh& b);
+
+// Exact float equality of two pixel arrays (NaN never equal).
+bool samePixels(const std::vector<float>& a, const std::vector<float>& b);
+
+}  // namespace ddt::test
