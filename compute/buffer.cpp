@@ -30,12 +30,12 @@ const VkDeviceSize kStagingChunk = VkDeviceSize(32) << 20;
 
 }  // namespace
 
-Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placement) {
+Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placement, VkFormat view_format) {
     Buffer buffer;
     buffer.size = size;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = std::max<VkDeviceSize>(size, 16);
-    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                  VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
@@ -44,10 +44,7 @@ Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placeme
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(context.device, buffer.buffer, &requirements);
     const uint32_t type = findMemoryType(context, requirements.memoryTypeBits, placement);
-    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
-    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
     VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    allocate.pNext = &flags;
     allocate.allocationSize = requirements.size;
     allocate.memoryTypeIndex = type;
     VkResult result = vkAllocateMemory(context.device, &allocate, nullptr, &buffer.memory);
@@ -59,14 +56,18 @@ Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placeme
     const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     if ((context.memory.memoryTypes[type].propertyFlags & host) == host)
         VK_CHECK(vkMapMemory(context.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
-
-    VkBufferDeviceAddressInfo address{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
-    address.buffer = buffer.buffer;
-    buffer.address = vkGetBufferDeviceAddress(context.device, &address);
+    if (view_format != VK_FORMAT_UNDEFINED) {
+        VkBufferViewCreateInfo view{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+        view.buffer = buffer.buffer;
+        view.format = view_format;
+        view.range = VK_WHOLE_SIZE;
+        VK_CHECK(vkCreateBufferView(context.device, &view, nullptr, &buffer.view));
+    }
     return buffer;
 }
 
 void destroyBuffer(VulkanContext& context, Buffer& buffer) {
+    if (buffer.view) vkDestroyBufferView(context.device, buffer.view, nullptr);
     if (buffer.buffer) vkDestroyBuffer(context.device, buffer.buffer, nullptr);
     if (buffer.memory) vkFreeMemory(context.device, buffer.memory, nullptr);
     buffer = Buffer{};

@@ -1,4 +1,5 @@
-// Storage buffers reached by device address, and transfers between them and the host.
+// Device buffers, optionally with a texel view (the kernels' arrays), and transfers between
+// them and the host.
 // On devices whose device-local memory is host-visible (lavapipe, integrated GPUs) buffers
 // are mapped and transfers are plain copies; otherwise they go through a staging buffer.
 #pragma once
@@ -14,8 +15,8 @@ namespace ddt {
 struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkBufferView view = VK_NULL_HANDLE;  // storage texel view, when created with a format
     VkDeviceSize size = 0;
-    VkDeviceAddress address = 0;
     void* mapped = nullptr;  // set when the memory is host-visible
 };
 
@@ -24,9 +25,10 @@ enum class Placement {
     Readback,  // host-visible and cached, for results the host reads
 };
 
-// Every buffer may be a storage buffer (by address), an indirect-argument buffer and a
-// transfer source or destination.
-Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placement = Placement::Device);
+// Every buffer may be a storage buffer, a storage texel buffer, an indirect-argument buffer
+// and a transfer source or destination. With a format, it gets a storage texel view.
+Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placement = Placement::Device,
+                    VkFormat view_format = VK_FORMAT_UNDEFINED);
 void destroyBuffer(VulkanContext& context, Buffer& buffer);
 
 void uploadToBuffer(VulkanContext& context, Buffer& buffer, const void* data, VkDeviceSize size);

@@ -24,18 +24,26 @@ void hostBarrier(VkCommandBuffer commands) {
                          VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
-void dispatch(VkCommandBuffer commands, VkPipeline kernel, VkPipelineLayout layout, const PushConstants& push,
-              uint32_t groups) {
+namespace {
+
+void bind(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings, const PushConstants& push) {
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, kernel);
-    vkCmdPushConstants(commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, bindings.layout, 0, 1, &bindings.set, 0, nullptr);
+    vkCmdPushConstants(commands, bindings.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+}
+
+}  // namespace
+
+void dispatch(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings, const PushConstants& push,
+              uint32_t groups) {
+    bind(commands, kernel, bindings, push);
     vkCmdDispatch(commands, groups, 1, 1);
     computeBarrier(commands);
 }
 
-void dispatchIndirect(VkCommandBuffer commands, VkPipeline kernel, VkPipelineLayout layout,
+void dispatchIndirect(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings,
                       const PushConstants& push, const Buffer& args, uint32_t slot) {
-    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, kernel);
-    vkCmdPushConstants(commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    bind(commands, kernel, bindings, push);
     // Slots are uvec3 in a std430 array: 16 bytes apart.
     vkCmdDispatchIndirect(commands, args.buffer, VkDeviceSize(slot) * 16);
     computeBarrier(commands);

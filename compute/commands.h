@@ -1,5 +1,6 @@
-// Recording and submitting compute work. A pass is: bind the kernel, push constants,
-// dispatch (directly or from indirect arguments), then the one barrier every pass ends with.
+// Recording and submitting compute work. A pass is: bind the kernel and its bindings, push
+// constants, dispatch (directly or from indirect arguments), then the one barrier every
+// pass ends with.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -11,16 +12,22 @@
 namespace ddt {
 
 // The barrier after every dispatch: all shader writes become visible to later shader reads
-// and writes and to indirect-argument reads. Buffers are reached by device address, which
-// synchronization validation cannot track per buffer, so one global barrier covers all.
+// and writes, to indirect-argument reads and to transfers. Every kernel step depends on the
+// one before, so one global barrier is both simplest and exact.
 void computeBarrier(VkCommandBuffer commands);
 
 // Makes shader and transfer writes visible to the host before it reads mapped memory.
 void hostBarrier(VkCommandBuffer commands);
 
-void dispatch(VkCommandBuffer commands, VkPipeline kernel, VkPipelineLayout layout, const PushConstants& push,
+// What every dispatch binds: the shared pipeline layout and the job's descriptor set.
+struct KernelBindings {
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+};
+
+void dispatch(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings, const PushConstants& push,
               uint32_t groups);
-void dispatchIndirect(VkCommandBuffer commands, VkPipeline kernel, VkPipelineLayout layout,
+void dispatchIndirect(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings,
                       const PushConstants& push, const Buffer& args, uint32_t slot);
 
 // A primary command buffer recorded once and submitted (possibly many times), waiting on a

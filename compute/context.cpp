@@ -93,9 +93,7 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &driver;
     vkGetPhysicalDeviceProperties2(physical, &properties);
-    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    features.pNext = &features12;
     vkGetPhysicalDeviceFeatures2(physical, &features);
     VkPhysicalDeviceMemoryProperties memory;
     vkGetPhysicalDeviceMemoryProperties(physical, &memory);
@@ -112,7 +110,6 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
     if (properties.properties.apiVersion < VK_API_VERSION_1_2) info.unusable = "needs Vulkan 1.2";
     else if (!features.features.shaderFloat64) info.unusable = "no shaderFloat64 (gains are computed in fp64)";
     else if (!features.features.shaderInt64) info.unusable = "no shaderInt64";
-    else if (!features12.bufferDeviceAddress) info.unusable = "no bufferDeviceAddress";
     else if (computeQueueFamily(physical) == UINT32_MAX) info.unusable = "no compute queue";
     return info;
 }
@@ -219,10 +216,7 @@ std::unique_ptr<VulkanContext> createContext(const ContextOptions& options) {
     c.timestamps = families[c.queue_family].timestampValidBits > 0 && c.properties.limits.timestampPeriod > 0.0f;
 
     // Enable exactly what the kernels use.
-    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    features12.bufferDeviceAddress = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    features.pNext = &features12;
     features.features.shaderFloat64 = VK_TRUE;
     features.features.shaderInt64 = VK_TRUE;
     const float priority = 1.0f;

@@ -46,10 +46,25 @@ VkPipeline createKernel(VulkanContext& context, VkPipelineLayout layout, const u
 
 }  // namespace
 
+VkDescriptorType bindingType(uint32_t binding) {
+    return binding == kBindingControl || binding == kBindingArgs ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                                                 : VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+}
+
 Kernels createKernels(VulkanContext& context, const SelectRule& rule) {
     Kernels k;
+    VkDescriptorSetLayoutBinding bindings[kBindingCount];
+    for (uint32_t i = 0; i < kBindingCount; ++i)
+        bindings[i] = {i, bindingType(i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo set_layout{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    set_layout.bindingCount = kBindingCount;
+    set_layout.pBindings = bindings;
+    VK_CHECK(vkCreateDescriptorSetLayout(context.device, &set_layout, nullptr, &k.set_layout));
+
     VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(PushConstants)};
     VkPipelineLayoutCreateInfo layout{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layout.setLayoutCount = 1;
+    layout.pSetLayouts = &k.set_layout;
     layout.pushConstantRangeCount = 1;
     layout.pPushConstantRanges = &range;
     VK_CHECK(vkCreatePipelineLayout(context.device, &layout, nullptr, &k.layout));
@@ -72,6 +87,7 @@ void destroyKernels(VulkanContext& context, Kernels& k) {
     for (VkPipeline pipeline : {k.plan, k.candidates, k.select, k.flip, k.edge_cost, k.row_spans, k.render})
         if (pipeline) vkDestroyPipeline(context.device, pipeline, nullptr);
     if (k.layout) vkDestroyPipelineLayout(context.device, k.layout, nullptr);
+    if (k.set_layout) vkDestroyDescriptorSetLayout(context.device, k.set_layout, nullptr);
     k = Kernels{};
 }
 

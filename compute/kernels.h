@@ -1,6 +1,6 @@
 // The compute kernels of glsl/, compiled to SPIR-V at build time and embedded in the
-// binary. All share one pipeline layout: push constants only (every buffer is reached by
-// device address through DeviceParams).
+// binary. All share one pipeline layout: the bindings of glsl/layout.h (set 0) and the
+// push constants.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -18,6 +18,7 @@ struct SelectRule {
 };
 
 struct Kernels {
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkPipeline plan = VK_NULL_HANDLE;
     VkPipeline candidates = VK_NULL_HANDLE;
@@ -29,6 +30,9 @@ struct Kernels {
 };
 
 Kernels createKernels(VulkanContext& context, const SelectRule& rule);
+
+// The descriptor type of each binding of glsl/layout.h.
+VkDescriptorType bindingType(uint32_t binding);
 void destroyKernels(VulkanContext& context, Kernels& kernels);
 
 }  // namespace ddt

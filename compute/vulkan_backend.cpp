@@ -68,30 +68,47 @@ struct VulkanBackend::State {
     uint32_t width = 0, height = 0, edge_count = 0;
 
     Buffer edge_vertices, edge_neighbours, luma, alpha, gain, status[2], mark, active_list[2], candidate_list,
-        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans, params;
+        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans;
+    VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
+    VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
     std::vector<uint32_t> spans;  // row_spans downloaded; empty when stale
 
     std::vector<Buffer*> buffers() {
         return {&edge_vertices, &edge_neighbours, &luma,          &alpha,        &gain,          &status[0],
                 &status[1],     &mark,            &active_list[0], &active_list[1], &candidate_list, &round_list[0],
                 &round_list[1], &control,         &control_readback, &args,      &partial_sums,  &pixels,
-                &band,          &row_spans,       &params};
+                &band,          &row_spans};
     }
 
     void releaseBuffers() {
         for (Buffer* buffer : buffers()) destroyBuffer(*context, *buffer);
+        if (descriptor_pool) vkDestroyDescriptorPool(context->device, descriptor_pool, nullptr);
+        descriptor_pool = VK_NULL_HANDLE;
+        descriptor_set = VK_NULL_HANDLE;
         spans.clear();
     }
 
+    KernelBindings bindings() const { return {kernels.layout, descriptor_set}; }
+
+    // The job's scalars; kernel-specific fields are filled by the caller.
     PushConstants push() const {
         PushConstants p{};
-        p.params = params.address;
+        p.width = width;
+        p.height = height;
+        p.edge_count = edge_count;
+        p.has_alpha = image->hasAlpha() ? 1 : 0;
+        p.active_set = options.active_set ? 1 : 0;
+        p.exproi_iterations = rule.exproi_iterations;
+        p.max_iterations = options.max_iterations;
+        p.max_rounds = options.max_rounds;
+        p.channels = image->channels;
+        p.max_groups = max_groups;
         return p;
     }
 
-    void checkMemory(uint64_t edges, uint64_t vertices, uint32_t channels);
+    void checkMemory(uint64_t edges, uint64_t vertices);
     void createBuffers(const Image& image);
-    void uploadParams();
+    void writeDescriptors();
     void resetOptimisation();
     double meshCost();
     Control readControl();
@@ -136,7 +153,7 @@ const DeviceInfo& VulkanBackend::device() const { return state_->context->info; 
 uint32_t VulkanBackend::validationMessages() const { return state_->context->validation_messages.load(); }
 
 // Refuses, before allocating anything, a job the device cannot hold.
-void VulkanBackend::State::checkMemory(uint64_t edges, uint64_t vertices, uint32_t channels) {
+void VulkanBackend::State::checkMemory(uint64_t edges, uint64_t vertices) {
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &maintenance;
@@ -145,9 +162,13 @@ void VulkanBackend::State::checkMemory(uint64_t edges, uint64_t vertices, uint32
     const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 4 + (options.active_set ? 2 * 4 : 0) +
                               (rule.single_round ? 0 : 2 * 4);
     const uint64_t largest = edges * 16;
-    const uint64_t total = edges * per_edge + vertices * 4 * (2 + channels) + kBandBytes;
+    // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels.
+    const uint64_t total = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes;
     std::string problem;
     if (edges >= kCopyEntry) problem = "more edges than the kernels can index";
+    else if (edges > context->properties.limits.maxTexelBufferElements)
+        problem = std::to_string(edges) + " edges, more than the device's " +
+                  std::to_string(context->properties.limits.maxTexelBufferElements) + " texel-buffer elements";
     else if (largest > maintenance.maxMemoryAllocationSize)
         problem = "its edge arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
                   mebibytes(maintenance.maxMemoryAllocationSize);
@@ -162,57 +183,80 @@ void VulkanBackend::State::checkMemory(uint64_t edges, uint64_t vertices, uint32
 void VulkanBackend::State::createBuffers(const Image& img) {
     VulkanContext& c = *context;
     const uint64_t edges = edge_count, vertices = uint64_t(width) * height;
-    edge_vertices = createBuffer(c, edges * 16);
-    edge_neighbours = createBuffer(c, edges * 16);
-    luma = createBuffer(c, vertices * 4);
-    alpha = createBuffer(c, img.hasAlpha() ? vertices * 4 : 4);
-    gain = createBuffer(c, edges * 8);
-    for (Buffer& b : status) b = createBuffer(c, edges * 4);
-    mark = createBuffer(c, edges * 4);
-    for (Buffer& b : active_list) b = createBuffer(c, options.active_set ? edges * 4 : 4);
-    candidate_list = createBuffer(c, edges * 4);
-    for (Buffer& b : round_list) b = createBuffer(c, rule.single_round ? 4 : edges * 4);
+    const Placement device = Placement::Device;
+    edge_vertices = createBuffer(c, edges * 16, device, VK_FORMAT_R32G32B32A32_UINT);
+    edge_neighbours = createBuffer(c, edges * 16, device, VK_FORMAT_R32G32B32A32_UINT);
+    luma = createBuffer(c, vertices * 4, device, VK_FORMAT_R32_SFLOAT);
+    alpha = createBuffer(c, img.hasAlpha() ? vertices * 4 : 4, device, VK_FORMAT_R32_SFLOAT);
+    gain = createBuffer(c, edges * 8, device, VK_FORMAT_R32G32_UINT);
+    for (Buffer& b : status) b = createBuffer(c, edges * 4, device, VK_FORMAT_R32_UINT);
+    mark = createBuffer(c, edges * 4, device, VK_FORMAT_R32_UINT);
+    for (Buffer& b : active_list) b = createBuffer(c, options.active_set ? edges * 4 : 4, device, VK_FORMAT_R32_UINT);
+    candidate_list = createBuffer(c, edges * 4, device, VK_FORMAT_R32_UINT);
+    for (Buffer& b : round_list) b = createBuffer(c, rule.single_round ? 4 : edges * 4, device, VK_FORMAT_R32_UINT);
     control = createBuffer(c, sizeof(Control));
     control_readback = createBuffer(c, sizeof(Control), Placement::Readback);
     args = createBuffer(c, kArgsCount * 16);
-    partial_sums = createBuffer(c, kCostGroups * 8);
-    pixels = createBuffer(c, vertices * img.channels * 4);
-    row_spans = createBuffer(c, uint64_t(height) * 8);
-    params = createBuffer(c, sizeof(DeviceParams));
+    partial_sums = createBuffer(c, kCostGroups * 8, device, VK_FORMAT_R32G32_UINT);
+    pixels = createBuffer(c, vertices * 16, device, VK_FORMAT_R32G32B32A32_SFLOAT);
+    row_spans = createBuffer(c, uint64_t(height) * 8, device, VK_FORMAT_R32_UINT);
+    // A placeholder until the first render sizes it.
+    band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32_SFLOAT);
+
+    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, kBindingCount},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount}};
+    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool.maxSets = 1;
+    pool.poolSizeCount = 2;
+    pool.pPoolSizes = sizes;
+    VK_CHECK(vkCreateDescriptorPool(c.device, &pool, nullptr, &descriptor_pool));
+    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocate.descriptorPool = descriptor_pool;
+    allocate.descriptorSetCount = 1;
+    allocate.pSetLayouts = &kernels.set_layout;
+    VK_CHECK(vkAllocateDescriptorSets(c.device, &allocate, &descriptor_set));
+    writeDescriptors();
 }
 
-void VulkanBackend::State::uploadParams() {
-    DeviceParams p{};
-    p.edge_vertices = edge_vertices.address;
-    p.edge_neighbours = edge_neighbours.address;
-    p.luma = luma.address;
-    p.alpha = alpha.address;
-    p.gain = gain.address;
-    p.status[0] = status[0].address;
-    p.status[1] = status[1].address;
-    p.mark = mark.address;
-    p.active_list[0] = active_list[0].address;
-    p.active_list[1] = active_list[1].address;
-    p.candidate_list = candidate_list.address;
-    p.round_list[0] = round_list[0].address;
-    p.round_list[1] = round_list[1].address;
-    p.control = control.address;
-    p.args = args.address;
-    p.partial_sums = partial_sums.address;
-    p.pixels = pixels.address;
-    p.band = band.address;
-    p.row_spans = row_spans.address;
-    p.width = width;
-    p.height = height;
-    p.edge_count = edge_count;
-    p.has_alpha = image->hasAlpha() ? 1 : 0;
-    p.active_set = options.active_set ? 1 : 0;
-    p.exproi_iterations = rule.exproi_iterations;
-    p.max_iterations = options.max_iterations;
-    p.max_rounds = options.max_rounds;
-    p.channels = image->channels;
-    p.max_groups = max_groups;
-    uploadToBuffer(*context, params, &p, sizeof(p));
+// Points every binding of glsl/layout.h at its buffer (again after the band is resized).
+void VulkanBackend::State::writeDescriptors() {
+    const Buffer* by_binding[kBindingCount] = {};
+    by_binding[kBindingEdgeVertices] = &edge_vertices;
+    by_binding[kBindingEdgeNeighbours] = &edge_neighbours;
+    by_binding[kBindingLuma] = &luma;
+    by_binding[kBindingAlpha] = &alpha;
+    by_binding[kBindingGain] = &gain;
+    by_binding[kBindingStatus0] = &status[0];
+    by_binding[kBindingStatus1] = &status[1];
+    by_binding[kBindingMark] = &mark;
+    by_binding[kBindingActiveList0] = &active_list[0];
+    by_binding[kBindingActiveList1] = &active_list[1];
+    by_binding[kBindingCandidateList] = &candidate_list;
+    by_binding[kBindingRoundList0] = &round_list[0];
+    by_binding[kBindingRoundList1] = &round_list[1];
+    by_binding[kBindingPixels] = &pixels;
+    by_binding[kBindingBand] = &band;
+    by_binding[kBindingRowSpans] = &row_spans;
+    by_binding[kBindingPartialSums] = &partial_sums;
+    by_binding[kBindingControl] = &control;
+    by_binding[kBindingArgs] = &args;
+
+    VkWriteDescriptorSet writes[kBindingCount];
+    VkDescriptorBufferInfo buffer_infos[kBindingCount];
+    for (uint32_t i = 0; i < kBindingCount; ++i) {
+        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = descriptor_set;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = bindingType(i);
+        if (writes[i].descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
+            buffer_infos[i] = {by_binding[i]->buffer, 0, VK_WHOLE_SIZE};
+            writes[i].pBufferInfo = &buffer_infos[i];
+        } else {
+            writes[i].pTexelBufferView = &by_binding[i]->view;
+        }
+    }
+    vkUpdateDescriptorSets(context->device, kBindingCount, writes, 0, nullptr);
 }
 
 void VulkanBackend::prepare(const Image& image) {
@@ -223,7 +267,7 @@ void VulkanBackend::prepare(const Image& image) {
     s.height = image.height;
     const uint64_t edges = gridEdgeCount(image.width, image.height);
     s.edge_count = uint32_t(std::min<uint64_t>(edges, UINT32_MAX));
-    s.checkMemory(edges, uint64_t(image.width) * image.height, image.channels);
+    s.checkMemory(edges, uint64_t(image.width) * image.height);
 
     const Mesh mesh = buildGridMesh(image.width, image.height);
     const CostField field = costFieldOf(image);
@@ -233,8 +277,11 @@ void VulkanBackend::prepare(const Image& image) {
     uploadToBuffer(c, s.edge_neighbours, mesh.neighbours.data(), s.edge_neighbours.size);
     uploadToBuffer(c, s.luma, field.luma.data(), s.luma.size);
     if (image.hasAlpha()) uploadToBuffer(c, s.alpha, field.alpha.data(), s.alpha.size);
-    uploadToBuffer(c, s.pixels, image.pixels.data(), s.pixels.size);
-    s.uploadParams();
+    // One rgba32f texel per vertex: a vertex's channels load at once.
+    std::vector<float> texels(size_t(image.width) * image.height * 4, 0.0f);
+    for (size_t v = 0; v < size_t(image.width) * image.height; ++v)
+        std::copy_n(image.pixels.data() + v * image.channels, image.channels, texels.data() + v * 4);
+    uploadToBuffer(c, s.pixels, texels.data(), s.pixels.size);
 }
 
 // Zeroes the statuses, marks and counters: the state at the start of an optimisation.
@@ -249,7 +296,7 @@ void VulkanBackend::State::resetOptimisation() {
 
 double VulkanBackend::State::meshCost() {
     CommandBatch commands(*context);
-    dispatch(commands.buffer(), kernels.edge_cost, kernels.layout, push(), kCostGroups);
+    dispatch(commands.buffer(), kernels.edge_cost, bindings(), push(), kCostGroups);
     commands.submitAndWait();
     std::vector<double> sums(kCostGroups);
     downloadFromBuffer(*context, partial_sums, sums.data(), sums.size() * 8);
@@ -263,7 +310,7 @@ std::vector<double> VulkanBackend::deviceEdgeCosts() {
     CommandBatch commands(*s.context);
     PushConstants p = s.push();
     p.step = 1;
-    dispatch(commands.buffer(), s.kernels.edge_cost, s.kernels.layout, p, kCostGroups);
+    dispatch(commands.buffer(), s.kernels.edge_cost, s.bindings(), p, kCostGroups);
     commands.submitAndWait();
     std::vector<double> costs(s.edge_count);
     downloadFromBuffer(*s.context, s.gain, costs.data(), costs.size() * 8);
@@ -291,9 +338,9 @@ void VulkanBackend::State::recordStep(VkCommandBuffer commands, uint32_t step, V
     static const char* const kLabels[] = {"candidates", "select", "flip"};
     PushConstants p = push();
     p.step = step;
-    dispatch(commands, kernels.plan, kernels.layout, p, 1);
+    dispatch(commands, kernels.plan, bindings(), p, 1);
     markStep(commands, "plan");
-    dispatchIndirect(commands, kernel, kernels.layout, p, args, step);
+    dispatchIndirect(commands, kernel, bindings(), p, args, step);
     markStep(commands, kLabels[step]);
 }
 
@@ -454,7 +501,7 @@ void VulkanBackend::State::computeRowSpans() {
     for (uint32_t y = 0; y < height; ++y) initial[2 * y] = kNone;  // first row: min over none yet
     uploadToBuffer(*context, row_spans, initial.data(), initial.size() * 4);
     CommandBatch commands(*context);
-    dispatch(commands.buffer(), kernels.row_spans, kernels.layout, push(), groupsFor(edge_count));
+    dispatch(commands.buffer(), kernels.row_spans, bindings(), push(), groupsFor(edge_count));
     commands.submitAndWait();
     spans.resize(initial.size());
     downloadFromBuffer(*context, row_spans, spans.data(), spans.size() * 4);
@@ -484,7 +531,7 @@ void VulkanBackend::State::renderBand(OutputSize out, uint32_t y_begin, uint32_t
     p.out_width = out.width;
     p.out_height = out.height;
     CommandBatch commands(*context);
-    dispatch(commands.buffer(), kernels.render, kernels.layout, p, groupsFor(p.edge_range));
+    dispatch(commands.buffer(), kernels.render, bindings(), p, groupsFor(p.edge_range));
     commands.submitAndWait();
     downloadFromBuffer(*context, band, rows, VkDeviceSize(y_end - y_begin) * out.width * image->channels * 4);
 }
@@ -492,12 +539,15 @@ void VulkanBackend::State::renderBand(OutputSize out, uint32_t y_begin, uint32_t
 void VulkanBackend::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
     State& s = *state_;
     const VkDeviceSize row_bytes = VkDeviceSize(out.width) * s.image->channels * 4;
-    const uint32_t band_rows = uint32_t(std::max<VkDeviceSize>(1, kBandBytes / row_bytes));
-    if (!s.band.buffer || s.band.size < std::min<VkDeviceSize>(y_end - y_begin, band_rows) * row_bytes) {
+    const VkDeviceSize band_bytes =
+        std::min<VkDeviceSize>(kBandBytes, VkDeviceSize(s.context->properties.limits.maxTexelBufferElements) * 4);
+    const uint32_t band_rows = uint32_t(std::max<VkDeviceSize>(1, band_bytes / row_bytes));
+    if (s.band.size < std::min<VkDeviceSize>(y_end - y_begin, band_rows) * row_bytes) {
         destroyBuffer(*s.context, s.band);
         // The host reads every rendered row: keep the band in host-visible memory.
-        s.band = createBuffer(*s.context, std::min<VkDeviceSize>(band_rows, out.height) * row_bytes, Placement::Readback);
-        s.uploadParams();
+        s.band = createBuffer(*s.context, std::min<VkDeviceSize>(band_rows, out.height) * row_bytes, Placement::Readback,
+                              VK_FORMAT_R32_SFLOAT);
+        s.writeDescriptors();
     }
     if (s.spans.empty()) s.computeRowSpans();
     for (uint32_t y = y_begin; y < y_end; y += band_rows) {

@@ -7,20 +7,17 @@
 #include "common.glsl"
 
 void main() {
-    loadParams();
-    Control control = params.control;
     const uint iteration = control.iteration;
-    const bool from_list = params.active_set != 0 && iteration > 0;
-    const uint work = from_list ? control.active_count[iteration & 1] : params.edge_count;
-    UintArray active_edges = params.active_list[iteration & 1];
-
+    const bool from_list = push.active_set != 0 && iteration > 0;
+    const uint work = from_list ? control.active_count[iteration & 1] : push.edge_count;
     for (uint i = gl_GlobalInvocationID.x; i < work; i += invocationStride()) {
-        const uint e = from_list ? active_edges.at[i] : i;
+        uint e = i;
+        if (from_list) e = (iteration & 1) == 0 ? imageLoad(active_list0, int(i)).x : imageLoad(active_list1, int(i)).x;
         const double gain = flipGainOf(e);
         if (gain > kFlipGainThreshold) {
-            params.gain.at[e] = gain;
-            params.status[0].at[e] = kStatusUndecided;
-            params.candidate_list.at[atomicAdd(control.candidate_count, 1)] = e;
+            setGain(e, gain);
+            setStatus(0, e, kStatusUndecided);
+            imageStore(candidate_list, int(atomicAdd(control.candidate_count, 1)), uvec4(e));
         }
     }
 }

@@ -1,6 +1,5 @@
-// Shared by every kernel: extensions, the push constants, and mesh navigation over the
+// Shared by every kernel: the bindings, the push constants, and mesh navigation over the
 // edge arrays in the words of core/mesh.h (a, b, l, r; neighbours bl, la, ar, rb).
-#extension GL_EXT_buffer_reference : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
 #include "layout.h"
@@ -12,32 +11,46 @@ layout(push_constant) uniform Push {
     PushConstants push;
 };
 
-// Every kernel starts with loadParams(). The hot addresses and sizes are copied into
-// private variables once: lavapipe re-reads every `params.x` from memory, lane by lane,
-// since stores elsewhere might alias it, and those reloads dominated the kernels' time.
-DeviceParams params;
-UVec4Array edge_vertices;
-UVec4Array edge_neighbours;
-FloatArray luma;
-FloatArray alpha;
-uint width;
-bool has_alpha;
-
-void loadParams() {
-    params = push.params;
-    edge_vertices = params.edge_vertices;
-    edge_neighbours = params.edge_neighbours;
-    luma = params.luma;
-    alpha = params.alpha;
-    width = params.width;
-    has_alpha = params.has_alpha != 0;
-}
+layout(binding = kBindingEdgeVertices, rgba32ui) uniform uimageBuffer edge_vertices;
+layout(binding = kBindingEdgeNeighbours, rgba32ui) uniform uimageBuffer edge_neighbours;
+layout(binding = kBindingLuma, r32f) uniform readonly imageBuffer luma;
+layout(binding = kBindingAlpha, r32f) uniform readonly imageBuffer alpha;
+layout(binding = kBindingGain, rg32ui) uniform uimageBuffer gains;
+layout(binding = kBindingStatus0, r32ui) uniform uimageBuffer status0;
+layout(binding = kBindingStatus1, r32ui) uniform uimageBuffer status1;
+layout(binding = kBindingMark, r32ui) uniform uimageBuffer marks;
+layout(binding = kBindingActiveList0, r32ui) uniform uimageBuffer active_list0;
+layout(binding = kBindingActiveList1, r32ui) uniform uimageBuffer active_list1;
+layout(binding = kBindingCandidateList, r32ui) uniform uimageBuffer candidate_list;
+layout(binding = kBindingRoundList0, r32ui) uniform uimageBuffer round_list0;
+layout(binding = kBindingRoundList1, r32ui) uniform uimageBuffer round_list1;
+layout(binding = kBindingPixels, rgba32f) uniform readonly imageBuffer pixels;
+layout(binding = kBindingBand, r32f) uniform writeonly imageBuffer band;
+layout(binding = kBindingRowSpans, r32ui) uniform uimageBuffer row_spans;
+layout(binding = kBindingPartialSums, rg32ui) uniform writeonly uimageBuffer partial_sums;
+layout(binding = kBindingControl, std430) buffer ControlBlock {
+    Control control;
+};
+layout(binding = kBindingArgs, std430) buffer ArgsBlock {
+    uvec4 args[kArgsCount];
+};
 
 // Invocations of the whole dispatch, for loops over ranges larger than one dispatch.
 uint invocationStride() { return gl_NumWorkGroups.x * kGroupSize; }
 
-uvec4 verticesOf(uint e) { return edge_vertices.at[e]; }
-uvec4 neighboursOf(uint e) { return edge_neighbours.at[e]; }
+uvec4 verticesOf(uint e) { return imageLoad(edge_vertices, int(e)); }
+uvec4 neighboursOf(uint e) { return imageLoad(edge_neighbours, int(e)); }
+
+// Texel buffers cannot be indexed dynamically on every device: parity picks the binding.
+uint statusOf(uint parity, uint e) { return parity == 0 ? imageLoad(status0, int(e)).x : imageLoad(status1, int(e)).x; }
+void setStatus(uint parity, uint e, uint status) {
+    if (parity == 0) imageStore(status0, int(e), uvec4(status));
+    else imageStore(status1, int(e), uvec4(status));
+}
+
+// A double travels as its two 32-bit halves.
+double gainOf(uint e) { return packDouble2x32(imageLoad(gains, int(e)).xy); }
+void setGain(uint e, double gain) { imageStore(gains, int(e), uvec4(unpackDouble2x32(gain), 0u, 0u)); }
 
 // Far vertex of neighbour edge n as seen from the triangle whose third vertex is `near`.
 uint farVertex(uint n, uint near) {
@@ -61,18 +74,21 @@ FlipStencil flipStencilOf(uint e) {
     return s;
 }
 
-float valueAt(FloatArray channel, uint vertex) { return vertex == kNone ? 0.0 : channel.at[vertex]; }
+float valueAt(bool alpha_channel, uint vertex) {
+    if (vertex == kNone) return 0.0;
+    return alpha_channel ? imageLoad(alpha, int(vertex)).x : imageLoad(luma, int(vertex)).x;
+}
 
-StencilValues stencilValues(FloatArray channel, FlipStencil s) {
+StencilValues stencilValues(bool alpha_channel, FlipStencil s) {
     StencilValues z;
-    z.a = valueAt(channel, s.a);
-    z.b = valueAt(channel, s.b);
-    z.l = valueAt(channel, s.l);
-    z.r = valueAt(channel, s.r);
-    z.far_bl = valueAt(channel, s.far_bl);
-    z.far_la = valueAt(channel, s.far_la);
-    z.far_ar = valueAt(channel, s.far_ar);
-    z.far_rb = valueAt(channel, s.far_rb);
+    z.a = valueAt(alpha_channel, s.a);
+    z.b = valueAt(alpha_channel, s.b);
+    z.l = valueAt(alpha_channel, s.l);
+    z.r = valueAt(alpha_channel, s.r);
+    z.far_bl = valueAt(alpha_channel, s.far_bl);
+    z.far_la = valueAt(alpha_channel, s.far_la);
+    z.far_ar = valueAt(alpha_channel, s.far_ar);
+    z.far_rb = valueAt(alpha_channel, s.far_rb);
     return z;
 }
 
@@ -80,15 +96,17 @@ StencilValues stencilValues(FloatArray channel, FlipStencil s) {
 // below any threshold (core returns -infinity, which GLSL cannot spell).
 double flipGainOf(uint e) {
     FlipStencil s = flipStencilOf(e);
-    if (!flipIsConvex(s, width)) return -1.0lf;
-    precise double gain = flipGain(s, stencilValues(luma, s), width);
-    if (has_alpha) gain += flipGain(s, stencilValues(alpha, s), width);
+    if (!flipIsConvex(s, push.width)) return -1.0lf;
+    precise double gain = flipGain(s, stencilValues(false, s), push.width);
+    if (push.has_alpha != 0) gain += flipGain(s, stencilValues(true, s), push.width);
     return gain;
 }
 
-double channelEdgeCost(FloatArray z, uvec4 v) {
-    Gradient left = planeGradient(v.x, v.y, v.z, z.at[v.x], z.at[v.y], z.at[v.z], width);
-    Gradient right = planeGradient(v.y, v.x, v.w, z.at[v.y], z.at[v.x], z.at[v.w], width);
+double channelEdgeCost(bool alpha_channel, uvec4 v) {
+    Gradient left = planeGradient(v.x, v.y, v.z, valueAt(alpha_channel, v.x), valueAt(alpha_channel, v.y),
+                                  valueAt(alpha_channel, v.z), push.width);
+    Gradient right = planeGradient(v.y, v.x, v.w, valueAt(alpha_channel, v.y), valueAt(alpha_channel, v.x),
+                                   valueAt(alpha_channel, v.w), push.width);
     return sederbergCost(left, right);
 }
 
@@ -96,10 +114,10 @@ double channelEdgeCost(FloatArray z, uvec4 v) {
 double edgeCostOf(uint e) {
     uvec4 v = verticesOf(e);
     if (v.z == kNone || v.w == kNone) return 0.0lf;
-    precise double cost = channelEdgeCost(luma, v);
-    if (has_alpha) cost += channelEdgeCost(alpha, v);
+    precise double cost = channelEdgeCost(false, v);
+    if (push.has_alpha != 0) cost += channelEdgeCost(true, v);
     return cost;
 }
 
-// Workgroups for `count` items, at most the device's max_groups (the kernels loop).
-uint groupsFor(uint count) { return min((count + kGroupSize - 1) / kGroupSize, params.max_groups); }
+// Workgroups for `count` items, at most max_groups (the kernels loop over the rest).
+uint groupsFor(uint count) { return min((count + kGroupSize - 1) / kGroupSize, push.max_groups); }

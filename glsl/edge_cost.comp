@@ -9,13 +9,12 @@
 shared double partial[kGroupSize];
 
 void main() {
-    loadParams();
     const uint lane = gl_LocalInvocationID.x;
     precise double sum = 0.0lf;
-    for (uint e = gl_GlobalInvocationID.x; e < params.edge_count; e += invocationStride()) {
+    for (uint e = gl_GlobalInvocationID.x; e < push.edge_count; e += invocationStride()) {
         const double cost = edgeCostOf(e);
         sum += cost;
-        if (push.step != 0) params.gain.at[e] = cost;
+        if (push.step != 0) setGain(e, cost);
     }
     partial[lane] = sum;
     barrier();
@@ -23,5 +22,5 @@ void main() {
         if (lane < width) partial[lane] += partial[lane + width];
         barrier();
     }
-    if (lane == 0) params.partial_sums.at[gl_WorkGroupID.x] = partial[0];
+    if (lane == 0) imageStore(partial_sums, int(gl_WorkGroupID.x), uvec4(unpackDouble2x32(partial[0]), 0u, 0u));
 }

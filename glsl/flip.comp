@@ -32,16 +32,16 @@ void patchNeighbour(uint n, uint e, uint old_near, uint new_near, uint successor
         nb.z = nb.z == e ? successor : e;
         nb.w = nb.w == e ? successor : e;
     }
-    edge_vertices.at[n] = v;
-    edge_neighbours.at[n] = nb;
+    imageStore(edge_vertices, int(n), v);
+    imageStore(edge_neighbours, int(n), nb);
 }
 
 // (a, b, l, r) -> (r, l, a, b) and (bl, la, ar, rb) -> (la, ar, rb, bl), as core's flipEdge.
 void flipEdge(uint e) {
     const uvec4 v = verticesOf(e);
     const uvec4 n = neighboursOf(e);
-    edge_vertices.at[e] = uvec4(v.w, v.z, v.x, v.y);
-    edge_neighbours.at[e] = uvec4(n.y, n.z, n.w, n.x);
+    imageStore(edge_vertices, int(e), uvec4(v.w, v.z, v.x, v.y));
+    imageStore(edge_neighbours, int(e), uvec4(n.y, n.z, n.w, n.x));
     patchNeighbour(n.x, e, v.x, v.w, n.w);
     patchNeighbour(n.y, e, v.y, v.w, n.z);
     patchNeighbour(n.z, e, v.y, v.z, n.y);
@@ -51,9 +51,10 @@ void flipEdge(uint e) {
 // Puts e in the next iteration's active list once (the mark holds the last iteration that
 // listed it).
 void activate(uint e, uint iteration) {
-    if (atomicMax(params.mark.at[e], iteration) < iteration) {
-        Control control = params.control;
-        params.active_list[iteration & 1].at[atomicAdd(control.active_count[iteration & 1], 1)] = e;
+    if (imageAtomicMax(marks, int(e), iteration) < iteration) {
+        const int slot = int(atomicAdd(control.active_count[iteration & 1], 1));
+        if ((iteration & 1) == 0) imageStore(active_list0, slot, uvec4(e));
+        else imageStore(active_list1, slot, uvec4(e));
     }
 }
 
@@ -70,22 +71,20 @@ void activateClosed2Region(uint e, uint iteration) {
 }
 
 void main() {
-    loadParams();
-    Control control = params.control;
     const uint count = control.candidate_count;
     const uint final_status = control.round & 1;
     const uint next_iteration = control.iteration;  // the plan step advanced it already
 
     for (uint i = gl_GlobalInvocationID.x; i < count; i += invocationStride()) {
-        const uint e = params.candidate_list.at[i];
-        const uint status = params.status[final_status].at[e];
-        params.status[0].at[e] = kStatusNone;
-        params.status[1].at[e] = kStatusNone;
+        const uint e = imageLoad(candidate_list, int(i)).x;
+        const uint status = statusOf(final_status, e);
+        setStatus(0, e, kStatusNone);
+        setStatus(1, e, kStatusNone);
         if (status == kStatusAccepted) {
             flipEdge(e);
             atomicAdd(control.flips_in_iteration, 1);
-            if (params.active_set != 0) activateClosed2Region(e, next_iteration);
-        } else if (params.active_set != 0) {
+            if (push.active_set != 0) activateClosed2Region(e, next_iteration);
+        } else if (push.active_set != 0) {
             activate(e, next_iteration);
         }
     }

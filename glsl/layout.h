@@ -1,8 +1,13 @@
 // Layouts and constants shared by the Vulkan host side (compute/) and the kernels (glsl/).
-// Every buffer is reached through its device address (GL_EXT_buffer_reference): the edge
-// arrays of a 2048² input exceed the 128 MiB a storage-buffer binding may cover on
-// lavapipe, and addresses have no such limit. Kernels get one address in their push
-// constants, that of a DeviceParams block holding all the others.
+//
+// The per-edge and per-vertex arrays are storage texel buffers (imageLoad/imageStore):
+// - a texel buffer view is limited in elements (2^27 on lavapipe), not bytes, so the edge
+//   arrays of a 2048² input (200 MB) fit in one binding, where a storage buffer binding
+//   would stop at 128 MiB (maxStorageBufferRange);
+// - lavapipe (Mesa 22.3) loads storage buffers lane by lane, but texel buffers with vector
+//   gathers: a uvec4 record loads ~5× faster (bench/ measurements in the README).
+// The small control block and the indirect arguments are storage buffers. Scalars travel
+// in push constants.
 #ifndef DDTUP_LAYOUT_H
 #define DDTUP_LAYOUT_H
 
@@ -10,18 +15,6 @@
 #include <cstdint>
 namespace ddt {
 typedef uint32_t uint;
-// A buffer reference is a 64-bit device address on the host.
-#define DDT_REF(Type) uint64_t
-#define DDT_BLOCK(Name) struct Name
-#else
-#define DDT_REF(Type) Type
-#define DDT_BLOCK(Name) layout(buffer_reference, std430, buffer_reference_align = 8) buffer Name
-// The arrays the blocks point to.
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer UVec4Array { uvec4 at[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintArray { uint at[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatArray { float at[]; };
-layout(buffer_reference, std430, buffer_reference_align = 8) buffer DoubleArray { double at[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer DispatchArgs { uvec3 at[]; };
 #endif
 
 // Invocations per workgroup of every kernel.
@@ -42,21 +35,45 @@ const uint kPhaseCandidates = 0;  // next: evaluate candidates of a new iteratio
 const uint kPhaseRounds = 1;      // next: accept/reject rounds, then the flip
 const uint kPhaseDone = 2;        // converged (or stopped by a safety cap)
 
-// Slots of the indirect dispatch arguments.
+// Slots of the indirect dispatch arguments (16 bytes apart).
 const uint kArgsCandidates = 0;
 const uint kArgsSelect = 1;
 const uint kArgsFlip = 2;
 const uint kArgsCount = 3;
 
+// Descriptor bindings (set 0). Texel formats: records rgba32ui; lists, statuses, marks and
+// spans r32ui; doubles (gains, partial sums) rg32ui holding the two halves of the double;
+// luma and alpha r32f; pixels rgba32f, one texel per vertex; the rendered band r32f.
+const uint kBindingEdgeVertices = 0;    // per edge (a, b, l, r), see core/mesh.h
+const uint kBindingEdgeNeighbours = 1;  // per edge (bl, la, ar, rb)
+const uint kBindingLuma = 2;            // per vertex
+const uint kBindingAlpha = 3;           // per vertex, read only when has_alpha
+const uint kBindingGain = 4;            // per edge, valid for candidates
+const uint kBindingStatus0 = 5;         // per edge, ping-pong between rounds
+const uint kBindingStatus1 = 6;
+const uint kBindingMark = 7;            // per edge: last iteration that listed it as active
+const uint kBindingActiveList0 = 8;     // edges to test, by iteration parity
+const uint kBindingActiveList1 = 9;
+const uint kBindingCandidateList = 10;  // candidates of the current iteration
+const uint kBindingRoundList0 = 11;     // round work, by round parity
+const uint kBindingRoundList1 = 12;
+const uint kBindingPixels = 13;         // input image, premultiplied
+const uint kBindingBand = 14;           // rendered rows, `channels` floats per pixel
+const uint kBindingRowSpans = 15;       // per edge row: first and last vertex row touched
+const uint kBindingPartialSums = 16;    // per workgroup of edge_cost
+const uint kBindingControl = 17;        // storage buffer: Control
+const uint kBindingArgs = 18;           // storage buffer: kArgsCount indirect dispatch arguments
+const uint kBindingCount = 19;
+
 // Counters and state of the optimisation, written by the kernels, read by the host after
 // each submit. Counters that kernels append to are updated with atomics.
-DDT_BLOCK(Control) {
+struct Control {
     uint phase;
     uint iteration;            // index of the current iteration
     uint round;                // accept/reject rounds done in the current iteration
-    uint candidate_count;      // candidates of the current iteration (= entries of candidate_list)
-    uint active_count[2];      // entries of active_list[iteration & 1]
-    uint round_count[2];       // entries of round_list[round & 1] (copy entries included)
+    uint candidate_count;      // candidates of the current iteration (= entries of the candidate list)
+    uint active_count[2];      // entries of active list [iteration & 1]
+    uint round_count[2];       // entries of round list [round & 1] (copy entries included)
     uint undecided_count[2];   // undecided entries among them
     uint flips_in_iteration;   // flips of the current iteration
     uint capped;               // 1: a safety cap stopped the optimisation
@@ -68,24 +85,8 @@ DDT_BLOCK(Control) {
     uint pad0;
 };
 
-// Everything a kernel needs to find: buffer addresses first (8-byte aligned), then scalars.
-DDT_BLOCK(DeviceParams) {
-    DDT_REF(UVec4Array) edge_vertices;    // per edge (a, b, l, r), see core/mesh.h
-    DDT_REF(UVec4Array) edge_neighbours;  // per edge (bl, la, ar, rb)
-    DDT_REF(FloatArray) luma;             // per vertex
-    DDT_REF(FloatArray) alpha;            // per vertex, read only when has_alpha
-    DDT_REF(DoubleArray) gain;            // per edge, valid for candidates
-    DDT_REF(UintArray) status[2];         // per edge, ping-pong between rounds
-    DDT_REF(UintArray) mark;              // per edge: last iteration it was put in an active list
-    DDT_REF(UintArray) active_list[2];    // edges to test, by iteration parity
-    DDT_REF(UintArray) candidate_list;    // candidates of the current iteration
-    DDT_REF(UintArray) round_list[2];     // round work, by round parity
-    DDT_REF(Control) control;
-    DDT_REF(DispatchArgs) args;           // kArgsCount indirect dispatch arguments
-    DDT_REF(DoubleArray) partial_sums;    // per workgroup of edge_cost
-    DDT_REF(FloatArray) pixels;           // input image, premultiplied, `channels` per vertex
-    DDT_REF(FloatArray) band;             // rendered rows
-    DDT_REF(UintArray) row_spans;         // per edge row: first and last vertex row touched
+// Push constants of every kernel: the job's scalars, then the kernel-specific ones.
+struct PushConstants {
     uint width;
     uint height;
     uint edge_count;
@@ -96,27 +97,18 @@ DDT_BLOCK(DeviceParams) {
     uint max_rounds;
     uint channels;
     uint max_groups;           // workgroups per dispatch; larger ranges are looped over
-};
-
-// Push constants of every kernel.
-struct PushConstants {
-    DDT_REF(DeviceParams) params;
-    uint step;          // plan: which step to plan (kArgsCandidates, kArgsSelect, kArgsFlip)
-    uint first_edge;    // render: the edges whose triangles may touch the band
+    uint step;                 // plan: which step to plan (kArgs…); edge_cost: 1 stores every cost
+    uint first_edge;           // render: the edges whose triangles may touch the band
     uint edge_range;
-    uint first_row;     // render: the band's output rows
+    uint first_row;            // render: the band's output rows
     uint row_count;
-    uint out_width;     // render: output size
+    uint out_width;            // render: output size
     uint out_height;
-    uint pad0;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(Control) == 18 * 4, "Control layout");
-static_assert(sizeof(DeviceParams) == 19 * 8 + 10 * 4, "DeviceParams layout");
-static_assert(sizeof(PushConstants) == 40, "PushConstants layout");
+static_assert(sizeof(PushConstants) == 17 * 4, "PushConstants layout");
 }  // namespace ddt
 #endif
-#undef DDT_REF
-#undef DDT_BLOCK
 #endif

@@ -11,71 +11,69 @@
 layout(constant_id = 1) const uint kSingleRound = 0;
 
 void setArgs(uint slot, uint groups) {
-    params.args.at[slot] = uvec3(groups, 1, 1);
-    if (groups > 0) params.control.working_dispatches += 1;
+    args[slot] = uvec4(groups, 1, 1, 0);
+    if (groups > 0) control.working_dispatches += 1;
 }
 
-void planCandidates(Control c) {
+void planCandidates() {
     uint groups = 0;
-    if (c.phase == kPhaseCandidates) {
+    if (control.phase == kPhaseCandidates) {
         // Fold the finished iteration's flips into the 64-bit total.
-        const uint low = c.total_flips_low + c.flips_in_iteration;
-        if (low < c.total_flips_low) c.total_flips_high += 1;
-        c.total_flips_low = low;
-        c.flips_in_iteration = 0;
-        if (c.iteration >= params.max_iterations) {
-            c.phase = kPhaseDone;
-            c.capped = 1;
+        const uint low = control.total_flips_low + control.flips_in_iteration;
+        if (low < control.total_flips_low) control.total_flips_high += 1;
+        control.total_flips_low = low;
+        control.flips_in_iteration = 0;
+        if (control.iteration >= push.max_iterations) {
+            control.phase = kPhaseDone;
+            control.capped = 1;
         } else {
-            const bool from_list = params.active_set != 0 && c.iteration > 0;
-            groups = groupsFor(from_list ? c.active_count[c.iteration & 1] : params.edge_count);
-            c.candidate_count = 0;
-            c.round = 0;
-            c.phase = kPhaseRounds;
+            const bool from_list = push.active_set != 0 && control.iteration > 0;
+            groups = groupsFor(from_list ? control.active_count[control.iteration & 1] : push.edge_count);
+            control.candidate_count = 0;
+            control.round = 0;
+            control.phase = kPhaseRounds;
         }
     }
     setArgs(kArgsCandidates, groups);
 }
 
-void planSelect(Control c) {
+void planSelect() {
     uint groups = 0;
-    if (c.phase == kPhaseRounds) {
-        if (c.round == 0 && c.candidate_count == 0) {
-            c.phase = kPhaseDone;  // locally optimal: nothing to flip
-        } else if (c.round == 0 || (kSingleRound == 0 && c.undecided_count[c.round & 1] > 0 &&
-                                    c.round < params.max_rounds)) {
-            const uint next = (c.round + 1) & 1;
-            groups = groupsFor(c.round == 0 ? c.candidate_count : c.round_count[c.round & 1]);
-            c.round_count[next] = 0;
-            c.undecided_count[next] = 0;
-            c.round += 1;
-            c.total_rounds += 1;
-            c.max_rounds_in_iteration = max(c.max_rounds_in_iteration, c.round);
+    if (control.phase == kPhaseRounds) {
+        if (control.round == 0 && control.candidate_count == 0) {
+            control.phase = kPhaseDone;  // locally optimal: nothing to flip
+        } else if (control.round == 0 || (kSingleRound == 0 && control.undecided_count[control.round & 1] > 0 &&
+                                    control.round < push.max_rounds)) {
+            const uint next = (control.round + 1) & 1;
+            groups = groupsFor(control.round == 0 ? control.candidate_count : control.round_count[control.round & 1]);
+            control.round_count[next] = 0;
+            control.undecided_count[next] = 0;
+            control.round += 1;
+            control.total_rounds += 1;
+            control.max_rounds_in_iteration = max(control.max_rounds_in_iteration, control.round);
         }
     }
     setArgs(kArgsSelect, groups);
 }
 
-void planFlip(Control c) {
+void planFlip() {
     uint groups = 0;
-    if (c.phase == kPhaseRounds && c.round > 0) {
-        const bool rounds_left = kSingleRound == 0 && c.undecided_count[c.round & 1] > 0;
-        if (rounds_left && c.round >= params.max_rounds) c.capped = 1;  // the rest waits for the next iteration
-        if (!rounds_left || c.round >= params.max_rounds) {
-            groups = groupsFor(c.candidate_count);
-            c.iteration += 1;
-            c.active_count[c.iteration & 1] = 0;
-            c.phase = kPhaseCandidates;
+    if (control.phase == kPhaseRounds && control.round > 0) {
+        const bool rounds_left = kSingleRound == 0 && control.undecided_count[control.round & 1] > 0;
+        if (rounds_left && control.round >= push.max_rounds) control.capped = 1;  // the rest waits for the next iteration
+        if (!rounds_left || control.round >= push.max_rounds) {
+            groups = groupsFor(control.candidate_count);
+            control.iteration += 1;
+            control.active_count[control.iteration & 1] = 0;
+            control.phase = kPhaseCandidates;
         }
     }
     setArgs(kArgsFlip, groups);
 }
 
 void main() {
-    loadParams();
     if (gl_GlobalInvocationID.x != 0) return;
-    Control c = params.control;
-    if (push.step == kArgsCandidates) planCandidates(c);
-    else if (push.step == kArgsSelect) planSelect(c);
-    else planFlip(c);
+    if (push.step == kArgsCandidates) planCandidates();
+    else if (push.step == kArgsSelect) planSelect();
+    else planFlip();
 }

@@ -8,15 +8,17 @@
 #include "raster.h"
 
 void renderTriangle(uint i0, uint i1, uint i2) {
-    const uint w = params.width, h = params.height, c = params.channels;
+    const uint w = push.width, h = push.height, c = push.channels;
     const uint out_w = push.out_width, out_h = push.out_height;
     const uint ids[3] = uint[3](i0, i1, i2);
     int64_t px[3], py[3];
+    vec4 z[3];  // premultiplied vertex values
     uint x0 = w, x1 = 0, y0 = h, y1 = 0;
     for (int k = 0; k < 3; ++k) {
         const uint x = ids[k] % w, y = ids[k] / w;
         px[k] = vertexCoord(x, out_w);
         py[k] = vertexCoord(y, out_h);
+        z[k] = imageLoad(pixels, int(ids[k]));
         x0 = min(x0, x); x1 = max(x1, x);
         y0 = min(y0, y); y1 = max(y1, y);
     }
@@ -41,18 +43,14 @@ void renderTriangle(uint i0, uint i1, uint i2) {
             if (!inside) continue;
             const float total = float(weight[0] + weight[1] + weight[2]);
             const vec3 lambda = vec3(float(weight[0]), float(weight[1]), float(weight[2])) / total;
+            const vec4 value = lambda.x * z[0] + lambda.y * z[1] + lambda.z * z[2];
             const uint pixel = ((y - push.first_row) * out_w + x) * c;
-            for (uint k = 0; k < c; ++k) {
-                params.band.at[pixel + k] = lambda.x * params.pixels.at[ids[0] * c + k] +
-                                            lambda.y * params.pixels.at[ids[1] * c + k] +
-                                            lambda.z * params.pixels.at[ids[2] * c + k];
-            }
+            for (uint k = 0; k < c; ++k) imageStore(band, int(pixel + k), vec4(value[k]));
         }
     }
 }
 
 void main() {
-    loadParams();
     for (uint i = gl_GlobalInvocationID.x; i < push.edge_range; i += invocationStride()) {
         const uint e = push.first_edge + i;
         const uvec4 v = verticesOf(e);

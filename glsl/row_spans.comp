@@ -3,13 +3,12 @@
 // Before rendering: for each edge row (the edges the initial grid gave to one vertex row),
 // the first and last vertex row its triangles touch. Flips move edges only locally, so the
 // host can pick, for every output band, the few edge rows whose triangles may cover it.
-// Slots: row_spans[2y] = first row (atomicMin), row_spans[2y + 1] = last row (atomicMax).
+// Texels: row_spans[2y] = first row (atomic min), row_spans[2y + 1] = last row (atomic max).
 #include "common.glsl"
 
 void main() {
-    loadParams();
-    const uint w = params.width;
-    for (uint e = gl_GlobalInvocationID.x; e < params.edge_count; e += invocationStride()) {
+    const uint w = push.width;
+    for (uint e = gl_GlobalInvocationID.x; e < push.edge_count; e += invocationStride()) {
         const uvec4 v = verticesOf(e);
         const uvec4 n = neighboursOf(e);
         uint first = kNone, last = 0;
@@ -23,8 +22,8 @@ void main() {
             last = max(last, max(max(v.x / w, v.y / w), v.w / w));
         }
         if (first > last) continue;
-        const uint row = min(e / (3 * w - 2), params.height - 1);
-        atomicMin(params.row_spans.at[2 * row], first);
-        atomicMax(params.row_spans.at[2 * row + 1], last);
+        const uint row = min(e / (3 * w - 2), push.height - 1);
+        imageAtomicMin(row_spans, int(2 * row), first);
+        imageAtomicMax(row_spans, int(2 * row + 1), last);
     }
 }
