@@ -228,7 +228,9 @@ Image ImageReader::read() {
         QuietStderr quiet;
         ok = s.input->read_image(0, 0, 0, int(image.channels), OIIO::TypeDesc::FLOAT, image.pixels.data());
     }
-    if (!ok) throw UserError(s.path + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
+    // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
+    if (!ok || s.input->has_error())
+        throw UserError(s.path + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
     s.input.reset();
     if (image.hasAlpha() && s.alpha_storage == AlphaStorage::Straight) premultiply(image.pixels, image.channels);
     return image;

@@ -129,6 +129,20 @@ TEST_CASE("cli: a truncated PNG is refused with one line and no libpng noise") {
     CHECK(work.folder.names() == before);
 }
 
+TEST_CASE("cli: truncated JPEG, TIFF and EXR files are refused with one line") {
+    Workspace work;
+    const ddt::Image image = ddt::readImage(work.input);
+    for (const char* name : {"cut.jpg", "cut.tif", "cut.exr"}) {
+        INFO(name);
+        const std::string path = work.folder / name;
+        ddt::writeImage(path, image);
+        fs::resize_file(path, fs::file_size(path) / 2);
+        const auto before = work.folder.names();
+        requireOneLineError(runDdtup({path, work.folder / "out.png"}), 1, name, "");
+        CHECK(work.folder.names() == before);
+    }
+}
+
 TEST_CASE("cli: images under 2×2 pixels are refused") {
     Workspace work;
     const auto before = work.folder.names();
