@@ -181,6 +181,8 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     const fs::file_status status = fs::status(path, ec);
     if (!fs::exists(status)) throw UserError(path + ": no such file");
     if (fs::is_directory(status)) throw UserError(path + ": is a folder, not an image");
+    // Devices and pipes can feed a reader forever (/dev/zero) or block it.
+    if (!fs::is_regular_file(status)) throw UserError(path + ": not a regular file");
     if (::access(path.c_str(), R_OK) != 0) throw UserError(path + ": cannot open (" + std::strerror(errno) + ")");
 
     // Ask readers for straight alpha as stored; premultiplying in float loses nothing.
