@@ -12,15 +12,14 @@ namespace {
 // Usage errors share one exit code, whichever layer finds them (README: 2).
 const int kUsageExitCode = 2;
 
-// "" if the parsed values make sense together, else the message. Also fills the default scale.
-std::string validateSettings(const CLI::App& app, Settings& settings) {
+// "" if the parsed values make sense together, else the message.
+std::string validateSettings(const CLI::App& app, const Settings& settings) {
     const bool scale_given = app.count("--scale") > 0;
     if (scale_given && !(settings.scale >= 1.0 && std::isfinite(settings.scale)))
         return "--scale must be a number >= 1 (got " + app.get_option("--scale")->as<std::string>() + ")";
     if (scale_given && (settings.width || settings.height)) return "give either --scale or --width/--height, not both";
     if (app.count("--width") && settings.width == 0) return "--width must be at least 1";
     if (app.count("--height") && settings.height == 0) return "--height must be at least 1";
-    if (!scale_given && !settings.width && !settings.height) settings.scale = 2.0;
     return "";
 }
 
@@ -67,6 +66,7 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         return usageError(error.what());
     }
     if (std::string problem = validateSettings(app, settings); !problem.empty()) return usageError(problem);
+    if (!app.count("--scale") && !settings.width && !settings.height) settings.scale = 2.0;
     return settings;
 }
 
