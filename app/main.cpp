@@ -1,6 +1,7 @@
 // ddtup: magnify images by data-dependent triangulation.
 #include <cstdio>
 #include <iostream>
+#include <new>
 
 #include "cli.h"
 #include "context.h"
@@ -48,6 +49,13 @@ int run(const ddt::Settings& settings) {
         return 0;
     } catch (const ddt::UserError& error) {
         std::cerr << "ddtup: " << error.what() << "\n";
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "ddtup: " << settings.input << ": out of memory\n";
+        return 1;
+    } catch (const std::exception& error) {
+        // A bug, not a user error; still one line instead of std::terminate's abort.
+        std::cerr << "ddtup: internal error: " << error.what() << "\n";
         return 1;
     }
 }

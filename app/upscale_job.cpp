@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -20,11 +22,35 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 // Bands of at most this many floats keep memory flat for huge outputs.
 const size_t kBandFloats = size_t(16) << 20;
 
+// Catches every spelling of the same file: "./x/../a.png", symlinks, hard links.
 void checkNotOverwritingInput(const std::string& input, const std::string& output) {
     std::error_code ec;
     bool same = fs::exists(output, ec) ? fs::equivalent(input, output, ec)
                                        : fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec);
     if (same) throw UserError(output + ": output is the input file; refusing to overwrite it");
+}
+
+void checkMagnifiable(const std::string& input, const Image& header) {
+    if (header.width < 2 || header.height < 2)
+        throw UserError(input + ": DDT needs at least 2×2 pixels (got " + std::to_string(header.width) + "×" +
+                        std::to_string(header.height) + ")");
+}
+
+// The size arithmetic works in 32 bits; absurd requests (-s 1e12) are refused before it, in
+// doubles. OIIO keeps sizes in int, so no format holds more than 2^31 - 1 pixels a side.
+void checkRequestedSides(const Settings& settings, uint32_t width, uint32_t height) {
+    const double aspect = double(width) / height;
+    double out_width = settings.scale * width, out_height = settings.scale * height;
+    if (settings.width || settings.height) {
+        out_width = settings.width ? settings.width : settings.height * aspect;
+        out_height = settings.height ? settings.height : settings.width / aspect;
+    }
+    const double max_side = 2147483647.0;
+    if (std::round(out_width) > max_side || std::round(out_height) > max_side) {
+        char size[64];
+        std::snprintf(size, sizeof size, "%.4g×%.4g", out_width, out_height);
+        throw UserError(settings.output + ": the output would be " + size + " pixels; at most 2147483647 a side");
+    }
 }
 
 }  // namespace
@@ -55,15 +81,17 @@ JobReport runUpscaleJob(const Settings& settings) {
     checkNotOverwritingInput(settings.input, settings.output);
 
     auto start = std::chrono::steady_clock::now();
-    const Image image = readImage(settings.input);
-    if (image.width < 2 || image.height < 2)
-        throw UserError(settings.input + ": DDT needs at least 2×2 pixels (got " + std::to_string(image.width) + "×" +
-                        std::to_string(image.height) + ")");
-    report.out = requestedOutputSize(settings, image.width, image.height);
-    if (std::string problem = checkOutputSize(image.width, image.height, report.out); !problem.empty())
+    ImageReader reader(settings.input);
+    const Image& header = reader.header();
+    checkMagnifiable(settings.input, header);
+    checkRequestedSides(settings, header.width, header.height);
+    report.out = requestedOutputSize(settings, header.width, header.height);
+    if (std::string problem = checkOutputSize(header.width, header.height, report.out); !problem.empty())
         throw UserError(settings.input + ": " + problem);
-    // Open the output first: an unwritable path fails before the long part.
-    ImageWriter writer(settings.output, report.out.width, report.out.height, image);
+    // Open the output before decoding the input: an unwritable path, or a size the format
+    // cannot hold, fails before any of the long parts.
+    ImageWriter writer(settings.output, report.out.width, report.out.height, header);
+    const Image image = reader.read();
     std::unique_ptr<Backend> backend = makeBackend(settings);
     try {
         backend->prepare(image);

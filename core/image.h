@@ -36,14 +36,42 @@ struct Image {
     float* row(uint32_t y) { return pixels.data() + y * rowFloats(); }
 };
 
-// Reads any file OpenImageIO reads. Throws UserError("PATH: reason") for a missing file, a
-// non-image, a truncated file, or a channel layout other than the four above.
+// Opens an image file and reads its header; the pixels follow with read(). Splitting the two
+// lets a caller check sizes and open the output before the expensive decode.
+// Any format OpenImageIO reads; throws UserError("PATH: reason") for a missing file, a
+// non-image, or a channel layout other than the four above.
+class ImageReader {
+public:
+    explicit ImageReader(const std::string& path);
+    ~ImageReader();
+    ImageReader(const ImageReader&) = delete;
+    ImageReader& operator=(const ImageReader&) = delete;
+
+    // The file's size, layout, sample type and metadata; `pixels` is empty.
+    const Image& header() const { return header_; }
+    // Decodes the pixels (premultiplied when there is alpha). Throws UserError for a truncated
+    // or corrupt file. Call once.
+    Image read();
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+    Image header_;
+};
+
+// Reads a whole image through ImageReader.
 Image readImage(const std::string& path);
+
+// "" if the format named by `path`'s extension can hold a width × height image, else the
+// reason. Some codecs fail only after all the work, or end the process (libjpeg), so the
+// known limits are checked before anything is opened.
+std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height);
 
 // Writes an image in bands of rows, to a temporary file in the output's folder that is
 // renamed over the output only by commit(): a failed or abandoned write leaves nothing.
 // The format follows the output's extension; the sample type follows `like` where the
-// format can hold it, else the nearest it supports (reported in notes()).
+// format can hold it, else the nearest it supports (reported in notes()). `like` may be a
+// header without pixels; its size scales the resolution (dots per inch) metadata.
 class ImageWriter {
 public:
     ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like);
@@ -51,7 +79,7 @@ public:
     ImageWriter(const ImageWriter&) = delete;
     ImageWriter& operator=(const ImageWriter&) = delete;
 
-    // Rows [y_begin, y_end) in order, `channels` floats per pixel, premultiplied like Image.
+    // Rows [y_begin, y_end) in order, `like.channels` floats per pixel, premultiplied like Image.
     void writeRows(uint32_t y_begin, uint32_t y_end, const float* rows);
     void commit();
     const std::vector<std::string>& notes() const { return notes_; }
@@ -62,7 +90,7 @@ private:
     std::vector<std::string> notes_;
 };
 
-// Writes a whole image through ImageWriter.
+// Writes a whole image through ImageWriter; returns its notes.
 std::vector<std::string> writeImage(const std::string& path, const Image& image);
 
 }  // namespace ddt

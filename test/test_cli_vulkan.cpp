@@ -1,0 +1,79 @@
+// The command line with the Vulkan backend: device choice and its messages, the statistics
+// both backends report, and results that do not depend on lavapipe's thread count.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <algorithm>
+
+#include "run_ddtup.h"
+#include "temp_folder.h"
+
+namespace {
+
+std::string fixture(const std::string& name) { return std::string(DDTUP_TEST_DATA) + "/" + name; }
+
+}  // namespace
+
+TEST_CASE("cli: without a usable Vulkan device the error names the fix") {
+    TempFolder folder;
+    // The loader finds no driver when pointed at a file that does not exist.
+    const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png"},
+                             {"VK_DRIVER_FILES=/nonexistent/icd.json", "VK_ICD_FILENAMES=/nonexistent/icd.json"});
+    requireOneLineError(run, 1, "Vulkan", "mesa-vulkan-drivers");
+    CHECK_THAT(run.err, Catch::Contains("--backend cpu"));
+    CHECK(folder.names().empty());
+}
+
+TEST_CASE("cli: a CPU Vulkan device is announced once, and -q silences it") {
+    TempFolder folder;
+    const Run loud = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png"});
+    CHECK(loud.exit_code == 0);
+    CHECK(std::count(loud.err.begin(), loud.err.end(), '\n') == 1);
+    CHECK_THAT(loud.err, Catch::Contains("CPU Vulkan device"));
+    const Run quiet = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "-q"});
+    CHECK(quiet.exit_code == 0);
+    CHECK(quiet.err.empty());
+}
+
+TEST_CASE("cli: --list-devices shows lavapipe as a CPU device") {
+    const Run run = runDdtup({"--list-devices"});
+    CHECK(run.exit_code == 0);
+    CHECK_THAT(run.out, Catch::StartsWith("0: "));
+    CHECK_THAT(run.out, Catch::Contains("llvmpipe"));
+    CHECK_THAT(run.out, Catch::Contains("(CPU,"));
+}
+
+TEST_CASE("cli: --stats reports the same figures for both backends") {
+    TempFolder folder;
+    for (const char* backend : {"cpu", "vulkan"}) {
+        INFO(backend);
+        const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--stats", "-q", "--backend", backend});
+        CHECK(run.exit_code == 0);
+        for (const char* line : {"cost-init ", "cost-final ", "improvement ", "flips ", "iterations ", "time-init ",
+                                 "time-comp ", "time-final ", "time-sum "})
+            CHECK_THAT(run.out, Catch::Contains(line));
+        if (std::string(backend) == "vulkan")
+            for (const char* line : {"rounds ", "dispatches ", "device-comp "}) CHECK_THAT(run.out, Catch::Contains(line));
+    }
+}
+
+TEST_CASE("cli: an unknown --variant is a usage error") {
+    TempFolder folder;
+    requireOneLineError(runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--variant", "fastest"}), 2,
+                        "--variant", "unknown");
+    CHECK(folder.names().empty());
+}
+
+TEST_CASE("cli: the output does not depend on lavapipe's thread count") {
+    TempFolder folder;
+    for (const char* variant : {"localmax", "basic"}) {
+        INFO(variant);
+        for (const char* threads : {"1", "2"}) {
+            const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / (std::string("out") + threads + ".png"),
+                                      "-s", "3", "-q", "--variant", variant},
+                                     {std::string("LP_NUM_THREADS=") + threads});
+            CHECK(run.exit_code == 0);
+        }
+        CHECK(readFile(folder / "out1.png") == readFile(folder / "out2.png"));
+    }
+}
