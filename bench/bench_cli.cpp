@@ -1,7 +1,6 @@
 #include "bench_cli.h"
 
 #include <CLI/CLI.hpp>
-
 #include <filesystem>
 #include <iostream>
 
@@ -31,7 +30,8 @@ std::optional<BenchOptions> parseBenchCommandLine(int argc, char** argv, int& ex
     app.add_option("--factor", options.factors, "Magnification factors, powers of two (default: 4 8; --quick: 4)");
     app.add_option("--warmup", options.warmups, "Untimed runs of each DDT method before the timed ones")
         ->capture_default_str();
-    app.add_option("--repeats", options.repeats, "Timed runs per DDT method and image; the median is reported (--quick: 1)")
+    app.add_option("--repeats", options.repeats,
+                   "Timed runs per DDT method and image; the median is reported (--quick: 1)")
         ->capture_default_str();
     app.add_option("--device", options.device, "Vulkan devices for the GPU columns: all, or one device id")
         ->capture_default_str();

@@ -12,8 +12,8 @@ struct BenchOptions {
     std::vector<std::string> data_dirs;  // one set per folder; default: the bundled two
     std::string out_dir = "bench-results";
     std::vector<uint32_t> factors = {4, 8};
-    uint32_t warmups = 1;  // untimed runs of every DDT method before the timed ones
-    uint32_t repeats = 5;  // timed runs; tables report the median
+    uint32_t warmups = 1;        // untimed runs of every DDT method before the timed ones
+    uint32_t repeats = 5;        // timed runs; tables report the median
     std::string device = "all";  // Vulkan devices for the GPU columns: "all" or one id
     std::string scaling_image;   // Fig. 13's resized image; default: the first set's first
     uint32_t scaling_max_side = 2048;

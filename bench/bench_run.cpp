@@ -49,12 +49,29 @@ std::vector<BenchImage> imagesToRun(const std::vector<ImageSet>& sets, bool quic
     std::vector<BenchImage> chosen;
     for (const ImageSet& set : sets)
         if (chosen.size() < 2) chosen.push_back({set.name, set.paths.front()});
-    if (chosen.size() < 2 && sets.front().paths.size() > 1) chosen.push_back({sets.front().name, sets.front().paths[1]});
+    if (chosen.size() < 2 && sets.front().paths.size() > 1)
+        chosen.push_back({sets.front().name, sets.front().paths[1]});
     return chosen;
 }
 
 void addNote(BenchResults& results, const std::string& note) {
-    if (std::find(results.notes.begin(), results.notes.end(), note) == results.notes.end()) results.notes.push_back(note);
+    if (std::find(results.notes.begin(), results.notes.end(), note) == results.notes.end())
+        results.notes.push_back(note);
+}
+
+// Every image must still be usable at every factor: DDT needs a low-resolution image of
+// 2×2 pixels, SSIM an original of 11×11. Checked before any work starts.
+void checkImageSizes(const std::vector<BenchImage>& images, const std::vector<uint32_t>& factors, bool quick) {
+    for (const BenchImage& image : images) {
+        ImageSize size = imageSize(image.path);
+        if (quick) size = {std::min(size.width, kQuickSide), std::min(size.height, kQuickSide)};
+        for (uint32_t factor : factors) {
+            const uint32_t low_w = size.width / factor, low_h = size.height / factor;
+            if (low_w < 2 || low_h < 2 || low_w * factor < 11 || low_h * factor < 11)
+                throw ddt::UserError(image.path + ": too small for ×" + std::to_string(factor) +
+                                     " (needs a 2×2 low-resolution image and an 11×11 original)");
+        }
+    }
 }
 
 ddt::Image loadForBench(const std::string& path, bool quick, BenchResults& results) {
@@ -92,8 +109,9 @@ void printHeader(const BenchResults& results, const BenchOptions& options, size_
     say("machine: %s, %u hardware threads; CPU DDT runs serially on one thread; OIIO %s with %d threads (filters, "
         "untimed)\n",
         m.cpu_model.c_str(), m.hardware_threads, m.oiio_version.c_str(), m.oiio_threads);
-    if (results.devices.empty()) say("Vulkan devices: none (no Vulkan backend in this build)\n");
-    for (const BenchDevice& device : results.devices) say("Vulkan device %s: %s\n", device.id.c_str(), device.name.c_str());
+    if (results.devices.empty()) say("Vulkan devices: none\n");
+    for (const BenchDevice& device : results.devices)
+        say("Vulkan device %s: %s\n", device.id.c_str(), device.name.c_str());
     say("timing: %u warm-up + %u timed runs per DDT method and image (median); Fig. 13: %u timed runs\n",
         results.warmups, results.repeats, results.scaling_repeats);
     for (const DdtMethod& method : results.columns)
@@ -131,8 +149,8 @@ ImageResult benchImage(const BenchResults& results, const std::vector<DdtMethod>
     }
     for (const DdtMethod& method : ddt_methods) {
         ddt::Image magnified;
-        result.ddt[method.key] = measureDdt(method, png, {original.width, original.height}, results.warmups,
-                                            results.repeats, &magnified);
+        result.ddt[method.key] =
+            measureDdt(method, png, {original.width, original.height}, results.warmups, results.repeats, &magnified);
         result.quality[method.key] = ddt::compareImages(original_bytes, ddt::toBytes(magnified));
         if (kept_keys.count(method.key)) kept[method.key] = std::move(magnified);
     }
@@ -141,8 +159,10 @@ ImageResult benchImage(const BenchResults& results, const std::vector<DdtMethod>
         auto found = kept.find(key);
         return CropPanel{label, found == kept.end() ? nullptr : &found->second};
     };
-    const std::vector<CropPanel> panels = {{"Original", &original}, panel("Bilinear", "filter/triangle"),
-                                           panel("Lanczos", "filter/lanczos3"), panel("CPU DDT", "cpu"),
+    const std::vector<CropPanel> panels = {{"Original", &original},
+                                           panel("Bilinear", "filter/triangle"),
+                                           panel("Lanczos", "filter/lanczos3"),
+                                           panel("CPU DDT", "cpu"),
                                            panel(crop_gpu.label, crop_gpu.key)};
     const std::string strip_path =
         crops_dir + "/" + result.set + "_" + result.name + "_x" + std::to_string(factor) + ".png";
@@ -153,8 +173,8 @@ ImageResult benchImage(const BenchResults& results, const std::vector<DdtMethod>
 void printImageLine(const ImageResult& r, size_t index, size_t count) {
     say("[×%u %zu/%zu] %s/%s %ux%u <- %ux%u:", r.factor, index, count, r.set.c_str(), r.name.c_str(), r.width, r.height,
         r.low_width, r.low_height);
-    for (const auto& key : {"filter/triangle", "filter/lanczos3"})
-        say(" %s %.2f dB", key + 7, r.quality.at(key).psnr);
+    say(" bilinear %.2f dB, lanczos3 %.2f dB", r.quality.at("filter/triangle").psnr,
+        r.quality.at("filter/lanczos3").psnr);
     for (const auto& [key, m] : r.ddt)
         say(" | %s %.2f dB, SSIM %.4f, %llu flips, %.3f s", key.c_str(), r.quality.at(key).psnr, r.quality.at(key).ssim,
             static_cast<unsigned long long>(m.runs.front().stats.flips), m.medianSum());
@@ -170,7 +190,8 @@ void runScaling(BenchResults& results, const std::vector<BenchImage>& images, co
         for (ScalingResult& r : measureScaling(results.scaling_methods, "resized", imageName(scaling_path),
                                                resizedSquare(source, side), results.warmups, results.scaling_repeats))
             results.scaling.push_back(std::move(r));
-        say("[Fig. 13] %s resized to %u×%u: %.1f s\n", imageName(scaling_path).c_str(), side, side, secondsSince(start));
+        say("[Fig. 13] %s resized to %u×%u: %.1f s\n", imageName(scaling_path).c_str(), side, side,
+            secondsSince(start));
     }
     for (const BenchImage& image : images) {
         const ddt::Image original = roundedTo8Bit(loadForBench(image.path, results.quick, results));
@@ -198,6 +219,7 @@ void runBench(const BenchOptions& options) {
     const std::vector<ImageSet> sets = findImageSets(options.data_dirs);
     for (const ImageSet& set : sets) results.set_names.push_back(set.name);
     const std::vector<BenchImage> images = imagesToRun(sets, options.quick);
+    checkImageSizes(images, results.factors, options.quick);
 
     results.devices = benchDevices(options.device);
     results.columns = ddtMethods(results.devices.empty() ? nullptr : &results.devices.front());
@@ -221,14 +243,16 @@ void runBench(const BenchOptions& options) {
             printImageLine(results.images.back(), i + 1, images.size());
         }
     if (!fonts_ok)
-        addNote(results, "no DejaVuSans font for OIIO's render_text: the crop strips are unlabelled; their panels "
-                                "are, left to right, original, bilinear, Lanczos, CPU DDT, GPU ExpROI MaxGain");
+        addNote(results,
+                "no DejaVuSans font for OIIO's render_text: the crop strips are unlabelled; their panels "
+                "are, left to right, original, bilinear, Lanczos, CPU DDT, GPU ExpROI MaxGain");
     runScaling(results, images, options);
 
     results.wall_seconds = secondsSince(start);
     writeReport(results, options.out_dir);
     say("done in %.0f s; report: %s/report.md\n", results.wall_seconds, options.out_dir.c_str());
-    for (const std::string& mismatch : referenceMismatches(results)) say("outside the PLATFORM.md reference: %s\n", mismatch.c_str());
+    for (const std::string& mismatch : referenceMismatches(results))
+        say("outside the PLATFORM.md reference: %s\n", mismatch.c_str());
 }
 
 }  // namespace bench

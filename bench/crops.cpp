@@ -10,8 +10,8 @@ namespace bench {
 
 namespace {
 
-const uint32_t kGap = 8;             // white between panels
-const uint32_t kLabelHeight = 30;    // white band under the panels for the labels
+const uint32_t kGap = 8;           // white between panels
+const uint32_t kLabelHeight = 30;  // white band under the panels for the labels
 const int kFontSize = 16;
 const char* const kFont = "DejaVuSans";  // Debian's fonts-dejavu-core; OIIO searches /usr/share/fonts
 const float kMissingGrey = 0.8f;
@@ -36,8 +36,9 @@ CropWindow busiestWindow(const ddt::Image& original, uint32_t side) {
             double detail = 0.0;
             if (x + 1 < w) detail += std::fabs(lumaAt(original, x + 1, y) - here);
             if (y + 1 < h) detail += std::fabs(lumaAt(original, x, y + 1) - here);
-            table[size_t(y + 1) * (w + 1) + x + 1] =
-                detail + table[size_t(y) * (w + 1) + x + 1] + table[size_t(y + 1) * (w + 1) + x] - table[size_t(y) * (w + 1) + x];
+            table[size_t(y + 1) * (w + 1) + x + 1] = detail + table[size_t(y) * (w + 1) + x + 1] +
+                                                     table[size_t(y + 1) * (w + 1) + x] -
+                                                     table[size_t(y) * (w + 1) + x];
         }
     auto sum = [&](uint32_t x, uint32_t y) {
         return table[size_t(y + side) * (w + 1) + x + side] - table[size_t(y) * (w + 1) + x + side] -
@@ -80,8 +81,8 @@ bool writeCropStrip(const std::string& path, const std::vector<CropPanel>& panel
     for (size_t i = 0; i < panels.size() && labelled; ++i) {
         const int centre = int(i * (tile + kGap) + tile / 2);
         const std::string label = panels[i].image ? panels[i].label : panels[i].label + " (n/a)";
-        labelled = OIIO::ImageBufAlgo::render_text(canvas, centre, int(tile + kLabelHeight - 9), label, kFontSize, kFont,
-                                                   black, OIIO::ImageBufAlgo::TextAlignX::Center);
+        labelled = OIIO::ImageBufAlgo::render_text(canvas, centre, int(tile + kLabelHeight - 9), label, kFontSize,
+                                                   kFont, black, OIIO::ImageBufAlgo::TextAlignX::Center);
     }
     // Clear OIIO's pending error; the caller reports the missing font, once.
     if (!labelled) (void)canvas.geterror();

@@ -28,7 +28,8 @@ const Stage kStages[] = {
 
 std::string csvOf(const BenchResults& results) {
     std::string csv =
-        "dataset,image,width,height,pixels,method,runs,time_init_s,time_comp_s,time_final_s,time_sum_s,flips,iterations\n";
+        "dataset,image,width,height,pixels,method,runs,time_init_s,time_comp_s,time_final_s,time_sum_s,flips,"
+        "iterations\n";
     for (const ScalingResult& r : results.scaling) {
         const DdtMeasurement& m = r.measurement;
         char line[512];
@@ -47,7 +48,8 @@ std::vector<PlotTick> sizeTicks(const BenchResults& results) {
     uint32_t largest = 64;
     for (const ScalingResult& r : results.scaling) largest = std::max({largest, r.width, r.height});
     std::vector<PlotTick> ticks;
-    for (uint32_t side = 64; side <= largest; side *= 2) ticks.push_back({double(side) * side, std::to_string(side) + "²"});
+    for (uint32_t side = 64; side <= largest; side *= 2)
+        ticks.push_back({double(side) * side, std::to_string(side) + "²"});
     return ticks;
 }
 

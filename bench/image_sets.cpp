@@ -1,5 +1,7 @@
 #include "image_sets.h"
 
+#include <OpenImageIO/imageio.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -15,7 +17,8 @@ namespace fs = std::filesystem;
 bool hasImageExtension(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    for (const char* known : {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".exr", ".ppm", ".pgm", ".pnm", ".webp", ".tga"})
+    for (const char* known :
+         {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".exr", ".ppm", ".pgm", ".pnm", ".webp", ".tga"})
         if (ext == known) return true;
     return false;
 }
@@ -35,8 +38,8 @@ std::vector<ImageSet> findImageSets(const std::vector<std::string>& dirs) {
         ImageSet set;
         set.name = setNameOf(dir);
         // Two folders of the same name (a/real, b/real) still need distinct table rows.
-        for (int suffix = 2; std::any_of(sets.begin(), sets.end(), [&](const ImageSet& s) { return s.name == set.name; });
-             ++suffix)
+        for (int suffix = 2;
+             std::any_of(sets.begin(), sets.end(), [&](const ImageSet& s) { return s.name == set.name; }); ++suffix)
             set.name = setNameOf(dir) + "-" + std::to_string(suffix);
         std::error_code ec;
         for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec))
@@ -47,6 +50,12 @@ std::vector<ImageSet> findImageSets(const std::vector<std::string>& dirs) {
         sets.push_back(std::move(set));
     }
     return sets;
+}
+
+ImageSize imageSize(const std::string& path) {
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) throw ddt::UserError(path + ": not a readable image (" + OIIO::geterror() + ")");
+    return {uint32_t(input->spec().width), uint32_t(input->spec().height)};
 }
 
 std::string imageName(const std::string& path) { return fs::path(path).stem().string(); }

@@ -12,7 +12,7 @@ struct MachineInfo {
     std::string lp_num_threads;  // lavapipe's worker threads (LP_NUM_THREADS), "" if unset
     std::string oiio_version;
     std::string compiler;  // __VERSION__
-    std::string build;  // "optimised" or "with assertions" (NDEBUG)
+    std::string build;     // "optimised" or "with assertions" (NDEBUG)
     std::string ddtup_version;
     std::string started_utc;  // ISO 8601
 };

@@ -24,9 +24,10 @@ void writeMachine(JsonWriter& json, const MachineInfo& m) {
 
 void writeConventions(JsonWriter& json, const BenchResults& r) {
     json.key("conventions").beginObject();
-    json.key("protocol").value(
-        "original cropped to a multiple of the factor; halved log2(factor) times with OIIO 'triangle' in float, "
-        "rounded to 8 bits once; magnified back to the original size; compared as 8-bit values");
+    json.key("protocol")
+        .value(
+            "original cropped to a multiple of the factor; halved log2(factor) times with OIIO 'triangle' in float, "
+            "rounded to 8 bits once; magnified back to the original size; compared as 8-bit values");
     json.key("time_init").value("decode the low-resolution PNG from memory + Backend::prepare");
     json.key("time_comp").value("Backend::optimize");
     json.key("time_final").value("Backend::renderRows for every output row, into memory (no PNG encoding)");
@@ -55,7 +56,14 @@ void writeDdtMethod(JsonWriter& json, const DdtMethod& m) {
 void writeMethods(JsonWriter& json, const BenchResults& r) {
     json.key("filters").beginArray();
     for (const FilterMethod& f : filterMethods())
-        json.beginObject().key("key").value(f.key).key("label").value(f.label).key("oiio_filter").value(f.oiio_name).endObject();
+        json.beginObject()
+            .key("key")
+            .value(f.key)
+            .key("label")
+            .value(f.label)
+            .key("oiio_filter")
+            .value(f.oiio_name)
+            .endObject();
     json.endArray();
     json.key("ddt_columns").beginArray();
     for (const DdtMethod& m : r.columns) writeDdtMethod(json, m);
@@ -67,7 +75,8 @@ void writeMethods(JsonWriter& json, const BenchResults& r) {
     for (const DdtMethod& m : r.scaling_methods) writeDdtMethod(json, m);
     json.endArray();
     json.key("devices").beginArray();
-    for (const BenchDevice& d : r.devices) json.beginObject().key("id").value(d.id).key("name").value(d.name).endObject();
+    for (const BenchDevice& d : r.devices)
+        json.beginObject().key("id").value(d.id).key("name").value(d.name).endObject();
     json.endArray();
 }
 

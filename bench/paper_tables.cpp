@@ -32,7 +32,8 @@ std::optional<double> meanOf(const std::vector<const ImageResult*>& images,
 
 using DdtValue = std::function<double(const DdtMeasurement&)>;
 
-std::optional<double> meanDdt(const std::vector<const ImageResult*>& images, const std::string& key, const DdtValue& value) {
+std::optional<double> meanDdt(const std::vector<const ImageResult*>& images, const std::string& key,
+                              const DdtValue& value) {
     return meanOf(images, [&](const ImageResult& image) -> std::optional<double> {
         auto found = image.ddt.find(key);
         if (found == image.ddt.end()) return std::nullopt;
@@ -87,8 +88,10 @@ Table costAndTimeTable(const BenchResults& results) {
             }
             table.rows.insert(table.rows.end(), {cost_init, cost_final, improvement});
             for (const auto& [label, value] : averaged) {
-                TableRow row{keys, section, label, {}, std::string(label) == "Num. of flips" ? 0 : 3};
-                for (const DdtMethod& method : results.columns) row.values.push_back(meanDdt(images, method.key, value));
+                // Times get four decimals: a serial run on these small inputs takes milliseconds.
+                TableRow row{keys, section, label, {}, std::string(label) == "Num. of flips" ? 0 : 4};
+                for (const DdtMethod& method : results.columns)
+                    row.values.push_back(meanDdt(images, method.key, value));
                 table.rows.push_back(row);
             }
         }
@@ -113,12 +116,12 @@ Table deviceTimeTable(const BenchResults& results) {
             const std::vector<std::string> keys = {std::to_string(factor), set};
             const std::string section = "Time-sum — " + set + " test set, " + factorName(factor);
             if (results.devices.empty()) {
-                TableRow none{keys, section, "(no Vulkan device: no Vulkan backend in this build)", {}, 3};
+                TableRow none{keys, section, "(no Vulkan device)", {}, 3};
                 none.values.assign(variants.size(), std::nullopt);
                 table.rows.push_back(none);
             }
             for (const BenchDevice& device : results.devices) {
-                TableRow row{keys, section, device.name + " [" + device.id + "]", {}, 3};
+                TableRow row{keys, section, device.name + " [" + device.id + "]", {}, 4};
                 for (const std::string& variant : variants) {
                     std::optional<double> value;
                     for (const DdtMethod& method : results.device_methods)

@@ -33,7 +33,8 @@ ddt::Image colourOnly(const ddt::Image& image) {
     colour.channels = image.channels - 1;
     colour.pixels.resize(size_t(image.width) * image.height * colour.channels);
     for (size_t i = 0, pixels = size_t(image.width) * image.height; i < pixels; ++i)
-        for (uint32_t c = 0; c < colour.channels; ++c) colour.pixels[i * colour.channels + c] = image.pixels[i * image.channels + c];
+        for (uint32_t c = 0; c < colour.channels; ++c)
+            colour.pixels[i * colour.channels + c] = image.pixels[i * image.channels + c];
     return colour;
 }
 

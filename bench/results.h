@@ -18,8 +18,8 @@ struct ImageResult {
     std::string set;
     std::string name;
     uint32_t factor = 0;
-    uint32_t width = 0, height = 0;          // the original, after cropping to the factor
-    uint32_t low_width = 0, low_height = 0;  // the input every method magnifies
+    uint32_t width = 0, height = 0;                     // the original, after cropping to the factor
+    uint32_t low_width = 0, low_height = 0;             // the input every method magnifies
     std::map<std::string, ddt::QualityScores> quality;  // by method key: filters and DDT
     std::map<std::string, DdtMeasurement> ddt;          // by DDT method key
     std::map<std::string, double> filter_seconds;       // one resize each, for information

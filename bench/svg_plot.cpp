@@ -72,8 +72,8 @@ std::string line(double x1, double y1, double x2, double y2, const std::string& 
 
 std::string marker(double x, double y, const PlotSeries& s) {
     const std::string fill = s.hollow ? "none" : s.colour;
-    return "<circle cx=\"" + number(x) + "\" cy=\"" + number(y) + "\" r=\"3.5\" fill=\"" + fill + "\" stroke=\"" + s.colour +
-           "\" stroke-width=\"1.5\"/>\n";
+    return "<circle cx=\"" + number(x) + "\" cy=\"" + number(y) + "\" r=\"3.5\" fill=\"" + fill + "\" stroke=\"" +
+           s.colour + "\" stroke-width=\"1.5\"/>\n";
 }
 
 }  // namespace

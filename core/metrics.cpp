@@ -35,7 +35,8 @@ std::vector<int64_t> lumaTimes1000(const ByteImage& image) {
     std::vector<int64_t> luma(size_t(image.width) * image.height);
     const uint8_t* p = image.values.data();
     for (size_t i = 0; i < luma.size(); ++i, p += image.channels)
-        luma[i] = image.channels == 1 ? 1000 * int64_t(p[0]) : 299 * int64_t(p[0]) + 587 * int64_t(p[1]) + 114 * int64_t(p[2]);
+        luma[i] = image.channels == 1 ? 1000 * int64_t(p[0])
+                                      : 299 * int64_t(p[0]) + 587 * int64_t(p[1]) + 114 * int64_t(p[2]);
     return luma;
 }
 
@@ -108,7 +109,8 @@ std::vector<double> gaussianMeans(const std::vector<double>& plane, uint32_t wid
     std::vector<double> means(size_t(out_w) * out_h, 0.0);
     for (uint32_t y = 0; y < out_h; ++y)
         for (int k = 0; k < kSsimWindow; ++k)
-            for (uint32_t x = 0; x < out_w; ++x) means[size_t(y) * out_w + x] += taps[k] * rows[size_t(y + k) * out_w + x];
+            for (uint32_t x = 0; x < out_w; ++x)
+                means[size_t(y) * out_w + x] += taps[k] * rows[size_t(y + k) * out_w + x];
     return means;
 }
 

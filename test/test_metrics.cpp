@@ -1,7 +1,6 @@
 // The quality metrics on images whose scores follow from the definitions by hand. Every
 // expected value below is derived in its comment, never computed by core/metrics.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <functional>
 #include <random>
@@ -27,7 +26,8 @@ int sign(uint32_t i) { return i % 2 == 0 ? 1 : -1; }
 
 // A textured RGB image with every value in [20, 220]: room for offsets and noise.
 ByteImage texturedRgb(uint32_t width, uint32_t height) {
-    return makeImage(width, height, 3, [](uint32_t x, uint32_t y, uint32_t c) { return 20 + int((x * 7 + y * 13 + c * 50) % 201); });
+    return makeImage(width, height, 3,
+                     [](uint32_t x, uint32_t y, uint32_t c) { return 20 + int((x * 7 + y * 13 + c * 50) % 201); });
 }
 
 }  // namespace
@@ -81,8 +81,8 @@ TEST_CASE("metrics: orthogonal stripe noise of known power") {
     // the image, and over every 8×8 window, each parity is balanced and the two patterns
     // are orthogonal: μx = μy = 100, σx² = 1600, σn² = 900, σxy = σx² = 1600, σy² = 2500.
     const ByteImage x = makeImage(16, 16, 1, [](uint32_t col, uint32_t, uint32_t) { return 100 + 40 * sign(col); });
-    const ByteImage y =
-        makeImage(16, 16, 1, [](uint32_t col, uint32_t row, uint32_t) { return 100 + 40 * sign(col) + 30 * sign(row); });
+    const ByteImage y = makeImage(
+        16, 16, 1, [](uint32_t col, uint32_t row, uint32_t) { return 100 + 40 * sign(col) + 30 * sign(row); });
     // MSE = 30² = 900; PSNR = 10·log10(65025 / 900) = 10·log10(72.25) = 18.588379 dB.
     CHECK(ddt::meanSquaredError(x, y) == 900.0);
     CHECK(ddt::peakSignalToNoiseRatio(x, y) == Approx(18.588379).epsilon(1e-7));
@@ -95,6 +95,22 @@ TEST_CASE("metrics: orthogonal stripe noise of known power") {
     CHECK(ddt::universalQualityIndex(x, y) == Approx(32.0 / 41.0).epsilon(1e-12));
 }
 
+TEST_CASE("metrics: chroma noise that keeps luma moves cross-correlation only") {
+    // x: grey stripes, every channel 100 ± 40 in alternate columns (σ² = 1600 per channel).
+    // y = x + (15, −9, 7)·(±1 in alternate rows): 299·15 − 587·9 + 114·7 = 0, so luma is
+    // unchanged and the luma correlation stays exactly 1. Per channel the noise is orthogonal
+    // to the stripes: cov = 1600, var y_c = 1600 + n_c²; summed over channels,
+    // cross-correlation = 3·1600 / √(3·1600 · (3·1600 + 15² + 9² + 7²)) = √(4800 / 5155)
+    // = 0.96495. MSE = (225 + 81 + 49) / 3 = 118.333.
+    const int noise[3] = {15, -9, 7};
+    const ByteImage x = makeImage(16, 16, 3, [](uint32_t col, uint32_t, uint32_t) { return 100 + 40 * sign(col); });
+    const ByteImage y = makeImage(
+        16, 16, 3, [&](uint32_t col, uint32_t row, uint32_t c) { return 100 + 40 * sign(col) + noise[c] * sign(row); });
+    CHECK(ddt::lumaCorrelation(x, y) == Approx(1.0).epsilon(1e-12));
+    CHECK(ddt::crossCorrelation(x, y) == Approx(std::sqrt(4800.0 / 5155.0)).epsilon(1e-12));
+    CHECK(ddt::meanSquaredError(x, y) == Approx(355.0 / 3.0).epsilon(1e-12));
+}
+
 TEST_CASE("metrics: checkerboard noise on a flat image") {
     // x = 128, y = 128 ± 20 as a checkerboard (grey, 24×24). The 11-tap Gaussian weights
     // g(i) = exp(−i²/4.5), i = −5..5, give S = Σ g(i)(−1)^i / Σ g(i) ≈ −1.39e−4, so in every
@@ -103,7 +119,8 @@ TEST_CASE("metrics: checkerboard noise on a flat image") {
     // C2 = (0.03·255)² = 58.5225: 58.5225 / 458.5225 = 0.12763278 (the S terms move it
     // by less than 1e−12).
     const ByteImage x = makeImage(24, 24, 1, [](uint32_t, uint32_t, uint32_t) { return 128; });
-    const ByteImage y = makeImage(24, 24, 1, [](uint32_t col, uint32_t row, uint32_t) { return 128 + 20 * sign(col + row); });
+    const ByteImage y =
+        makeImage(24, 24, 1, [](uint32_t col, uint32_t row, uint32_t) { return 128 + 20 * sign(col + row); });
     CHECK(ddt::structuralSimilarity(x, y) == Approx(58.5225 / 458.5225).epsilon(1e-9));
     // Every 8×8 window holds 32 of each sign: μy = 128 exactly, σy² = 400, σx² = σxy = 0,
     // so UIQI = 4·0·… / ((0 + 400)(2·128²)) = 0.
