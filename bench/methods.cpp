@@ -2,6 +2,7 @@
 
 #include <cassert>
 
+#include "context.h"
 #include "upscale_job.h"
 
 namespace bench {
@@ -20,9 +21,9 @@ const GpuVariant kGpuVariants[] = {
     {"exproi", "GPU ExpROI"},
     {"maxgain", "GPU MaxGain"},
     {"exproi-maxgain", "GPU ExpROI MaxGain"},
-    {"exproi-2-maxgain", "GPU ExpROI2 MaxGain"},
-    {"exproi-3-maxgain", "GPU ExpROI3 MaxGain"},
-    {"exproi-4-maxgain", "GPU ExpROI4 MaxGain"},
+    {"exproi2-maxgain", "GPU ExpROI2 MaxGain"},
+    {"exproi3-maxgain", "GPU ExpROI3 MaxGain"},
+    {"exproi4-maxgain", "GPU ExpROI4 MaxGain"},
     {"localmax", "GPU LocalMax"},
     {"exproi-localmax", "GPU ExpROI LocalMax"},
 };
@@ -36,8 +37,7 @@ DdtMethod gpuMethod(const std::string& variant, const std::string& label, const 
     method.label = label;
     method.device = device ? device->id : "";
     method.key = "vulkan/" + (variant.empty() ? std::string("default") : variant) + "/" + method.device;
-    // Until the Vulkan backend lands there is no device and nothing to build.
-    method.unavailable = device ? "" : "no Vulkan backend in this build";
+    method.unavailable = device ? "" : "no usable Vulkan device";
     return method;
 }
 
@@ -54,8 +54,16 @@ const std::vector<FilterMethod>& filterMethods() {
 }
 
 std::vector<BenchDevice> benchDevices(const std::string& selection) {
-    (void)selection;  // Nothing to select from yet.
-    return {};
+    std::vector<BenchDevice> devices;
+    try {
+        for (const ddt::DeviceInfo& info : ddt::listDevices()) {
+            const std::string id = std::to_string(info.index);
+            if (info.unusable.empty() && (selection == "all" || selection == id)) devices.push_back({id, info.name});
+        }
+    } catch (const ddt::UserError&) {
+        // No Vulkan driver: the GPU columns are reported as n/a.
+    }
+    return devices;
 }
 
 std::vector<DdtMethod> ddtMethods(const BenchDevice* device) {
@@ -73,7 +81,9 @@ std::unique_ptr<ddt::Backend> makeMethodBackend(const DdtMethod& method) {
     assert(method.unavailable.empty());
     ddt::Settings settings;
     settings.backend = method.backend;
-    // The Vulkan backend's settings will also take method.variant and method.device here.
+    settings.variant = method.variant;
+    settings.device = method.device.empty() ? -1 : std::stoi(method.device);
+    settings.quiet = true;  // the report names the device once
     return ddt::makeBackend(settings);
 }
 

@@ -28,8 +28,8 @@ struct BenchDevice {
     std::string name;  // as the driver reports it
 };
 
-// HOOK for Table 2: the Vulkan devices `selection` picks ("all", or one id). None until the
-// Vulkan backend exists; then this returns its device enumeration, filtered.
+// The usable Vulkan devices `selection` picks ("all", or one index from --list-devices);
+// none when no Vulkan driver is installed. Table 2 has a row per device.
 std::vector<BenchDevice> benchDevices(const std::string& selection);
 
 struct DdtMethod {
