@@ -35,12 +35,15 @@ const double kFlipGainThreshold = 1e-12;
 const double kFlipGainThreshold = 1e-12lf;  // lf: a plain 1e-12 would be a float literal
 #endif
 
+// The gradient of a triangle's plane as n / d: n is the cross-product numerator, d twice the
+// signed area. Keeping the division out of the gradient lets the SCF divide once.
 struct Gradient {
-    double x;
-    double y;
+    double x;      // n.x
+    double y;      // n.y
+    double scale;  // d
 };
 
-// Gradient (a, b) of the plane z = a x + b y + c through three vertices with values z0..z2.
+// Gradient of the plane z = a x + b y + c through three vertices with values z0..z2.
 // The triangle is first rotated so its smallest vertex id comes first (orientation kept):
 // every edge that asks for this triangle then gets a bit-identical gradient.
 DDT_FN Gradient planeGradient(uint i0, uint i1, uint i2, float z0, float z1, float z2, uint width) {
@@ -57,19 +60,21 @@ DDT_FN Gradient planeGradient(uint i0, uint i1, uint i2, float z0, float z1, flo
     DDT_PRECISE double dy2 = double(i2 / width) - double(i0 / width);
     DDT_PRECISE double dz1 = double(z1) - double(z0);
     DDT_PRECISE double dz2 = double(z2) - double(z0);
-    DDT_PRECISE double twice_area = dx1 * dy2 - dx2 * dy1;
     Gradient g;
-    g.x = (dz1 * dy2 - dz2 * dy1) / twice_area;
-    g.y = (dz2 * dx1 - dz1 * dx2) / twice_area;
+    g.x = dz1 * dy2 - dz2 * dy1;
+    g.y = dz2 * dx1 - dz1 * dx2;
+    g.scale = dx1 * dy2 - dx2 * dy1;
     return g;
 }
 
 // SCF of an edge between two triangles: |∇P1|·|∇P2| − ∇P1·∇P2 (zero when the planes are
-// parallel, largest when they fold against each other). Symmetric in its two arguments.
+// parallel, largest when they fold against each other). With ∇P = n / d this is
+// (sqrt(|n1|²·|n2|²) − n1·n2) / (d1·d2): one square root and one division per edge.
+// Symmetric in its two arguments.
 DDT_FN double sederbergCost(Gradient g1, Gradient g2) {
-    DDT_PRECISE double norms = sqrt(g1.x * g1.x + g1.y * g1.y) * sqrt(g2.x * g2.x + g2.y * g2.y);
+    DDT_PRECISE double norms = sqrt((g1.x * g1.x + g1.y * g1.y) * (g2.x * g2.x + g2.y * g2.y));
     DDT_PRECISE double dot = g1.x * g2.x + g1.y * g2.y;
-    return norms - dot;
+    return (norms - dot) / (g1.scale * g2.scale);
 }
 
 // Twice the signed area of (i0, i1, i2); positive for positive orientation. Coordinates are
@@ -109,10 +114,20 @@ DDT_FN double neighbourCost(Gradient g, uint i0, uint i1, uint far, float z0, fl
     return sederbergCost(g, planeGradient(i0, i1, far, z0, z1, zfar, width));
 }
 
+// Whether every value the gain reads is the same: then every plane is flat and the gain is
+// exactly 0, which the full formula would also return, at far greater cost (flat regions
+// are common in drawings).
+DDT_FN bool stencilIsFlat(FlipStencil s, StencilValues z) {
+    return z.b == z.a && z.l == z.a && z.r == z.a && (s.far_bl == kNone || z.far_bl == z.a) &&
+           (s.far_la == kNone || z.far_la == z.a) && (s.far_ar == kNone || z.far_ar == z.a) &&
+           (s.far_rb == kNone || z.far_rb == z.a);
+}
+
 // Cost decrease over the five edges a flip changes (the edge and its four neighbours) for
 // one channel. The caller checks flipIsConvex first.
 //   before: triangles (a, b, l) and (b, a, r)   after: (r, b, l) and (l, a, r)
 DDT_FN double flipGain(FlipStencil s, StencilValues z, uint width) {
+    if (stencilIsFlat(s, z)) return 0.0;
     Gradient left = planeGradient(s.a, s.b, s.l, z.a, z.b, z.l, width);
     Gradient right = planeGradient(s.b, s.a, s.r, z.b, z.a, z.r, width);
     Gradient new_rbl = planeGradient(s.r, s.b, s.l, z.r, z.b, z.l, width);
