@@ -72,6 +72,7 @@ struct VulkanBackend::State {
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
     std::vector<uint32_t> spans;  // row_spans downloaded; empty when stale
+    std::vector<float> band_texels;  // a rendered band as read back, four floats per pixel
 
     std::vector<Buffer*> buffers() {
         return {&edge_vertices, &edge_neighbours, &luma,          &alpha,        &gain,          &status[0],
@@ -201,7 +202,7 @@ void VulkanBackend::State::createBuffers(const Image& img) {
     pixels = createBuffer(c, vertices * 16, device, VK_FORMAT_R32G32B32A32_SFLOAT);
     row_spans = createBuffer(c, uint64_t(height) * 8, device, VK_FORMAT_R32_UINT);
     // A placeholder until the first render sizes it.
-    band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32_SFLOAT);
+    band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32G32B32A32_SFLOAT);
 
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, kBindingCount},
                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount}};
@@ -533,20 +534,29 @@ void VulkanBackend::State::renderBand(OutputSize out, uint32_t y_begin, uint32_t
     CommandBatch commands(*context);
     dispatch(commands.buffer(), kernels.render, bindings(), p, groupsFor(p.edge_range));
     commands.submitAndWait();
-    downloadFromBuffer(*context, band, rows, VkDeviceSize(y_end - y_begin) * out.width * image->channels * 4);
+    // The band holds four floats per pixel; the caller wants `channels`.
+    const size_t pixels_in_band = size_t(y_end - y_begin) * out.width;
+    const uint32_t c = image->channels;
+    if (c == 4) {
+        downloadFromBuffer(*context, band, rows, pixels_in_band * 16);
+    } else {
+        band_texels.resize(pixels_in_band * 4);
+        downloadFromBuffer(*context, band, band_texels.data(), pixels_in_band * 16);
+        for (size_t i = 0; i < pixels_in_band; ++i) std::copy_n(band_texels.data() + 4 * i, c, rows + c * i);
+    }
 }
 
 void VulkanBackend::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
     State& s = *state_;
-    const VkDeviceSize row_bytes = VkDeviceSize(out.width) * s.image->channels * 4;
+    const VkDeviceSize row_bytes = VkDeviceSize(out.width) * 16;  // an rgba32f texel per pixel
     const VkDeviceSize band_bytes =
-        std::min<VkDeviceSize>(kBandBytes, VkDeviceSize(s.context->properties.limits.maxTexelBufferElements) * 4);
+        std::min<VkDeviceSize>(kBandBytes, VkDeviceSize(s.context->properties.limits.maxTexelBufferElements) * 16);
     const uint32_t band_rows = uint32_t(std::max<VkDeviceSize>(1, band_bytes / row_bytes));
     if (s.band.size < std::min<VkDeviceSize>(y_end - y_begin, band_rows) * row_bytes) {
         destroyBuffer(*s.context, s.band);
         // The host reads every rendered row: keep the band in host-visible memory.
         s.band = createBuffer(*s.context, std::min<VkDeviceSize>(band_rows, out.height) * row_bytes, Placement::Readback,
-                              VK_FORMAT_R32_SFLOAT);
+                              VK_FORMAT_R32G32B32A32_SFLOAT);
         s.writeDescriptors();
     }
     if (s.spans.empty()) s.computeRowSpans();

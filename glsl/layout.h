@@ -43,7 +43,8 @@ const uint kArgsCount = 3;
 
 // Descriptor bindings (set 0). Texel formats: records rgba32ui; lists, statuses, marks and
 // spans r32ui; doubles (gains, partial sums) rg32ui holding the two halves of the double;
-// luma and alpha r32f; pixels rgba32f, one texel per vertex; the rendered band r32f.
+// luma and alpha r32f; pixels rgba32f, one texel per vertex; the rendered band rgba32f, one
+// texel per output pixel (one store per pixel: lavapipe stores lane by lane).
 const uint kBindingEdgeVertices = 0;    // per edge (a, b, l, r), see core/mesh.h
 const uint kBindingEdgeNeighbours = 1;  // per edge (bl, la, ar, rb)
 const uint kBindingLuma = 2;            // per vertex
@@ -58,7 +59,7 @@ const uint kBindingCandidateList = 10;  // candidates of the current iteration
 const uint kBindingRoundList0 = 11;     // round work, by round parity
 const uint kBindingRoundList1 = 12;
 const uint kBindingPixels = 13;         // input image, premultiplied
-const uint kBindingBand = 14;           // rendered rows, `channels` floats per pixel
+const uint kBindingBand = 14;           // rendered rows
 const uint kBindingRowSpans = 15;       // per edge row: first and last vertex row touched
 const uint kBindingPartialSums = 16;    // per workgroup of edge_cost
 const uint kBindingControl = 17;        // storage buffer: Control

@@ -8,7 +8,7 @@
 #include "raster.h"
 
 void renderTriangle(uint i0, uint i1, uint i2) {
-    const uint w = push.width, h = push.height, c = push.channels;
+    const uint w = push.width, h = push.height;
     const uint out_w = push.out_width, out_h = push.out_height;
     const uint ids[3] = uint[3](i0, i1, i2);
     int64_t px[3], py[3];
@@ -44,8 +44,7 @@ void renderTriangle(uint i0, uint i1, uint i2) {
             const float total = float(weight[0] + weight[1] + weight[2]);
             const vec3 lambda = vec3(float(weight[0]), float(weight[1]), float(weight[2])) / total;
             const vec4 value = lambda.x * z[0] + lambda.y * z[1] + lambda.z * z[2];
-            const uint pixel = ((y - push.first_row) * out_w + x) * c;
-            for (uint k = 0; k < c; ++k) imageStore(band, int(pixel + k), vec4(value[k]));
+            imageStore(band, int((y - push.first_row) * out_w + x), value);
         }
     }
 }
