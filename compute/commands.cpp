@@ -41,6 +41,13 @@ void dispatch(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings&
     computeBarrier(commands);
 }
 
+void dispatch2D(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings, const PushConstants& push,
+                uint32_t groups_x, uint32_t groups_y) {
+    bind(commands, kernel, bindings, push);
+    vkCmdDispatch(commands, groups_x, groups_y, 1);
+    computeBarrier(commands);
+}
+
 void dispatchIndirect(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings,
                       const PushConstants& push, const Buffer& args, uint32_t slot) {
     bind(commands, kernel, bindings, push);

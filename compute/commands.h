@@ -27,6 +27,8 @@ struct KernelBindings {
 
 void dispatch(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings, const PushConstants& push,
               uint32_t groups);
+void dispatch2D(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings, const PushConstants& push,
+                uint32_t groups_x, uint32_t groups_y);
 void dispatchIndirect(VkCommandBuffer commands, VkPipeline kernel, const KernelBindings& bindings,
                       const PushConstants& push, const Buffer& args, uint32_t slot);
 

@@ -19,10 +19,11 @@ static_assert(sizeof(EdgeVertices) == 16 && sizeof(EdgeNeighbours) == 16, "edge 
 
 namespace {
 
-// Workgroups of the cost reduction: enough to fill a GPU, few partial sums for the host.
-const uint32_t kCostGroups = 1024;
 // Largest band of rendered rows held on the device at once.
 const VkDeviceSize kBandBytes = VkDeviceSize(64) << 20;
+// Loop iterations one render invocation may spend on one triangle: two triangles stay below
+// lavapipe's 65535 (see kItemsPerInvocation in glsl/layout.h).
+const uint32_t kRasterLoopBudget = 30000;
 
 // How many accept/reject rounds and iterations one submit records. Local-max needs one
 // round per iteration; the round-based rules need more rounds, and MaxGain far fewer than
@@ -39,10 +40,6 @@ BatchShape batchShapeFor(const FlipRule& rule) {
     return {32, 1};
 }
 
-// Workgroups per dispatch. lavapipe runs each workgroup as a task with a fixed cost of
-// several microseconds, so on CPU devices a few workgroups per thread that loop over the
-// range are much faster; GPUs want enough groups to fill every compute unit.
-uint32_t maxGroupsFor(const DeviceInfo& device) { return device.isCpu() ? 64 : 8192; }
 
 std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 
@@ -57,12 +54,6 @@ struct VulkanBackend::State {
     VkQueryPool step_timestamps = VK_NULL_HANDLE; // with profiling: one after every dispatch
     std::vector<const char*> step_labels;         // the kernel each step timestamp closes
     std::map<std::string, KernelTime> kernel_times;
-
-    uint32_t max_groups = kMaxGroups;
-
-    uint32_t groupsFor(uint64_t count) const {
-        return uint32_t(std::min<uint64_t>((count + kGroupSize - 1) / kGroupSize, max_groups));
-    }
 
     const Image* image = nullptr;
     uint32_t width = 0, height = 0, edge_count = 0;
@@ -103,7 +94,6 @@ struct VulkanBackend::State {
         p.max_iterations = options.max_iterations;
         p.max_rounds = options.max_rounds;
         p.channels = image->channels;
-        p.max_groups = max_groups;
         return p;
     }
 
@@ -119,7 +109,7 @@ struct VulkanBackend::State {
     void recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip);
     void recordControlReadback(VkCommandBuffer commands);
     void computeRowSpans();
-    void renderBand(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows);
+    void renderWindow(OutputSize out, uint32_t y_begin, uint32_t y_end, uint32_t x_begin, uint32_t x_end);
     OptimizeStats finishStats(const Control& control, double cost_init, uint64_t dispatches, double device_ns);
 };
 
@@ -130,7 +120,6 @@ VulkanBackend::VulkanBackend(const VulkanOptions& options) : state_(std::make_un
     if (!rule) throw UserError("--variant " + options.rule + ": unknown flip rule");
     s.rule = *rule;
     s.context = createContext({options.device_index, options.validation});
-    s.max_groups = maxGroupsFor(s.context->info);
     s.kernels = createKernels(*s.context, {s.rule.key_by_gain ? 1u : 0u, s.rule.single_round ? 1u : 0u});
     if (s.context->timestamps) {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -198,9 +187,9 @@ void VulkanBackend::State::createBuffers(const Image& img) {
     control = createBuffer(c, sizeof(Control));
     control_readback = createBuffer(c, sizeof(Control), Placement::Readback);
     args = createBuffer(c, kArgsCount * 16);
-    partial_sums = createBuffer(c, kCostGroups * 8, device, VK_FORMAT_R32G32_UINT);
+    partial_sums = createBuffer(c, uint64_t(groupsFor(edge_count)) * 8, device, VK_FORMAT_R32G32_UINT);
     pixels = createBuffer(c, vertices * 16, device, VK_FORMAT_R32G32B32A32_SFLOAT);
-    row_spans = createBuffer(c, uint64_t(height) * 8, device, VK_FORMAT_R32_UINT);
+    row_spans = createBuffer(c, uint64_t(height) * 8 + 4, device, VK_FORMAT_R32_UINT);
     // A placeholder until the first render sizes it.
     band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32G32B32A32_SFLOAT);
 
@@ -297,9 +286,9 @@ void VulkanBackend::State::resetOptimisation() {
 
 double VulkanBackend::State::meshCost() {
     CommandBatch commands(*context);
-    dispatch(commands.buffer(), kernels.edge_cost, bindings(), push(), kCostGroups);
+    dispatch(commands.buffer(), kernels.edge_cost, bindings(), push(), groupsFor(edge_count));
     commands.submitAndWait();
-    std::vector<double> sums(kCostGroups);
+    std::vector<double> sums(groupsFor(edge_count));
     downloadFromBuffer(*context, partial_sums, sums.data(), sums.size() * 8);
     return std::accumulate(sums.begin(), sums.end(), 0.0);
 }
@@ -311,7 +300,7 @@ std::vector<double> VulkanBackend::deviceEdgeCosts() {
     CommandBatch commands(*s.context);
     PushConstants p = s.push();
     p.step = 1;
-    dispatch(commands.buffer(), s.kernels.edge_cost, s.bindings(), p, kCostGroups);
+    dispatch(commands.buffer(), s.kernels.edge_cost, s.bindings(), p, groupsFor(s.edge_count));
     commands.submitAndWait();
     std::vector<double> costs(s.edge_count);
     downloadFromBuffer(*s.context, s.gain, costs.data(), costs.size() * 8);
@@ -498,7 +487,7 @@ Mesh VulkanBackend::mesh() {
 }
 
 void VulkanBackend::State::computeRowSpans() {
-    std::vector<uint32_t> initial(2 * size_t(height));
+    std::vector<uint32_t> initial(2 * size_t(height) + 1, 0);
     for (uint32_t y = 0; y < height; ++y) initial[2 * y] = kNone;  // first row: min over none yet
     uploadToBuffer(*context, row_spans, initial.data(), initial.size() * 4);
     CommandBatch commands(*context);
@@ -508,7 +497,9 @@ void VulkanBackend::State::computeRowSpans() {
     downloadFromBuffer(*context, row_spans, spans.data(), spans.size() * 4);
 }
 
-void VulkanBackend::State::renderBand(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
+// Renders output rows [y_begin, y_end), columns [x_begin, x_end) into the band buffer.
+void VulkanBackend::State::renderWindow(OutputSize out, uint32_t y_begin, uint32_t y_end, uint32_t x_begin,
+                                        uint32_t x_end) {
     // Input rows the band samples, and the edge rows whose triangles touch them.
     const int64_t unit = vertexCoord(1, out.height);
     const uint32_t v_first = uint32_t(sampleCoord(y_begin, height, out.height) / unit);
@@ -520,38 +511,36 @@ void VulkanBackend::State::renderBand(OutputSize out, uint32_t y_begin, uint32_t
             last_row = std::max(last_row, y);
         }
     }
-    if (first_row > last_row) return;
-    const uint32_t first_edge = first_row * (3 * width - 2);
-    const uint32_t end_edge = last_row + 1 < height ? (last_row + 1) * (3 * width - 2) : edge_count;
-
     PushConstants p = push();
-    p.first_edge = first_edge;
-    p.edge_range = end_edge - first_edge;
     p.first_row = y_begin;
     p.row_count = y_end - y_begin;
+    p.first_col = x_begin;
+    p.col_count = x_end - x_begin;
     p.out_width = out.width;
     p.out_height = out.height;
     CommandBatch commands(*context);
-    dispatch(commands.buffer(), kernels.render, bindings(), p, groupsFor(p.edge_range));
-    commands.submitAndWait();
-    // The band holds four floats per pixel; the caller wants `channels`.
-    const size_t pixels_in_band = size_t(y_end - y_begin) * out.width;
-    const uint32_t c = image->channels;
-    if (c == 4) {
-        downloadFromBuffer(*context, band, rows, pixels_in_band * 16);
-    } else {
-        band_texels.resize(pixels_in_band * 4);
-        downloadFromBuffer(*context, band, band_texels.data(), pixels_in_band * 16);
-        for (size_t i = 0; i < pixels_in_band; ++i) std::copy_n(band_texels.data() + 4 * i, c, rows + c * i);
+    const uint32_t groups_per_row = (3 * width - 2 + kGroupSize - 1) / kGroupSize;
+    for (uint32_t row = first_row; row <= last_row && first_row <= last_row; row += kMaxGroups) {
+        p.first_edge_row = row;
+        dispatch2D(commands.buffer(), kernels.render, bindings(), p, groups_per_row,
+                   std::min(last_row - row + 1, kMaxGroups));
     }
+    commands.submitAndWait();
 }
 
 void VulkanBackend::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
     State& s = *state_;
+    if (s.spans.empty()) s.computeRowSpans();
+    // Window size: an invocation rasterises two triangles, each looping over its rows and
+    // columns within the window; keep that below lavapipe's loop budget (kItemsPerInvocation).
+    const uint32_t widest = uint32_t(std::ceil(double(s.spans[2 * s.height] + 1) * out.width / s.width)) + 2;
+    const uint32_t window_cols = std::min(out.width, kRasterLoopBudget / 4);
+    const uint32_t loop_rows = std::max(1u, kRasterLoopBudget / (std::min(widest, window_cols) + 2) - 1);
     const VkDeviceSize row_bytes = VkDeviceSize(out.width) * 16;  // an rgba32f texel per pixel
     const VkDeviceSize band_bytes =
         std::min<VkDeviceSize>(kBandBytes, VkDeviceSize(s.context->properties.limits.maxTexelBufferElements) * 16);
-    const uint32_t band_rows = uint32_t(std::max<VkDeviceSize>(1, band_bytes / row_bytes));
+    const uint32_t band_rows =
+        uint32_t(std::min<VkDeviceSize>(loop_rows, std::max<VkDeviceSize>(1, band_bytes / row_bytes)));
     if (s.band.size < std::min<VkDeviceSize>(y_end - y_begin, band_rows) * row_bytes) {
         destroyBuffer(*s.context, s.band);
         // The host reads every rendered row: keep the band in host-visible memory.
@@ -559,10 +548,21 @@ void VulkanBackend::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end,
                               VK_FORMAT_R32G32B32A32_SFLOAT);
         s.writeDescriptors();
     }
-    if (s.spans.empty()) s.computeRowSpans();
+    const uint32_t c = s.image->channels;
     for (uint32_t y = y_begin; y < y_end; y += band_rows) {
         const uint32_t band_end = std::min(y_end, y + band_rows);
-        s.renderBand(out, y, band_end, rows + size_t(y - y_begin) * out.width * s.image->channels);
+        for (uint32_t x = 0; x < out.width; x += window_cols)
+            s.renderWindow(out, y, band_end, x, std::min(out.width, x + window_cols));
+        // The band holds four floats per pixel; the caller wants `channels`.
+        const size_t pixels = size_t(band_end - y) * out.width;
+        float* band_rows_out = rows + size_t(y - y_begin) * out.width * c;
+        if (c == 4) {
+            downloadFromBuffer(*s.context, s.band, band_rows_out, pixels * 16);
+        } else {
+            s.band_texels.resize(pixels * 4);
+            downloadFromBuffer(*s.context, s.band, s.band_texels.data(), pixels * 16);
+            for (size_t i = 0; i < pixels; ++i) std::copy_n(s.band_texels.data() + 4 * i, c, band_rows_out + c * i);
+        }
     }
 }
 

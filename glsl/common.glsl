@@ -118,6 +118,3 @@ double edgeCostOf(uint e) {
     if (push.has_alpha != 0) cost += channelEdgeCost(true, v);
     return cost;
 }
-
-// Workgroups for `count` items, at most max_groups (the kernels loop over the rest).
-uint groupsFor(uint count) { return min((count + kGroupSize - 1) / kGroupSize, push.max_groups); }

@@ -12,15 +12,24 @@
 #define DDTUP_LAYOUT_H
 
 #ifdef __cplusplus
+#include <algorithm>
 #include <cstdint>
 namespace ddt {
 typedef uint32_t uint;
+using std::min;
 #endif
 
 // Invocations per workgroup of every kernel.
 const uint kGroupSize = 64;
-// Vulkan guarantees 65535 workgroups per dimension; kernels loop over larger ranges.
+// Vulkan guarantees 65535 workgroups per dimension.
 const uint kMaxGroups = 65535;
+// Items (edges, list entries) one invocation handles, at most, below 67 M items. Beyond the
+// cost of a workgroup, this bounds the loop iterations of an invocation: lavapipe (llvmpipe)
+// ends every loop of a shader once all its loops together have run 65535 iterations
+// (LP_MAX_TGSI_LOOP_ITERATIONS), silently. A select round in the 3-region runs up to 84
+// inner iterations per item, so 16 items stay far below; a 2048² ExpROI round handled with
+// 823 items per invocation lost decisions and corrupted the mesh.
+const uint kItemsPerInvocation = 16;
 
 // Candidate status of an edge during one iteration.
 const uint kStatusNone = 0;       // not a candidate
@@ -60,7 +69,7 @@ const uint kBindingRoundList0 = 11;     // round work, by round parity
 const uint kBindingRoundList1 = 12;
 const uint kBindingPixels = 13;         // input image, premultiplied
 const uint kBindingBand = 14;           // rendered rows
-const uint kBindingRowSpans = 15;       // per edge row: first and last vertex row touched
+const uint kBindingRowSpans = 15;       // per edge row: first and last vertex row touched; then the widest triangle
 const uint kBindingPartialSums = 16;    // per workgroup of edge_cost
 const uint kBindingControl = 17;        // storage buffer: Control
 const uint kBindingArgs = 18;           // storage buffer: kArgsCount indirect dispatch arguments
@@ -97,15 +106,25 @@ struct PushConstants {
     uint max_iterations;       // safety caps, reported when reached
     uint max_rounds;
     uint channels;
-    uint max_groups;           // workgroups per dispatch; larger ranges are looped over
     uint step;                 // plan: which step to plan (kArgs…); edge_cost: 1 stores every cost
-    uint first_edge;           // render: the edges whose triangles may touch the band
-    uint edge_range;
+    uint first_edge_row;       // render: the first edge row of the dispatch (its y dimension)
     uint first_row;            // render: the band's output rows
     uint row_count;
+    uint first_col;            // render: the window's output columns
+    uint col_count;
     uint out_width;            // render: output size
     uint out_height;
 };
+
+// Workgroups for `count` items: kItemsPerInvocation per invocation, more only past
+// kMaxGroups groups (kernels loop over the range).
+#ifdef __cplusplus
+inline
+#endif
+uint groupsFor(uint count) {
+    const uint per_group = kGroupSize * kItemsPerInvocation;
+    return min(count / per_group + (count % per_group != 0 ? 1u : 0u), kMaxGroups);
+}
 
 #ifdef __cplusplus
 static_assert(sizeof(Control) == 18 * 4, "Control layout");

@@ -1,9 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Renders one band of output rows from the optimised mesh: one thread per edge rasterises
-// the triangles that edge owns (the lowest-id edge of each triangle), with the exact
-// coverage tests of raster.h, so each pixel is written by exactly one thread and the
-// result does not depend on timing. Same sampling convention as core/render.cpp.
+// Renders one window (a band of output rows, a range of columns) from the optimised mesh:
+// one invocation per edge rasterises the triangles that edge owns (the lowest-id edge of
+// each triangle), with the exact coverage tests of raster.h, so each pixel is written by
+// exactly one invocation and the result does not depend on timing. Same sampling
+// convention as core/render.cpp. The dispatch is two-dimensional: y picks an edge row (the
+// edges the initial grid gave to one vertex row), x an edge within it. The host sizes the
+// window so that no invocation loops more than lavapipe allows (see kItemsPerInvocation).
 #include "common.glsl"
 #include "raster.h"
 
@@ -23,8 +26,8 @@ void renderTriangle(uint i0, uint i1, uint i2) {
         y0 = min(y0, y); y1 = max(y1, y);
     }
     const uint band_end = push.first_row + push.row_count;
-    const uint x_lo = firstSampleAtOrAfter(x0, w, out_w);
-    const uint x_hi = min(lastSampleAtOrBefore(x1, w, out_w), out_w - 1);
+    const uint x_lo = max(firstSampleAtOrAfter(x0, w, out_w), push.first_col);
+    const uint x_hi = min(lastSampleAtOrBefore(x1, w, out_w), push.first_col + push.col_count - 1);
     const uint y_lo = max(firstSampleAtOrAfter(y0, h, out_h), push.first_row);
     const uint y_hi = min(lastSampleAtOrBefore(y1, h, out_h), band_end - 1);
     for (uint y = y_lo; y <= y_hi && y_lo <= y_hi; ++y) {
@@ -50,11 +53,12 @@ void renderTriangle(uint i0, uint i1, uint i2) {
 }
 
 void main() {
-    for (uint i = gl_GlobalInvocationID.x; i < push.edge_range; i += invocationStride()) {
-        const uint e = push.first_edge + i;
-        const uvec4 v = verticesOf(e);
-        const uvec4 n = neighboursOf(e);
-        if (v.z != kNone && e < n.x && e < n.y) renderTriangle(v.x, v.y, v.z);
-        if (v.w != kNone && e < n.z && e < n.w) renderTriangle(v.y, v.x, v.w);
-    }
+    const uint row = push.first_edge_row + gl_GlobalInvocationID.y;
+    const uint row_length = 3 * push.width - 2;  // edges per vertex row, the last row has fewer
+    const uint e = row * row_length + gl_GlobalInvocationID.x;
+    if (row >= push.height || gl_GlobalInvocationID.x >= row_length || e >= push.edge_count) return;
+    const uvec4 v = verticesOf(e);
+    const uvec4 n = neighboursOf(e);
+    if (v.z != kNone && e < n.x && e < n.y) renderTriangle(v.x, v.y, v.z);
+    if (v.w != kNone && e < n.z && e < n.w) renderTriangle(v.y, v.x, v.w);
 }

@@ -14,6 +14,7 @@
 #include "mesh.h"
 #include "render.h"
 #include "context.h"
+#include "layout.h"
 #include "vulkan_backend.h"
 
 namespace {
@@ -314,12 +315,43 @@ TEST_CASE("vulkan: the device renderer matches core's on the same mesh") {
         const uint32_t half = out.height / 2;
         backend.renderRows(out, 0, half, rows.data());
         backend.renderRows(out, half, out.height, rows.data() + size_t(half) * out.width * c.image.channels);
+        CHECK(std::all_of(rows.begin(), rows.end(), [](float v) { return std::isfinite(v); }));  // every pixel written
         double worst = 0.0;
         for (size_t i = 0; i < rows.size(); ++i) worst = std::max(worst, double(std::abs(rows[i] - reference.pixels[i])));
         // The device interpolates in float, core in double; both are far inside 1/255.
         CHECK(worst <= 1.0 / 255.0);
         if (c.scale == 1.0) CHECK(rows == c.image.pixels);  // vertices are reproduced exactly
     }
+    CHECK(backend.validationMessages() == 0);
+}
+
+TEST_CASE("vulkan: no invocation is given more items than lavapipe's loop budget allows") {
+    // lavapipe silently ends an invocation's loops after 65535 iterations in all; the
+    // dispatch sizes must keep every invocation at kItemsPerInvocation items.
+    for (uint64_t count : {0ull, 1ull, 63ull, 64ull, 1023ull, 1024ull, 1025ull, 3374026ull, 12578817ull, 67107840ull}) {
+        INFO(count);
+        const uint32_t groups = groupsFor(uint32_t(count));
+        CHECK(groups <= kMaxGroups);
+        CHECK(uint64_t(groups) * kGroupSize * kItemsPerInvocation >= count);
+        CHECK((count == 0 || uint64_t(groups - 1) * kGroupSize * kItemsPerInvocation < count));
+    }
+}
+
+TEST_CASE("vulkan: huge magnifications render in loop-bounded bands, equal to core") {
+    // At ×150 one triangle covers hundreds of output columns, so a band holds only a few dozen
+    // rows (the render loop budget); the result must still match core everywhere.
+    const Image image = randomImage(9, 7, 3, 11);
+    VulkanBackend backend = makeBackend("localmax");
+    backend.prepare(image);
+    backend.optimize();
+    const OutputSize out = scaledOutputSize(image.width, image.height, 150.0);
+    const Image reference = renderImage(backend.mesh(), image, out);
+    std::vector<float> rows(reference.pixels.size(), std::nanf(""));
+    backend.renderRows(out, 0, out.height, rows.data());
+    CHECK(std::all_of(rows.begin(), rows.end(), [](float v) { return std::isfinite(v); }));  // every pixel written
+    double worst = 0.0;
+    for (size_t i = 0; i < rows.size(); ++i) worst = std::max(worst, double(std::abs(rows[i] - reference.pixels[i])));
+    CHECK(worst <= 1.0 / 255.0);
     CHECK(backend.validationMessages() == 0);
 }
 
