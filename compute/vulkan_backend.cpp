@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <numeric>
 
@@ -39,7 +38,6 @@ BatchShape batchShapeFor(const FlipRule& rule) {
     if (rule.key_by_gain) return {8, 2};
     return {32, 1};
 }
-
 
 std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 
