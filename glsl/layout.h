@@ -91,8 +91,6 @@ struct Control {
     uint max_rounds_in_iteration;
     uint total_flips_low;      // 64-bit total as two words (no 64-bit atomics needed)
     uint total_flips_high;
-    uint working_dispatches;   // dispatches that had work (the rest exited at once)
-    uint pad0;
 };
 
 // Push constants of every kernel: the job's scalars, then the kernel-specific ones.
@@ -127,7 +125,7 @@ uint groupsFor(uint count) {
 }
 
 #ifdef __cplusplus
-static_assert(sizeof(Control) == 18 * 4, "Control layout");
+static_assert(sizeof(Control) == 16 * 4, "Control layout");
 static_assert(sizeof(PushConstants) == 17 * 4, "PushConstants layout");
 }  // namespace ddt
 #endif

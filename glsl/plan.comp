@@ -10,10 +10,7 @@
 
 layout(constant_id = 1) const uint kSingleRound = 0;
 
-void setArgs(uint slot, uint groups) {
-    args[slot] = uvec4(groups, 1, 1, 0);
-    if (groups > 0) control.working_dispatches += 1;
-}
+void setArgs(uint slot, uint groups) { args[slot] = uvec4(groups, 1, 1, 0); }
 
 void planCandidates() {
     uint groups = 0;
