@@ -17,7 +17,6 @@ namespace ddt {
 class Backend {
 public:
     virtual ~Backend() = default;
-    virtual std::string name() const = 0;
     // Builds the initial triangulation of `image` (which must outlive the backend's use).
     virtual void prepare(const Image& image) = 0;
     virtual OptimizeStats optimize() = 0;

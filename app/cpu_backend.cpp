@@ -9,8 +9,6 @@ namespace {
 
 class CpuBackend final : public Backend {
 public:
-    std::string name() const override { return "cpu"; }
-
     void prepare(const Image& image) override {
         image_ = &image;
         field_ = costFieldOf(image);

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -36,21 +34,12 @@ void checkMagnifiable(const std::string& input, const Image& header) {
                         std::to_string(header.height) + ")");
 }
 
-// The size arithmetic works in 32 bits; absurd requests (-s 1e12) are refused before it, in
-// doubles. OIIO keeps sizes in int, so no format holds more than 2^31 - 1 pixels a side.
-void checkRequestedSides(const Settings& settings, uint32_t width, uint32_t height) {
-    const double aspect = double(width) / height;
-    double out_width = settings.scale * width, out_height = settings.scale * height;
-    if (settings.width || settings.height) {
-        out_width = settings.width ? settings.width : settings.height * aspect;
-        out_height = settings.height ? settings.height : settings.width / aspect;
-    }
-    const double max_side = 2147483647.0;
-    if (std::round(out_width) > max_side || std::round(out_height) > max_side) {
-        char size[64];
-        std::snprintf(size, sizeof size, "%.4g×%.4g", out_width, out_height);
-        throw UserError(settings.output + ": the output would be " + size + " pixels; at most 2147483647 a side");
-    }
+// OIIO keeps sizes in int, so no format holds more than 2^31 - 1 pixels a side.
+void checkOutputSides(const std::string& output, OutputSize out) {
+    const uint32_t max_side = 2147483647u;
+    if (out.width > max_side || out.height > max_side)
+        throw UserError(output + ": the output would be " + std::to_string(out.width) + "×" + std::to_string(out.height) +
+                        " pixels or more; at most " + std::to_string(max_side) + " a side");
 }
 
 }  // namespace
@@ -84,8 +73,8 @@ JobReport runUpscaleJob(const Settings& settings) {
     ImageReader reader(settings.input);
     const Image& header = reader.header();
     checkMagnifiable(settings.input, header);
-    checkRequestedSides(settings, header.width, header.height);
     report.out = requestedOutputSize(settings, header.width, header.height);
+    checkOutputSides(settings.output, report.out);
     if (std::string problem = checkOutputSize(header.width, header.height, report.out); !problem.empty())
         throw UserError(settings.input + ": " + problem);
     // Open the output before decoding the input: an unwritable path, or a size the format

@@ -136,7 +136,6 @@ VulkanBackend::~VulkanBackend() {
     destroyKernels(*s.context, s.kernels);
 }
 
-std::string VulkanBackend::name() const { return "vulkan " + state_->rule.name; }
 const DeviceInfo& VulkanBackend::device() const { return state_->context->info; }
 uint32_t VulkanBackend::validationMessages() const { return state_->context->validation_messages.load(); }
 

@@ -46,7 +46,6 @@ public:
     explicit VulkanBackend(const VulkanOptions& options);
     ~VulkanBackend() override;
 
-    std::string name() const override;
     void prepare(const Image& image) override;
     OptimizeStats optimize() override;
     void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) override;

@@ -10,7 +10,8 @@ namespace ddt {
 
 namespace {
 
-uint32_t roundedSide(double side) { return uint32_t(std::llround(side)); }
+// Saturates instead of wrapping, so an absurd request (-s 1e12) stays absurd for the checks.
+uint32_t roundedSide(double side) { return side >= 4294967295.0 ? UINT32_MAX : uint32_t(std::llround(side)); }
 
 uint32_t topRow(const Triangle& t, uint32_t width) { return std::min({t.v0, t.v1, t.v2}) / width; }
 

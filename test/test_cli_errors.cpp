@@ -14,19 +14,18 @@
 
 #include "image.h"
 #include "run_ddtup.h"
+#include "test_support.h"
 #include "temp_folder.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string testData(const std::string& name) { return std::string(DDTUP_TEST_DATA) + "/" + name; }
-
 // A folder holding a copy of an RGB test image, "in.png".
 struct Workspace {
     TempFolder folder;
     std::string input = folder / "in.png";
-    Workspace() { fs::copy_file(testData("crop32_astronaut.png"), input); }
+    Workspace() { fs::copy_file(ddt::test::testDataPath("crop32_astronaut.png"), input); }
 };
 
 void requireSameImage(const ddt::Image& a, const ddt::Image& b) {
@@ -103,7 +102,7 @@ TEST_CASE("cli: images under 2×2 pixels are refused") {
     Workspace work;
     const auto before = work.folder.names();
     for (const char* name : {"one_1x1_rgb.png", "two_2x1_rgb.png"}) {
-        const Run run = runDdtup({testData(name), work.folder / "out.png"});
+        const Run run = runDdtup({ddt::test::testDataPath(name), work.folder / "out.png"});
         requireOneLineError(run, 1, name, "DDT needs at least 2×2 pixels");
     }
     CHECK(work.folder.names() == before);
@@ -190,7 +189,7 @@ TEST_CASE("cli: -s 1 reproduces RGB, grey, 16-bit and RGBA images exactly") {
     deep.sample_type = ddt::SampleType::UInt16;
     ddt::writeImage(work.folder / "deep.png", deep);
     ddt::writeImage(work.folder / "rgba.png", makeRgbaWithHalfTransparency());
-    fs::copy_file(testData("step8_gray.png"), work.folder / "grey.png");
+    fs::copy_file(ddt::test::testDataPath("step8_gray.png"), work.folder / "grey.png");
 
     for (const char* name : {"in.png", "grey.png", "deep.png", "rgba.png"}) {
         INFO(name);

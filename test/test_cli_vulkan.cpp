@@ -7,10 +7,11 @@
 
 #include "run_ddtup.h"
 #include "temp_folder.h"
+#include "test_support.h"
 
 namespace {
 
-std::string fixture(const std::string& name) { return std::string(DDTUP_TEST_DATA) + "/" + name; }
+std::string fixture(const std::string& name) { return ddt::test::testDataPath(name); }
 
 }  // namespace
 

@@ -186,7 +186,7 @@ TEST_CASE("lawson: step edges along the grid need no flip (fixtures)") {
     // diag16_rgb: the edge runs along x = y, the direction of the initial diagonals.
     for (const char* name : {"step8_gray.png", "diag16_rgb.png"}) {
         INFO(name);
-        ddt::Image image = ddt::readImage(std::string(DDTUP_TEST_DATA) + "/" + name);
+        ddt::Image image = ddt::readImage(ddt::test::testDataPath(name));
         ddt::Mesh mesh = ddt::buildGridMesh(image.width, image.height);
         const ddt::Mesh initial = mesh;
         ddt::OptimizeStats stats = ddt::optimizeSerial(mesh, ddt::costFieldOf(image));
@@ -252,7 +252,7 @@ TEST_CASE("lawson: invariants hold on seeded random images") {
 }
 
 TEST_CASE("lawson: invariants hold on a real photo crop") {
-    ddt::Image image = ddt::readImage(std::string(DDTUP_TEST_DATA) + "/crop32_astronaut.png");
+    ddt::Image image = ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png"));
     REQUIRE(image.width == 32);
     REQUIRE(image.height == 32);
     ddt::Mesh mesh = ddt::buildGridMesh(32, 32);
@@ -262,7 +262,7 @@ TEST_CASE("lawson: invariants hold on a real photo crop") {
 }
 
 TEST_CASE("lawson: the sweep cap stops early and says so") {
-    ddt::Image image = ddt::readImage(std::string(DDTUP_TEST_DATA) + "/crop32_astronaut.png");
+    ddt::Image image = ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png"));
     ddt::CostField field = ddt::costFieldOf(image);
     ddt::Mesh mesh = ddt::buildGridMesh(32, 32);
     ddt::LawsonOptions options;
@@ -333,6 +333,6 @@ TEST_CASE("lawson: skipping unchanged edges flips exactly like testing every edg
         name << "random " << i << ": " << w << "x" << h << ", " << channels << " channels, levels " << levels;
         checkSameAsPlainSweeps(ddt::test::randomImage(rng, w, h, channels, levels), name.str());
     }
-    checkSameAsPlainSweeps(ddt::readImage(std::string(DDTUP_TEST_DATA) + "/crop32_astronaut.png"), "crop32_astronaut");
+    checkSameAsPlainSweeps(ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png")), "crop32_astronaut");
     checkSameAsPlainSweeps(antiDiagonalStep(9, 7, 8, 0.0f, 1.0f), "anti-diagonal step");
 }

@@ -13,6 +13,7 @@
 #include "lawson.h"
 #include "mesh.h"
 #include "render.h"
+#include "test_support.h"
 #include "context.h"
 #include "layout.h"
 #include "vulkan_backend.h"
@@ -26,23 +27,13 @@ using namespace ddt;
 // terms below ~8, so such differences stay far below 1e-12.
 const double kGainTolerance = 1e-12;
 
-Image randomImage(uint32_t width, uint32_t height, uint32_t channels, uint32_t seed, int levels = 0) {
+// Seeded random images from the shared test helpers (levels > 0: few values, many ties).
+Image randomImage(uint32_t width, uint32_t height, uint32_t channels, uint32_t seed, uint32_t levels = 0) {
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> value(0.0f, 1.0f);
-    Image image;
-    image.width = width;
-    image.height = height;
-    image.channels = channels;
-    image.pixels.resize(size_t(width) * height * channels);
-    // Few levels give many equal gains, which exercises the tie rules.
-    for (float& v : image.pixels) v = levels ? float(int(value(rng) * levels)) / float(levels - 1) : value(rng);
-    if (image.hasAlpha())  // premultiplied: colour at most alpha
-        for (size_t i = 0; i < image.pixels.size(); i += channels)
-            for (uint32_t k = 0; k + 1 < channels; ++k) image.pixels[i + k] *= image.pixels[i + channels - 1];
-    return image;
+    return test::randomImage(rng, width, height, channels, levels);
 }
 
-Image fixture(const char* name) { return readImage(std::string(DDTUP_TEST_DATA) + "/" + name); }
+Image fixture(const char* name) { return readImage(test::testDataPath(name)); }
 
 struct TestImage {
     const char* label;
@@ -69,19 +60,6 @@ double largestGain(const Mesh& mesh, const CostField& field) {
     double largest = -1.0;
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) largest = std::max(largest, flipGainOf(mesh, field, e));
     return largest;
-}
-
-bool sameMesh(const Mesh& a, const Mesh& b) {
-    auto same_vertices = [](const EdgeVertices& x, const EdgeVertices& y) {
-        return x.a == y.a && x.b == y.b && x.l == y.l && x.r == y.r;
-    };
-    auto same_neighbours = [](const EdgeNeighbours& x, const EdgeNeighbours& y) {
-        return x.bl == y.bl && x.la == y.la && x.ar == y.ar && x.rb == y.rb;
-    };
-    return a.width == b.width && a.height == b.height &&
-           std::equal(a.vertices.begin(), a.vertices.end(), b.vertices.begin(), b.vertices.end(), same_vertices) &&
-           std::equal(a.neighbours.begin(), a.neighbours.end(), b.neighbours.begin(), b.neighbours.end(),
-                      same_neighbours);
 }
 
 }  // namespace
@@ -141,7 +119,7 @@ TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains
             uint32_t iterations = 0;
             backend.optimizeStepwise([&](const IterationSnapshot& snapshot) {
                 ++iterations;
-                if (snapshot.iteration > 0) CHECK(sameMesh(snapshot.mesh, expected_next));
+                if (snapshot.iteration > 0) CHECK(test::sameRecords(snapshot.mesh, expected_next));
                 const int degree = snapshot.iteration < flip_rule.exproi_iterations ? 3 : 2;
                 const std::vector<uint32_t>& accepted = snapshot.accepted;
                 REQUIRE_FALSE(accepted.empty());
@@ -168,7 +146,7 @@ TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains
                 expected_next = std::move(mesh);
             });
             CHECK(iterations > 0);
-            CHECK(sameMesh(backend.mesh(), expected_next));
+            CHECK(test::sameRecords(backend.mesh(), expected_next));
         }
         CHECK(backend.validationMessages() == 0);
     }
@@ -185,7 +163,7 @@ TEST_CASE("vulkan: the active set changes nothing but the work") {
             without.prepare(test.image);
             const OptimizeStats a = with.optimize();
             const OptimizeStats b = without.optimize();
-            CHECK(sameMesh(with.mesh(), without.mesh()));
+            CHECK(test::sameRecords(with.mesh(), without.mesh()));
             CHECK(a.flips == b.flips);
             CHECK(a.iterations == b.iterations);
             CHECK(a.rounds == b.rounds);
@@ -209,7 +187,7 @@ TEST_CASE("vulkan: batched submits give the mesh of one step per submit") {
             stepped.prepare(test.image);
             const OptimizeStats a = batched.optimize();
             const OptimizeStats b = stepped.optimizeStepwise([](const IterationSnapshot&) {});
-            CHECK(sameMesh(batched.mesh(), stepped.mesh()));
+            CHECK(test::sameRecords(batched.mesh(), stepped.mesh()));
             CHECK(a.flips == b.flips);
             CHECK(a.rounds == b.rounds);
             CHECK(a.iterations == b.iterations);
@@ -229,8 +207,8 @@ TEST_CASE("vulkan: ExpROI with N = 0 is basic") {
             b->prepare(test.image);
             b->optimize();
         }
-        CHECK(sameMesh(basic.mesh(), exproi0_basic.mesh()));
-        CHECK(sameMesh(maxgain.mesh(), exproi0.mesh()));
+        CHECK(test::sameRecords(basic.mesh(), exproi0_basic.mesh()));
+        CHECK(test::sameRecords(maxgain.mesh(), exproi0.mesh()));
     }
 }
 
@@ -309,7 +287,7 @@ TEST_CASE("vulkan: results are the same on every run and with one or two lavapip
             renders.push_back(std::move(rows));
         }
         for (size_t i = 1; i < meshes.size(); ++i) {
-            CHECK(sameMesh(meshes[0], meshes[i]));
+            CHECK(test::sameRecords(meshes[0], meshes[i]));
             CHECK(renders[0] == renders[i]);
         }
     }
