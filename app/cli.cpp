@@ -5,14 +5,28 @@
 #include <cmath>
 #include <iostream>
 
+#include "exit_codes.h"
 #include "flip_rule.h"
+#include "image.h"
 
 namespace ddt {
 
 namespace {
 
-// Usage errors share one exit code, whichever layer finds them (README: 2).
-const int kUsageExitCode = 2;
+const char* const kDescription =
+    "ddtup: image magnification by data-dependent triangulation\n"
+    "\n"
+    "  ddtup IN OUT [options]              one image (IN or OUT may be - for standard input/output)\n"
+    "  ddtup IN... -o DIR [options]        several images into the folder DIR\n"
+    "  ddtup -i DIR -o DIR [-r] [options]  a folder of images (-r: and its sub-folders) into a folder\n"
+    "\n"
+    "Examples:\n"
+    "  ddtup photo.png -s 4 photo-x4.png\n"
+    "  ddtup *.jpg -o big/ --width 3840 -f png\n"
+    "  ddtup -i scans -o scans-x2 -r --skip-existing --progress=json\n"
+    "\n"
+    "Exit codes: 0 all done, 1 some images failed, 2 bad usage, 3 no usable Vulkan device,\n"
+    "4 internal error, 130/143 interrupted.";
 
 // "" if the parsed values make sense together, else the message.
 std::string validateSettings(const CLI::App& app, const Settings& settings) {
@@ -25,6 +39,28 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (!settings.variant.empty() && !parseFlipRule(settings.variant))
         return "--variant " + settings.variant + ": unknown flip rule (see --help)";
     if (!settings.variant.empty() && settings.backend != "vulkan") return "--variant needs --backend vulkan";
+    if (!settings.depth.empty() && settings.depth != "8" && settings.depth != "16" && settings.depth != "half" && settings.depth != "float")  // MERGE: parseSampleType
+        return "--depth " + settings.depth + ": use 8, 16, half or float";
+    if (!settings.format.empty() && settings.format.find_first_of("./") != std::string::npos)
+        return "--format " + settings.format + ": give an extension such as png, jpg, tif or exr";
+    if (settings.list_devices) return "";
+
+    const size_t paths = settings.inputs.size();
+    if (!settings.input_folder.empty()) {
+        if (settings.output_folder.empty()) return "-i needs -o DIR, the folder to write into";
+        if (paths) return "give input images either as arguments or with -i DIR, not both";
+    } else if (!settings.output_folder.empty()) {
+        if (!paths) return "no input images given";
+        for (const std::string& input : settings.inputs)
+            if (input == "-") return "standard input (-) works only in the form `ddtup - OUT`";
+    } else {
+        if (settings.output.empty()) {
+            if (!paths) return "no input image given (see --help)";
+            return paths == 1 ? "no output given: `ddtup IN OUT`, or -o DIR" : "several inputs need -o DIR, the folder to write into";
+        }
+    }
+    if (settings.recursive && settings.input_folder.empty()) return "-r needs -i DIR";
+    if (settings.stats && settings.output == "-") return "--stats prints to standard output; it can't be combined with output -";
     return "";
 }
 
@@ -39,16 +75,29 @@ std::string oneLine(std::string message) {
 
 std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) {
     Settings settings;
-    CLI::App app{"ddtup: image magnification by data-dependent triangulation", "ddtup"};
+    CLI::App app{kDescription, "ddtup"};
     app.set_version_flag("--version", std::string("ddtup ") + DDTUP_VERSION);
-    auto* input = app.add_option("input", settings.input, "Image to magnify (any format OpenImageIO reads)");
-    auto* output = app.add_option("output", settings.output, "Where to write the result; the extension picks the format");
+    app.add_option("paths", settings.inputs, "Images to magnify (any format OpenImageIO reads); in the form IN OUT the last is the output");
+    app.add_option("-o,--output", settings.output_folder, "Folder to write into (created if missing); each output keeps its input's name")
+        ->default_str("none: the form IN OUT");
+    app.add_option("-i,--input-dir", settings.input_folder, "Folder whose images to magnify (needs -o)")->default_str("none");
+    app.add_flag("-r,--recursive", settings.recursive, "With -i: also the sub-folders, keeping their structure (default: off)");
+    app.add_option("-f,--format", settings.format, "Output format by extension: png, jpg, tif, exr, webp, bmp, …")
+        ->default_str("each input's own format");
+    app.add_option("--quality", settings.quality, "Quality of lossy formats (jpg, webp), 1 to 100")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    app.add_option("--depth", settings.depth, "Output sample type: 8, 16, half or float")->default_str("the input's");
+    app.add_flag("--skip-existing", settings.skip_existing, "Skip images whose output already exists (default: off)");
     app.add_option("-s,--scale", settings.scale, "Magnification factor, a real number >= 1 (used when no --width/--height)")
         ->default_str("2");
     app.add_option("--width", settings.width,
                    "Output width in pixels; the height keeps the aspect unless --height is given (default: from --scale)");
     app.add_option("--height", settings.height,
                    "Output height in pixels; the width keeps the aspect unless --width is given (default: from --scale)");
+    app.add_option("--tile", settings.tile,
+                   "Tile side in input pixels for images too large for the device; 0 = automatic")
+        ->capture_default_str();
     app.add_option("--backend", settings.backend, "Optimizer: vulkan (parallel flips on the GPU) or cpu (the serial reference)")
         ->check(CLI::IsMember({"vulkan", "cpu"}))
         ->capture_default_str();
@@ -60,17 +109,21 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_flag("--list-devices", settings.list_devices, "List the Vulkan devices and exit");
     app.add_flag("!--no-active-set", settings.active_set,
                  "Vulkan: re-test every edge in every iteration, not only those a flip may have changed (default: off)");
-    app.add_flag("--stats", settings.stats, "Print cost, flips and stage times (default: off)");
-    app.add_flag("-q,--quiet", settings.quiet, "Print nothing but errors (default: off)");
-    // The image arguments are required unless only listing devices.
-    input->required();
-    output->required();
-    for (int i = 1; i < argc; ++i)
-        if (std::string(argv[i]) == "--list-devices") input->required(false), output->required(false);
+    const std::map<std::string, ProgressMode> progress_modes{
+        {"auto", ProgressMode::Auto}, {"bar", ProgressMode::Bar}, {"json", ProgressMode::Json}, {"none", ProgressMode::None}};
+    app.add_option("--progress", settings.progress,
+                   "auto (a progress line on a terminal, nothing otherwise), bar, json (one JSON event per line "
+                   "on stderr, errors and notes included) or none")
+        ->transform(CLI::CheckedTransformer(progress_modes))
+        ->default_str("auto");
+    app.add_flag("--stats", settings.stats, "Print cost, flips and stage times of each image (default: off)");
+    bool quiet = false, verbose = false;
+    app.add_flag("-q,--quiet", quiet, "Print nothing but errors (default: off)");
+    app.add_flag("-v,--verbose", verbose, "Also print a line per finished image and the device used (default: off)");
 
     auto usageError = [&](const std::string& message) {
         std::cerr << "ddtup: " << oneLine(message) << "\n";
-        exit_code = kUsageExitCode;
+        exit_code = kExitUsage;
         return std::nullopt;
     };
     try {
@@ -82,6 +135,12 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
             return std::nullopt;
         }
         return usageError(error.what());
+    }
+    if (quiet && verbose) return usageError("give either -q or -v, not both");
+    settings.verbosity = quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal;
+    if (settings.output_folder.empty() && settings.input_folder.empty() && settings.inputs.size() == 2) {
+        settings.output = settings.inputs.back();
+        settings.inputs.pop_back();
     }
     if (std::string problem = validateSettings(app, settings); !problem.empty()) return usageError(problem);
     if (!app.count("--scale") && !settings.width && !settings.height) settings.scale = 2.0;

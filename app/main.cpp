@@ -1,16 +1,21 @@
 // ddtup: magnify images by data-dependent triangulation.
 #include <cstdio>
-#include <iostream>
-#include <new>
+#include <mutex>
 
+#include "backend_factory.h"
+#include "batch_plan.h"
 #include "cli.h"
 #include "context.h"
-#include "upscale_job.h"
+#include "exit_codes.h"
+#include "pipeline.h"
+#include "reporter.h"
 
 namespace {
 
-void printStats(const ddt::JobReport& report) {
+void printStats(const ddt::ImageJob& job, bool batch) {
+    const ddt::JobReport& report = job.report();
     const ddt::OptimizeStats& s = report.stats;
+    if (batch) std::printf("input          %s\n", job.task().input.c_str());
     std::printf("output         %u x %u\n", report.out.width, report.out.height);
     std::printf("cost-init      %.6f\n", s.cost_init);
     std::printf("cost-final     %.6f\n", s.cost_final);
@@ -26,6 +31,8 @@ void printStats(const ddt::JobReport& report) {
     std::printf("time-final     %.3f s  (render + save image; the paper's time-final saved the mesh)\n",
                 report.times.final_s);
     std::printf("time-sum       %.3f s\n", report.times.init_s + report.times.comp_s + report.times.final_s);
+    if (batch) std::printf("\n");
+    std::fflush(stdout);
 }
 
 void printDevices() {
@@ -36,28 +43,42 @@ void printDevices() {
     }
 }
 
-int run(const ddt::Settings& settings) {
+int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
+    std::vector<ddt::ImageTask> tasks;
     try {
-        if (settings.list_devices) {
-            printDevices();
-            return 0;
-        }
-        ddt::JobReport report = ddt::runUpscaleJob(settings);
-        if (!settings.quiet)
-            for (const std::string& note : report.notes) std::cerr << "ddtup: note: " << note << "\n";
-        if (settings.stats) printStats(report);
-        return 0;
+        tasks = ddt::planBatch(settings);
     } catch (const ddt::UserError& error) {
-        std::cerr << "ddtup: " << error.what() << "\n";
-        return 1;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "ddtup: " << settings.input << ": out of memory\n";
-        return 1;
-    } catch (const std::exception& error) {
-        // A bug, not a user error; still one line instead of std::terminate's abort.
-        std::cerr << "ddtup: internal error: " << error.what() << "\n";
-        return 1;
+        reporter.fatal(error.what(), ddt::kExitSomeFailed);
+        return reporter.finish();
     }
+    reporter.start(tasks.size());
+    bool any_ready = false;
+    for (size_t i = 0; i < tasks.size(); ++i) {
+        if (tasks[i].state == ddt::ImageTask::State::Skipped) reporter.skipped(i, tasks[i]);
+        if (tasks[i].state == ddt::ImageTask::State::Refused) reporter.failed(tasks[i].input, tasks[i].reason);
+        any_ready |= tasks[i].state == ddt::ImageTask::State::Ready;
+    }
+    if (!any_ready) return reporter.finish();
+
+    ddt::ChosenBackend chosen;
+    auto backend = [&]() -> ddt::Backend* {
+        try {
+            chosen = ddt::makeBackend(settings);
+        } catch (const ddt::UserError& error) {
+            reporter.fatal(error.what(), ddt::kExitNoDevice);
+            return nullptr;
+        }
+        if (!chosen.device_name.empty()) reporter.device(chosen.device_name, chosen.device_type);
+        return chosen.backend.get();
+    };
+    std::mutex stats_mutex;
+    const bool batch = tasks.size() > 1;
+    ddt::runPipeline(tasks, settings, backend, reporter, [&](const ddt::ImageJob& job) {
+        if (!settings.stats) return;
+        std::lock_guard lock(stats_mutex);
+        printStats(job, batch);
+    });
+    return reporter.finish();
 }
 
 }  // namespace
@@ -66,5 +87,21 @@ int main(int argc, char** argv) {
     int exit_code = 0;
     std::optional<ddt::Settings> settings = ddt::parseCommandLine(argc, argv, exit_code);
     if (!settings) return exit_code;
-    return run(*settings);
+    if (settings->list_devices) {
+        try {
+            printDevices();
+            return ddt::kExitDone;
+        } catch (const ddt::UserError& error) {
+            std::fprintf(stderr, "ddtup: %s\n", error.what());
+            return ddt::kExitNoDevice;
+        }
+    }
+    ddt::Reporter reporter(*settings);
+    try {
+        return run(*settings, reporter);
+    } catch (const std::exception& error) {
+        // A bug, not a user error; still one line instead of std::terminate's abort.
+        reporter.fatal(std::string("internal error: ") + error.what(), ddt::kExitInternal);
+        return reporter.finish();
+    }
 }

@@ -4,22 +4,42 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace ddt {
 
+enum class ProgressMode { Auto, Bar, Json, None };
+enum class Verbosity { Quiet, Normal, Verbose };
+
 struct Settings {
-    std::string input;
-    std::string output;
+    // Where the images come from and go to: `inputs` and one output file (single form), or
+    // `inputs` / `input_folder` and an `output_folder`.
+    std::vector<std::string> inputs;
+    std::string output;         // single form: the output file ("-": standard output)
+    std::string input_folder;   // -i
+    std::string output_folder;  // -o
+    bool recursive = false;     // -r
+    std::string format;         // -f: output extension without the dot; "" = the input's
+    int quality = 95;           // lossy formats
+    std::string depth;          // 8, 16, half, float; "" = the input's
+    bool skip_existing = false;
+
     double scale = 0.0;       // 0: not given
     uint32_t width = 0;       // 0: not given
     uint32_t height = 0;      // 0: not given
+    uint32_t tile = 0;        // tile side in input pixels; 0 = automatic
     std::string backend = "vulkan";
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
     int device = -1;           // Vulkan device index; -1 = choose
     bool active_set = true;    // Vulkan: re-test only edges a flip may have changed
     bool list_devices = false;
     bool stats = false;
-    bool quiet = false;
+    ProgressMode progress = ProgressMode::Auto;
+    Verbosity verbosity = Verbosity::Normal;
+
+    bool quiet() const { return verbosity == Verbosity::Quiet; }
+    // One input to one named output file, the form `ddtup IN OUT`.
+    bool singleForm() const { return output_folder.empty(); }
 };
 
 }  // namespace ddt

@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <iostream>
-
-#include "vulkan_backend.h"
+#include <optional>
 
 namespace ddt {
 
@@ -17,16 +15,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Bands of at most this many floats keep memory flat for huge outputs.
+// Bands of at most this many floats keep memory flat while streaming a huge output.
 const size_t kBandFloats = size_t(16) << 20;
-
-// Catches every spelling of the same file: "./x/../a.png", symlinks, hard links.
-void checkNotOverwritingInput(const std::string& input, const std::string& output) {
-    std::error_code ec;
-    bool same = fs::exists(output, ec) ? fs::equivalent(input, output, ec)
-                                       : fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec);
-    if (same) throw UserError(output + ": output is the input file; refusing to overwrite it");
-}
 
 void checkMagnifiable(const std::string& input, const Image& header) {
     if (header.width < 2 || header.height < 2)
@@ -34,15 +24,25 @@ void checkMagnifiable(const std::string& input, const Image& header) {
                         std::to_string(header.height) + ")");
 }
 
-// OIIO keeps sizes in int, so no format holds more than 2^31 - 1 pixels a side.
-void checkOutputSides(const std::string& output, OutputSize out) {
-    const uint32_t max_side = 2147483647u;
-    if (out.width > max_side || out.height > max_side)
+void checkOutputLimit(const std::string& output, OutputSize out) {
+    if (uint64_t(out.width) * out.height > kMaxOutputPixels)
         throw UserError(output + ": the output would be " + std::to_string(out.width) + "×" + std::to_string(out.height) +
-                        " pixels or more; at most " + std::to_string(max_side) + " a side");
+                        " pixels; ddtup writes at most " + std::to_string(kMaxOutputPixels) + " pixels (4 gigapixels)");
 }
 
 }  // namespace
+
+struct ImageJob::State {
+    Image image;
+    std::optional<ImageWriter> writer;
+    std::vector<float> rendered;  // the whole output, or empty when it was streamed
+    std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+};
+
+ImageJob::ImageJob(size_t index, const ImageTask& task, const Settings& settings, Reporter& reporter)
+    : index_(index), task_(task), settings_(settings), reporter_(reporter), state_(std::make_unique<State>()) {}
+
+ImageJob::~ImageJob() = default;
 
 OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_t height) {
     if (settings.width && settings.height) return {settings.width, settings.height};
@@ -51,61 +51,73 @@ OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_
     return scaledOutputSize(width, height, settings.scale);
 }
 
-std::unique_ptr<Backend> makeBackend(const Settings& settings) {
-    if (settings.backend == "cpu") return makeCpuBackend();
-    VulkanOptions options;
-    if (!settings.variant.empty()) options.rule = settings.variant;
-    options.active_set = settings.active_set;
-    options.device_index = settings.device;
-    auto backend = std::make_unique<VulkanBackend>(options);
-    // Users of other Vulkan upscalers were silently given a software device and thought it hung.
-    if (backend->device().isCpu() && !settings.quiet)
-        std::cerr << "ddtup: note: running on " << backend->device().name
-                  << ", a CPU Vulkan device (no GPU found); expect it to be slower than a GPU\n";
-    return backend;
-}
-
-JobReport runUpscaleJob(const Settings& settings) {
-    JobReport report;
-    checkNotOverwritingInput(settings.input, settings.output);
-
-    auto start = std::chrono::steady_clock::now();
-    ImageReader reader(settings.input);
+void ImageJob::read() {
+    reporter_.stage(index_, task_.input, Stage::Read);
+    const auto start = std::chrono::steady_clock::now();
+    ImageReader reader(task_.input);
     const Image& header = reader.header();
-    checkMagnifiable(settings.input, header);
-    report.out = requestedOutputSize(settings, header.width, header.height);
-    checkOutputSides(settings.output, report.out);
-    if (std::string problem = checkOutputSize(header.width, header.height, report.out); !problem.empty())
-        throw UserError(settings.input + ": " + problem);
+    checkMagnifiable(task_.input, header);
+    report_.out = requestedOutputSize(settings_, header.width, header.height);
+    checkOutputLimit(task_.output, report_.out);
+    if (std::string problem = checkOutputSize(header.width, header.height, report_.out); !problem.empty())
+        throw UserError(task_.input + ": " + problem);
+    // A batch writes into sub-folders that mirror the input folder's.
+    if (task_.output != "-") {
+        std::error_code error;
+        const fs::path folder = fs::path(task_.output).parent_path();
+        if (!folder.empty() && !fs::exists(folder, error) && !settings_.singleForm())
+            fs::create_directories(folder, error);
+    }
     // Open the output before decoding the input: an unwritable path, or a size the format
     // cannot hold, fails before any of the long parts.
-    ImageWriter writer(settings.output, report.out.width, report.out.height, header);
-    const Image image = reader.read();
-    std::unique_ptr<Backend> backend = makeBackend(settings);
+    state_->writer.emplace(task_.output, report_.out.width, report_.out.height, header);
+    state_->image = reader.read();
+    report_.times.init_s = secondsSince(start);
+}
+
+void ImageJob::process(Backend& backend) {
+    auto start = std::chrono::steady_clock::now();
     try {
-        backend->prepare(image);
+        backend.prepare(state_->image);
     } catch (const UserError& error) {
-        throw UserError(settings.input + ": " + error.what());
+        throw UserError(task_.input + ": " + error.what());
     }
-    report.times.init_s = secondsSince(start);
+    report_.times.init_s += secondsSince(start);
 
+    reporter_.stage(index_, task_.input, Stage::Optimize);
     start = std::chrono::steady_clock::now();
-    report.stats = backend->optimize();
-    report.times.comp_s = secondsSince(start);
+    report_.stats = backend.optimize();
+    report_.times.comp_s = secondsSince(start);
 
+    reporter_.stage(index_, task_.input, Stage::Render);
     start = std::chrono::steady_clock::now();
-    const size_t row_floats = size_t(report.out.width) * image.channels;
-    const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
-    std::vector<float> band(size_t(std::min(band_rows, report.out.height)) * row_floats);
-    for (uint32_t y = 0; y < report.out.height; y += band_rows) {
-        uint32_t y_end = std::min(report.out.height, y + band_rows);
-        backend->renderRows(report.out, y, y_end, band.data());
-        writer.writeRows(y, y_end, band.data());
+    const OutputSize out = report_.out;
+    const size_t row_floats = size_t(out.width) * state_->image.channels;
+    if (row_floats * out.height <= kMaxBufferedOutputFloats) {
+        state_->rendered.resize(row_floats * out.height);
+        backend.renderRows(out, 0, out.height, state_->rendered.data());
+    } else {
+        const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
+        std::vector<float> band(size_t(std::min(band_rows, out.height)) * row_floats);
+        for (uint32_t y = 0; y < out.height; y += band_rows) {
+            const uint32_t y_end = std::min(out.height, y + band_rows);
+            backend.renderRows(out, y, y_end, band.data());
+            state_->writer->writeRows(y, y_end, band.data());
+        }
     }
-    writer.commit();
-    report.times.final_s = secondsSince(start);
-    report.notes = writer.notes();
-    return report;
+    report_.times.final_s = secondsSince(start);
+    state_->image.pixels = {};  // the next image may need the memory
+}
+
+void ImageJob::write() {
+    reporter_.stage(index_, task_.input, Stage::Write);
+    const auto start = std::chrono::steady_clock::now();
+    if (!state_->rendered.empty()) state_->writer->writeRows(0, report_.out.height, state_->rendered.data());
+    state_->rendered = {};
+    state_->writer->commit();
+    report_.times.final_s += secondsSince(start);
+    for (const std::string& note : state_->writer->notes()) reporter_.notice(task_.input, note);
+    reporter_.done(index_, task_, report_.out, secondsSince(state_->started));
 }
 
 }  // namespace ddt

@@ -1,34 +1,62 @@
-// The main job: read an image, triangulate, optimize, render and write it, timed in the
-// paper's three stages.
+// One image's way through a run, in the three stages the pipeline overlaps: read (decode, and
+// open the output so that a bad output fails before the long part), process (triangulate,
+// optimize, render) and write (encode, then rename into place).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "backend.h"
+#include "batch_plan.h"
+#include "reporter.h"
 #include "settings.h"
 
 namespace ddt {
 
 struct StageTimes {
-    double init_s = 0.0;   // load + build the mesh (+ upload)
+    double init_s = 0.0;   // read + build the mesh (+ upload)
     double comp_s = 0.0;   // optimize
-    double final_s = 0.0;  // render + save (the paper's time-final saved the mesh instead)
+    double final_s = 0.0;  // render + write (the paper's time-final saved the mesh instead)
 };
 
 struct JobReport {
     OptimizeStats stats;
     StageTimes times;
     OutputSize out;
-    std::vector<std::string> notes;  // one-line remarks for the user (e.g. depth changed)
 };
 
-// Throws UserError for bad input, output or settings.
-JobReport runUpscaleJob(const Settings& settings);
+// Largest output held in memory between the process and write stages (floats). A larger one
+// is written while it is rendered, without overlapping the next image.
+inline constexpr size_t kMaxBufferedOutputFloats = size_t(256) << 20;
+// Documented limit on output pixels: beyond it a run would take hours and files get unwieldy.
+inline constexpr uint64_t kMaxOutputPixels = uint64_t(1) << 32;
+
+class ImageJob {
+public:
+    ImageJob(size_t index, const ImageTask& task, const Settings& settings, Reporter& reporter);
+    ~ImageJob();
+
+    // Each throws UserError ("PATH: reason") when the image fails.
+    void read();
+    void process(Backend& backend);
+    void write();
+
+    size_t index() const { return index_; }
+    const ImageTask& task() const { return task_; }
+    const JobReport& report() const { return report_; }
+
+private:
+    struct State;
+    size_t index_;
+    ImageTask task_;
+    const Settings& settings_;
+    Reporter& reporter_;
+    JobReport report_;
+    std::unique_ptr<State> state_;
+};
 
 // The output size the settings ask for, for an input of width × height.
 OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_t height);
-
-std::unique_ptr<Backend> makeBackend(const Settings& settings);
 
 }  // namespace ddt

@@ -3,7 +3,7 @@
 #include <cassert>
 
 #include "context.h"
-#include "upscale_job.h"
+#include "backend_factory.h"
 
 namespace bench {
 
@@ -83,8 +83,7 @@ std::unique_ptr<ddt::Backend> makeMethodBackend(const DdtMethod& method) {
     settings.backend = method.backend;
     settings.variant = method.variant;
     settings.device = method.device.empty() ? -1 : std::stoi(method.device);
-    settings.quiet = true;  // the report names the device once
-    return ddt::makeBackend(settings);
+    return ddt::makeBackend(settings).backend;
 }
 
 }  // namespace bench

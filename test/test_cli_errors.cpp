@@ -166,9 +166,12 @@ TEST_CASE("cli: -s below 1, nan or abc is a usage error") {
 TEST_CASE("cli: an output size the format cannot hold is refused up front") {
     Workspace work;
     const auto before = work.folder.names();
-    // 32 × 3000 = 96000 pixels a side: JPEG stops at 65500 (libjpeg would end the process).
-    const Run run = runDdtup({work.input, work.folder / "huge.jpg", "-s", "3000"});
+    // 70000 pixels wide: JPEG stops at 65500 (libjpeg would end the process).
+    const Run run = runDdtup({work.input, work.folder / "huge.jpg", "--width", "70000", "--height", "32"});
     requireOneLineError(run, 1, "huge.jpg", "65500");
+    // Beyond the documented limit of 2^32 output pixels, whatever the format.
+    requireOneLineError(runDdtup({work.input, work.folder / "huge.exr", "-s", "2100"}), 1, "huge.exr",
+                        "at most 4294967296 pixels");
     // An absurd factor is refused before any size arithmetic can overflow.
     requireOneLineError(runDdtup({work.input, work.folder / "huge.png", "-s", "1e12"}), 1, "huge.png", "at most");
     CHECK(work.folder.names() == before);

@@ -22,7 +22,7 @@ TEST_CASE("cli: without a usable Vulkan device the error names the fix") {
     const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png"},
                              {"VK_DRIVER_FILES=/nonexistent/icd.json", "VK_ICD_FILENAMES=/nonexistent/icd.json",
                               "DDTUP_VALIDATION=0"});
-    requireOneLineError(run, 1, "Vulkan", "mesa-vulkan-drivers");
+    requireOneLineError(run, 3, "Vulkan", "mesa-vulkan-drivers");
     CHECK_THAT(run.err, Catch::Contains("--backend cpu"));
     CHECK(folder.names().empty());
 }

@@ -1,0 +1,151 @@
+#include "batch_plan.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "user_error.h"
+
+namespace ddt {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lowercase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return text;
+}
+
+// Extensions OpenImageIO can read, lower case without the dot. Its "extension_list" reads
+// "tiff:tif,tiff;png:png;…".
+std::set<std::string> readableExtensions() {
+    std::set<std::string> extensions;
+    const std::string list = OIIO::get_string_attribute("extension_list");
+    size_t begin = 0;
+    while (begin < list.size()) {
+        size_t end = list.find(';', begin);
+        if (end == std::string::npos) end = list.size();
+        const std::string entry = list.substr(begin, end - begin);
+        size_t item = entry.find(':') == std::string::npos ? entry.size() : entry.find(':') + 1;
+        while (item < entry.size()) {
+            size_t comma = entry.find(',', item);
+            if (comma == std::string::npos) comma = entry.size();
+            extensions.insert(lowercase(entry.substr(item, comma - item)));
+            item = comma + 1;
+        }
+        begin = end + 1;
+    }
+    return extensions;
+}
+
+bool isHidden(const fs::path& path) { return path.filename().string().starts_with("."); }
+
+// The images under `folder`, relative to it and sorted. Hidden files and folders (ddtup's own
+// temporary files among them) are passed over, and so is `skip`, the output folder, when it
+// lies inside: its results must not become inputs.
+std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs::path& skip) {
+    std::error_code error;
+    if (!fs::is_directory(folder, error))
+        throw UserError(folder.string() + (fs::exists(folder, error) ? ": not a folder" : ": no such folder"));
+    const std::set<std::string> extensions = readableExtensions();
+    std::vector<fs::path> images;
+    fs::recursive_directory_iterator it(folder, fs::directory_options::none, error), end;
+    if (error) throw UserError(folder.string() + ": cannot list the folder: " + error.message());
+    for (; it != end; it.increment(error)) {
+        if (error) throw UserError(it->path().string() + ": cannot list the folder: " + error.message());
+        const fs::path& path = it->path();
+        const bool folder_entry = it->is_directory(error);
+        if (isHidden(path) || (folder_entry && (!recursive || fs::equivalent(path, skip, error)))) {
+            if (folder_entry) it.disable_recursion_pending();
+            continue;
+        }
+        const std::string extension = lowercase(path.extension().string());
+        if (!folder_entry && extension.size() > 1 && extensions.count(extension.substr(1)))
+            images.push_back(fs::relative(path, folder));
+    }
+    std::sort(images.begin(), images.end());
+    return images;
+}
+
+// Creates the output folder and checks that files can be made in it, so that a bad folder is
+// one message rather than one per image.
+void prepareOutputFolder(const fs::path& folder) {
+    std::error_code error;
+    fs::create_directories(folder, error);
+    if (error) throw UserError(folder.string() + ": cannot create the output folder: " + error.message());
+    if (!fs::is_directory(folder, error)) throw UserError(folder.string() + ": is not a folder");
+    if (::access(folder.c_str(), W_OK | X_OK) != 0)
+        throw UserError(folder.string() + ": cannot write into the output folder: " + std::strerror(errno));
+}
+
+// out/<relative>, with the format's extension when one is asked for.
+std::string outputPathFor(const fs::path& output_folder, fs::path relative, const std::string& format) {
+    if (!format.empty())
+        relative.replace_extension("." + format);
+    else if (!relative.has_extension())
+        relative += ".png";  // standard input, or a file without an extension
+    return (output_folder / relative).string();
+}
+
+ImageTask readyTask(const std::string& input, const std::string& output) {
+    ImageTask task;
+    task.input = input;
+    task.output = output;
+    return task;
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+    std::error_code error;
+    if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
+    return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+}
+
+// Refuses outputs that are an input, or that another input already writes; skips finished ones.
+void decideStates(std::vector<ImageTask>& tasks, bool skip_existing) {
+    std::map<std::string, const ImageTask*> writers;  // canonical output -> first task writing it
+    for (ImageTask& task : tasks) {
+        if (task.output == "-") continue;
+        std::error_code error;
+        const std::string key = fs::weakly_canonical(task.output, error).string();
+        if (task.input != "-" && sameFile(task.input, task.output)) {
+            task.state = ImageTask::State::Refused;
+            task.reason = task.output + ": output is the input file; refusing to overwrite it";
+        } else if (auto [first, inserted] = writers.emplace(key, &task); !inserted) {
+            task.state = ImageTask::State::Refused;
+            task.reason = task.input + ": its output " + task.output + " is also the output of " + first->second->input +
+                          "; rename one of them or choose another --format";
+        } else if (skip_existing && fs::exists(task.output, error)) {
+            task.state = ImageTask::State::Skipped;
+            task.reason = "output exists";
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<ImageTask> planBatch(const Settings& settings) {
+    std::vector<ImageTask> tasks;
+    if (settings.singleForm()) {
+        tasks.push_back(readyTask(settings.inputs.front(), settings.output));
+    } else {
+        const fs::path output_folder = settings.output_folder;
+        prepareOutputFolder(output_folder);
+        if (!settings.input_folder.empty()) {
+            const fs::path input_folder = settings.input_folder;
+            for (const fs::path& relative : imagesIn(input_folder, settings.recursive, output_folder))
+                tasks.push_back(readyTask((input_folder / relative).string(), outputPathFor(output_folder, relative, settings.format)));
+        } else {
+            for (const std::string& input : settings.inputs)
+                tasks.push_back(readyTask(input, outputPathFor(output_folder, fs::path(input).filename(), settings.format)));
+        }
+    }
+    decideStates(tasks, settings.skip_existing);
+    return tasks;
+}
+
+}  // namespace ddt

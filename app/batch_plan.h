@@ -1,0 +1,24 @@
+// Which images a run magnifies and where each result goes: the inputs on the command line or
+// found in an input folder, mapped to output paths, with the ones to skip or refuse decided
+// before any pixel is read.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "settings.h"
+
+namespace ddt {
+
+struct ImageTask {
+    std::string input;   // as given, or found under the input folder; "-": standard input
+    std::string output;  // "-": standard output
+    enum class State { Ready, Skipped, Refused } state = State::Ready;
+    std::string reason;  // why skipped or refused; a refusal names the file first
+};
+
+// Throws UserError when the input folder cannot be listed or the output folder cannot be
+// created or written. Inputs are in command-line order, or sorted for a folder.
+std::vector<ImageTask> planBatch(const Settings& settings);
+
+}  // namespace ddt

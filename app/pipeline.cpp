@@ -1,0 +1,66 @@
+#include "pipeline.h"
+
+#include <atomic>
+#include <new>
+#include <thread>
+
+#include "bounded_queue.h"
+
+namespace ddt {
+
+namespace {
+
+// Runs one stage of a job; a failure is reported against the image and ends its way.
+template <class Stage>
+bool runStage(ImageJob& job, Reporter& reporter, Stage stage) {
+    const std::string& input = job.task().input;
+    try {
+        stage();
+        return true;
+    } catch (const UserError& error) {
+        reporter.failed(input, error.what());
+    } catch (const std::bad_alloc&) {
+        reporter.failed(input, input + ": out of memory");
+    } catch (const std::exception& error) {
+        reporter.failed(input, input + ": internal error: " + error.what());
+    }
+    return false;
+}
+
+}  // namespace
+
+void runPipeline(const std::vector<ImageTask>& tasks, const Settings& settings,
+                 const std::function<Backend*()>& backend, Reporter& reporter,
+                 const std::function<void(const ImageJob&)>& on_done) {
+    // One image waits between each pair of stages: at most four are in memory at once.
+    BoundedQueue<std::unique_ptr<ImageJob>> decoded(1), processed(1);
+    std::atomic<bool> stopped = false;
+
+    std::thread reader([&] {
+        for (size_t i = 0; i < tasks.size() && !stopped; ++i) {
+            if (tasks[i].state != ImageTask::State::Ready) continue;
+            auto job = std::make_unique<ImageJob>(i, tasks[i], settings, reporter);
+            if (runStage(*job, reporter, [&] { job->read(); })) decoded.push(std::move(job));
+        }
+        decoded.close();
+    });
+    std::thread writer([&] {
+        while (std::optional<std::unique_ptr<ImageJob>> job = processed.pop())
+            if (runStage(**job, reporter, [&] { (*job)->write(); }) && on_done) on_done(**job);
+    });
+
+    Backend* device = nullptr;
+    while (std::optional<std::unique_ptr<ImageJob>> job = decoded.pop()) {
+        if (!device && !stopped) device = backend();
+        if (!device) {
+            stopped = true;  // drop the decoded images: their temporary outputs go with them
+            continue;
+        }
+        if (runStage(**job, reporter, [&] { (*job)->process(*device); })) processed.push(std::move(*job));
+    }
+    processed.close();
+    reader.join();
+    writer.join();
+}
+
+}  // namespace ddt

@@ -1,0 +1,25 @@
+// Runs a batch with its three stages overlapped, like the other upscalers' -j load:proc:save:
+// one thread decodes the next image while the device works on the current one and another
+// thread encodes the previous one. The device is used from the calling thread only.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "backend.h"
+#include "batch_plan.h"
+#include "reporter.h"
+#include "settings.h"
+#include "upscale_job.h"
+
+namespace ddt {
+
+// Magnifies every Ready task; failures are reported and the batch goes on. `backend` is called
+// when the first image has been read (so that a bad input is reported without starting a
+// device); when it returns null (no device, already reported) the run stops. `on_done` runs
+// after each image is written (on the writing thread).
+void runPipeline(const std::vector<ImageTask>& tasks, const Settings& settings,
+                 const std::function<Backend*()>& backend, Reporter& reporter,
+                 const std::function<void(const ImageJob&)>& on_done);
+
+}  // namespace ddt

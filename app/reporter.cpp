@@ -1,0 +1,113 @@
+#include "reporter.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "exit_codes.h"
+
+namespace ddt {
+
+const char* stageName(Stage stage) {
+    switch (stage) {
+        case Stage::Read:
+            return "read";
+        case Stage::Optimize:
+            return "optimize";
+        case Stage::Render:
+            return "render";
+        case Stage::Write:
+            return "write";
+    }
+    return "?";
+}
+
+void writeAll(int fd, const std::string& text) {
+    size_t written = 0;
+    while (written < text.size()) {
+        const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+        if (n <= 0) return;
+        written += size_t(n);
+    }
+}
+
+Reporter::Reporter(const Settings& settings) {
+    fd_ = ::fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 0);
+    if (fd_ < 0) fd_ = STDERR_FILENO;
+    if (settings.progress == ProgressMode::Json) {
+        sink_ = makeJsonProgress(fd_);
+    } else {
+        const bool live = settings.progress == ProgressMode::Bar ||
+                          (settings.progress == ProgressMode::Auto && ::isatty(STDERR_FILENO) && !settings.quiet());
+        sink_ = makeTextProgress(fd_, settings.verbosity, live);
+    }
+}
+
+Reporter::~Reporter() {
+    sink_.reset();
+    if (fd_ != STDERR_FILENO) ::close(fd_);
+}
+
+RunCounts Reporter::countsLocked() const {
+    RunCounts counts = counts_;
+    counts.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    // Skipped images take no time; the rest are assumed to take the average so far.
+    const size_t finished = counts.done + counts.failed;
+    const size_t left = counts.total - finished - counts.skipped;
+    counts.remaining_s = finished ? counts.elapsed_s / double(finished) * double(left) : -1.0;
+    return counts;
+}
+
+void Reporter::start(size_t images) {
+    std::lock_guard lock(mutex_);
+    counts_.total = images;
+    sink_->start(images);
+}
+
+void Reporter::device(const std::string& name, const std::string& type) {
+    std::lock_guard lock(mutex_);
+    sink_->device(name, type);
+}
+
+void Reporter::stage(size_t index, const std::string& input, Stage stage, uint32_t tile, uint32_t tiles) {
+    std::lock_guard lock(mutex_);
+    sink_->stage(countsLocked(), index, input, stage, tile, tiles);
+}
+
+void Reporter::done(size_t index, const ImageTask& task, OutputSize size, double seconds) {
+    std::lock_guard lock(mutex_);
+    ++counts_.done;
+    sink_->done(countsLocked(), index, task, size, seconds);
+}
+
+void Reporter::skipped(size_t index, const ImageTask& task) {
+    std::lock_guard lock(mutex_);
+    ++counts_.skipped;
+    sink_->skipped(countsLocked(), index, task);
+}
+
+void Reporter::notice(const std::string& input, const std::string& message) {
+    std::lock_guard lock(mutex_);
+    sink_->notice(input, message);
+}
+
+void Reporter::failed(const std::string& input, const std::string& message) {
+    std::lock_guard lock(mutex_);
+    ++counts_.failed;
+    failures_.push_back(message);
+    sink_->error(input, message);
+}
+
+void Reporter::fatal(const std::string& message, int exit_code) {
+    std::lock_guard lock(mutex_);
+    fatal_exit_code_ = exit_code;
+    sink_->error("", message);
+}
+
+int Reporter::finish() {
+    std::lock_guard lock(mutex_);
+    const int exit_code = fatal_exit_code_ ? fatal_exit_code_ : counts_.failed ? int(kExitSomeFailed) : int(kExitDone);
+    sink_->summary(countsLocked(), failures_, exit_code);
+    return exit_code;
+}
+
+}  // namespace ddt

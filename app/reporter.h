@@ -1,0 +1,85 @@
+// What a run tells its user: errors, notes, progress and the closing summary, as text (with a
+// live progress line on a terminal) or as one JSON event per line (--progress=json). Safe to
+// call from the pipeline's threads. It also keeps the counts that decide the exit code.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "batch_plan.h"
+#include "render.h"
+#include "settings.h"
+
+namespace ddt {
+
+enum class Stage { Read, Optimize, Render, Write };
+const char* stageName(Stage stage);
+
+struct RunCounts {
+    size_t total = 0;
+    size_t done = 0;
+    size_t skipped = 0;
+    size_t failed = 0;
+    double elapsed_s = 0.0;
+    double remaining_s = -1.0;  // < 0: not known yet
+};
+
+// Where the events go; text and JSON implement it (progress_text.cpp, progress_json.cpp).
+class ProgressSink {
+public:
+    virtual ~ProgressSink() = default;
+    virtual void start(size_t images) = 0;
+    virtual void device(const std::string& name, const std::string& type) = 0;
+    virtual void stage(const RunCounts& counts, size_t index, const std::string& input, Stage stage, uint32_t tile,
+                       uint32_t tiles) = 0;
+    virtual void done(const RunCounts& counts, size_t index, const ImageTask& task, OutputSize size, double seconds) = 0;
+    virtual void skipped(const RunCounts& counts, size_t index, const ImageTask& task) = 0;
+    virtual void notice(const std::string& input, const std::string& message) = 0;
+    virtual void error(const std::string& input, const std::string& message) = 0;
+    // `failures` holds each failed image's message.
+    virtual void summary(const RunCounts& counts, const std::vector<std::string>& failures, int exit_code) = 0;
+};
+
+// Writes to a duplicate of the standard error taken at start, so that a codec silencing
+// stderr for a moment (core/image.cpp) cannot swallow a message from another thread.
+std::unique_ptr<ProgressSink> makeTextProgress(int fd, Verbosity verbosity, bool live_line);
+std::unique_ptr<ProgressSink> makeJsonProgress(int fd);
+// Writes all of `text` to `fd`, giving up quietly if stderr is gone.
+void writeAll(int fd, const std::string& text);
+
+class Reporter {
+public:
+    explicit Reporter(const Settings& settings);
+    ~Reporter();
+    Reporter(const Reporter&) = delete;
+    Reporter& operator=(const Reporter&) = delete;
+
+    void start(size_t images);
+    void device(const std::string& name, const std::string& type);
+    void stage(size_t index, const std::string& input, Stage stage, uint32_t tile = 0, uint32_t tiles = 0);
+    void done(size_t index, const ImageTask& task, OutputSize size, double seconds);
+    void skipped(size_t index, const ImageTask& task);
+    void notice(const std::string& input, const std::string& message);  // `message` names its file
+    void failed(const std::string& input, const std::string& message);  // an image failed
+    // An error that ends the run before or outside any image (usage, no device, a bug).
+    void fatal(const std::string& message, int exit_code);
+    // Prints the summary; returns the exit code the counts call for.
+    int finish();
+
+private:
+    RunCounts countsLocked() const;
+
+    std::mutex mutex_;
+    int fd_ = -1;
+    std::unique_ptr<ProgressSink> sink_;
+    RunCounts counts_;
+    std::vector<std::string> failures_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    int fatal_exit_code_ = 0;
+};
+
+}  // namespace ddt
