@@ -8,6 +8,7 @@
 #include "exit_codes.h"
 #include "flip_rule.h"
 #include "image.h"
+#include "json_line.h"
 
 namespace ddt {
 
@@ -71,6 +72,17 @@ std::string oneLine(std::string message) {
     return message;
 }
 
+// Whether the command line asks for JSON events, read before parsing so that even a
+// command line CLI11 rejects gets its error as an event.
+bool asksForJson(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--progress=json" || (arg == "--progress" && i + 1 < argc && std::string(argv[i + 1]) == "json"))
+            return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) {
@@ -109,20 +121,22 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_flag("--list-devices", settings.list_devices, "List the Vulkan devices and exit");
     app.add_flag("!--no-active-set", settings.active_set,
                  "Vulkan: re-test every edge in every iteration, not only those a flip may have changed (default: off)");
-    const std::map<std::string, ProgressMode> progress_modes{
-        {"auto", ProgressMode::Auto}, {"bar", ProgressMode::Bar}, {"json", ProgressMode::Json}, {"none", ProgressMode::None}};
-    app.add_option("--progress", settings.progress,
+    std::string progress = "auto";
+    app.add_option("--progress", progress,
                    "auto (a progress line on a terminal, nothing otherwise), bar, json (one JSON event per line "
                    "on stderr, errors and notes included) or none")
-        ->transform(CLI::CheckedTransformer(progress_modes))
-        ->default_str("auto");
+        ->check(CLI::IsMember({"auto", "bar", "json", "none"}))
+        ->capture_default_str();
     app.add_flag("--stats", settings.stats, "Print cost, flips and stage times of each image (default: off)");
     bool quiet = false, verbose = false;
     app.add_flag("-q,--quiet", quiet, "Print nothing but errors (default: off)");
     app.add_flag("-v,--verbose", verbose, "Also print a line per finished image and the device used (default: off)");
 
     auto usageError = [&](const std::string& message) {
-        std::cerr << "ddtup: " << oneLine(message) << "\n";
+        if (asksForJson(argc, argv))
+            std::cerr << JsonLine().field("event", "error").field("message", oneLine(message)).field("exit_code", int(kExitUsage)).text();
+        else
+            std::cerr << "ddtup: " << oneLine(message) << "\n";
         exit_code = kExitUsage;
         return std::nullopt;
     };
@@ -137,6 +151,10 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         return usageError(error.what());
     }
     if (quiet && verbose) return usageError("give either -q or -v, not both");
+    settings.progress = progress == "bar"    ? ProgressMode::Bar
+                        : progress == "json" ? ProgressMode::Json
+                        : progress == "none" ? ProgressMode::None
+                                             : ProgressMode::Auto;
     settings.verbosity = quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal;
     if (settings.output_folder.empty() && settings.input_folder.empty() && settings.inputs.size() == 2) {
         settings.output = settings.inputs.back();
