@@ -1,24 +1,19 @@
 #include "backend_factory.h"
 
+#include <cctype>
+
 #include "vulkan_backend.h"
 
 namespace ddt {
 
 namespace {
 
-const char* deviceKind(VkPhysicalDeviceType type) {
-    switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-            return "discrete";
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-            return "integrated";
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-            return "virtual";
-        case VK_PHYSICAL_DEVICE_TYPE_CPU:
-            return "cpu";
-        default:
-            return "other";
-    }
+// The first word of the device type, lower case: "discrete", "integrated", "cpu", …
+std::string deviceKind(VkPhysicalDeviceType type) {
+    std::string kind = deviceTypeName(type);
+    kind = kind.substr(0, kind.find(' '));
+    for (char& c : kind) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return kind;
 }
 
 }  // namespace

@@ -4,28 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "json_line.h"
+
 namespace bench {
-
-namespace {
-
-std::string quoted(const std::string& text) {
-    std::string out = "\"";
-    for (unsigned char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += char(c);
-        } else if (c < 0x20) {
-            char escape[8];
-            std::snprintf(escape, sizeof escape, "\\u%04x", c);
-            out += escape;
-        } else {
-            out += char(c);
-        }
-    }
-    return out + "\"";
-}
-
-}  // namespace
 
 void JsonWriter::newLine() {
     text_ += '\n';
@@ -66,14 +47,14 @@ JsonWriter& JsonWriter::endArray() { return close(']'); }
 
 JsonWriter& JsonWriter::key(const std::string& name) {
     startValue();
-    text_ += quoted(name) + ": ";
+    text_ += ddt::jsonString(name) + ": ";
     after_key_ = true;
     return *this;
 }
 
 JsonWriter& JsonWriter::value(const std::string& text) {
     startValue();
-    text_ += quoted(text);
+    text_ += ddt::jsonString(text);
     return *this;
 }
 
