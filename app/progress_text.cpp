@@ -1,5 +1,6 @@
 // Progress as text on stderr: one line per error or note, and on a terminal a live line that
 // is redrawn in place ("[3/50] photo.png: optimize · 0:12 elapsed · ~0:40 left").
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -18,6 +19,24 @@ std::string clock(double seconds) {
         std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", total / 3600, total / 60 % 60, total % 60);
     else
         std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
+    return text;
+}
+
+// The terminal's width in columns, or 0 when unknown.
+size_t terminalColumns(int fd) {
+    winsize size{};
+    return ::ioctl(fd, TIOCGWINSZ, &size) == 0 ? size.ws_col : 0;
+}
+
+// The longest prefix of `text` that fits `columns` (one column per UTF-8 character), so the
+// live line never wraps: a wrapped line could not be redrawn in place.
+std::string fitted(const std::string& text, size_t columns) {
+    if (columns == 0) return text;
+    size_t characters = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+        if ((static_cast<unsigned char>(text[i]) & 0xC0) == 0x80) continue;  // continuation byte
+        if (++characters == columns) return text.substr(0, i);
+    }
     return text;
 }
 
@@ -85,7 +104,7 @@ private:
     }
     void drawLive() {
         if (!live_ || live_text_.empty()) return;
-        write("\r\033[K" + live_text_);
+        write("\r\033[K" + fitted(live_text_, terminalColumns(fd_)));
         live_shown_ = true;
     }
     void clearLive() {

@@ -39,10 +39,17 @@ Reporter::Reporter(const Settings& settings) {
         const bool live = settings.progress == ProgressMode::Bar ||
                           (settings.progress == ProgressMode::Auto && ::isatty(STDERR_FILENO) && !settings.quiet());
         sink_ = makeTextProgress(fd_, settings.verbosity, live);
+        if (live) ticker_ = std::thread([this] { tickWhileRunning(); });
     }
 }
 
 Reporter::~Reporter() {
+    {
+        std::lock_guard lock(mutex_);
+        finished_ = true;
+    }
+    finished_signal_.notify_all();
+    if (ticker_.joinable()) ticker_.join();
     sink_.reset();
     if (fd_ != STDERR_FILENO) ::close(fd_);
 }
@@ -70,7 +77,16 @@ void Reporter::device(const std::string& name, const std::string& type) {
 
 void Reporter::stage(size_t index, const std::string& input, Stage stage, uint32_t tile, uint32_t tiles) {
     std::lock_guard lock(mutex_);
+    last_stage_ = LastStage{index, input, stage, tile, tiles};
     sink_->stage(countsLocked(), index, input, stage, tile, tiles);
+}
+
+void Reporter::tickWhileRunning() {
+    std::unique_lock lock(mutex_);
+    while (!finished_signal_.wait_for(lock, std::chrono::seconds(1), [&] { return finished_; }))
+        if (last_stage_)
+            sink_->stage(countsLocked(), last_stage_->index, last_stage_->input, last_stage_->stage, last_stage_->tile,
+                         last_stage_->tiles);
 }
 
 void Reporter::done(size_t index, const ImageTask& task, OutputSize size, double seconds) {
@@ -105,6 +121,8 @@ void Reporter::fatal(const std::string& message, int exit_code) {
 
 int Reporter::finish() {
     std::lock_guard lock(mutex_);
+    finished_ = true;
+    finished_signal_.notify_all();
     const int exit_code = fatal_exit_code_ ? fatal_exit_code_ : counts_.failed ? int(kExitSomeFailed) : int(kExitDone);
     sink_->summary(countsLocked(), failures_, exit_code);
     return exit_code;

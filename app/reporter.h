@@ -4,10 +4,13 @@
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "batch_plan.h"
@@ -71,7 +74,15 @@ public:
     int finish();
 
 private:
+    struct LastStage {
+        size_t index = 0;
+        std::string input;
+        Stage stage = Stage::Read;
+        uint32_t tile = 0, tiles = 0;
+    };
     RunCounts countsLocked() const;
+    // Redraws the live line every second, so that its clock runs during a long stage.
+    void tickWhileRunning();
 
     std::mutex mutex_;
     int fd_ = -1;
@@ -80,6 +91,10 @@ private:
     std::vector<std::string> failures_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     int fatal_exit_code_ = 0;
+    std::optional<LastStage> last_stage_;
+    bool finished_ = false;
+    std::condition_variable finished_signal_;
+    std::thread ticker_;
 };
 
 }  // namespace ddt
