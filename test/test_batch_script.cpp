@@ -198,6 +198,21 @@ TEST_CASE("ddtup-batch: -f names the outputs and refuses two inputs for one outp
     CHECK_THAT(run.err, Catch::Contains("3 done, 0 skipped, 2 failed"));
 }
 
+TEST_CASE("ddtup-batch: options ddtup refuses stop the batch with ddtup's exit code") {
+    Workspace work;
+    std::vector<std::vector<std::string>> environments = {{"DDTUP_BATCH_NO_PARALLEL=1"}};
+    if (haveCommand("parallel")) environments.push_back({});
+    for (const std::vector<std::string>& environment : environments) {
+        // One process at a time: the first image fails, the other three never start.
+        const Run run = work.batch({"-j", "1", work.in, work.out, "--", "--no-such-option"}, environment);
+        INFO("stderr: " << run.err);
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("ddtup-batch: stopped, 3 images not run: ddtup: "));
+        CHECK_THAT(run.err, Catch::Contains("--no-such-option"));
+        CHECK(tree(work.out).size() <= 1);  // at most the sub-folder made for the first image
+    }
+}
+
 TEST_CASE("ddtup-batch: bad usage exits 2 and does nothing") {
     Workspace work;
     for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
