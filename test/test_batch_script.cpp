@@ -207,7 +207,7 @@ TEST_CASE("ddtup-batch: options ddtup refuses stop the batch with ddtup's exit c
         const Run run = work.batch({"-j", "1", work.in, work.out, "--", "--no-such-option"}, environment);
         INFO("stderr: " << run.err);
         CHECK(run.exit_code == 2);
-        CHECK_THAT(run.err, Catch::Contains("ddtup-batch: stopped, 3 images not run: ddtup: "));
+        CHECK_THAT(run.err, Catch::Contains("ddtup-batch: stopped, 3 images not run: ddtup exited with code 2: "));
         CHECK_THAT(run.err, Catch::Contains("--no-such-option"));
         CHECK(tree(work.out).size() <= 1);  // at most the sub-folder made for the first image
     }
