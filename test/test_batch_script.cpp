@@ -222,6 +222,7 @@ TEST_CASE("ddtup-batch: bad usage exits 2 and does nothing") {
              {work.folder / "missing", work.out},
              {"-j", "0", work.in, work.out},
              {"--frobnicate", work.in, work.out},
+             {work.in, work.out, "--", "-f", "png"},  // ddtup-batch -f names the outputs
          }) {
         const Run run = work.batch(args);
         INFO("stderr: " << run.err);
