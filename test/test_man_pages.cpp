@@ -23,7 +23,7 @@ std::string render(const std::string& page, std::string& warnings) {
         return "";
     }
     TempFolder folder;
-    const std::string command = "groff -man -Tutf8 -wmac -P-cbou '" + page + "' >'" + (folder / "text") + "' 2>'" +
+    const std::string command = "groff -k -man -Tutf8 -wmac -P-cbou '" + page + "' >'" + (folder / "text") + "' 2>'" +
                                 (folder / "warnings") + "'";
     REQUIRE(std::system(command.c_str()) == 0);
     warnings = readFile(folder / "warnings");
