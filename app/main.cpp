@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "context.h"
+#include "temp_files.h"
 #include "upscale_job.h"
 
 namespace {
@@ -63,6 +64,7 @@ int run(const ddt::Settings& settings) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    ddt::installInterruptCleanup();
     int exit_code = 0;
     std::optional<ddt::Settings> settings = ddt::parseCommandLine(argc, argv, exit_code);
     if (!settings) return exit_code;
