@@ -241,14 +241,25 @@ int countSubimages(OIIO::ImageInput& input) {
 bool swapsSides(int orientation) { return orientation >= 5 && orientation <= 8; }
 
 // Turns and mirrors the pixels as EXIF orientation 2..8 asks, so that they are upright.
+// Not ImageBufAlgo::reorient: OIIO 2.4 swaps 5 and 7 there (OpenImageIO issue #4661).
 void makeUpright(Image& image, int orientation) {
+    namespace iba = OIIO::ImageBufAlgo;
     const bool swapped = swapsSides(orientation);
-    OIIO::ImageSpec stored_spec(int(swapped ? image.height : image.width), int(swapped ? image.width : image.height),
-                                int(image.channels), OIIO::TypeDesc::FLOAT);
-    stored_spec.attribute("Orientation", orientation);
+    const OIIO::ImageSpec stored_spec(int(swapped ? image.height : image.width), int(swapped ? image.width : image.height),
+                                      int(image.channels), OIIO::TypeDesc::FLOAT);
     const OIIO::ImageBuf stored(stored_spec, image.pixels.data());
-    OIIO::ImageBuf upright;
-    if (!OIIO::ImageBufAlgo::reorient(upright, stored)) throw std::runtime_error("reorient: " + upright.geterror());
+    OIIO::ImageBuf upright, half_turned;
+    bool ok = false;
+    switch (orientation) {
+        case 2: ok = iba::flop(upright, stored); break;        // mirrored left to right
+        case 3: ok = iba::rotate180(upright, stored); break;
+        case 4: ok = iba::flip(upright, stored); break;        // mirrored top to bottom
+        case 5: ok = iba::transpose(upright, stored); break;   // mirrored across the main diagonal
+        case 6: ok = iba::rotate90(upright, stored); break;    // clockwise
+        case 7: ok = iba::rotate180(half_turned, stored) && iba::transpose(upright, half_turned); break;
+        case 8: ok = iba::rotate270(upright, stored); break;
+    }
+    if (!ok) throw std::runtime_error("orienting the image: " + upright.geterror());
     upright.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data());
 }
 
