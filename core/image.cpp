@@ -307,7 +307,12 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
         throw UserError(s.name + ": not a readable image (" + reason + ")");
     }
 
-    if (const int subimages = countSubimages(*s.input); subimages > 1)
+    int subimages;
+    {
+        QuietStderr quiet;
+        subimages = countSubimages(*s.input);
+    }
+    if (subimages > 1)
         notes_.push_back(s.name + ": has " + std::to_string(subimages) + " images; using the first");
     const OIIO::ImageSpec& spec = s.input->spec();
     if (spec.deep) throw UserError(s.name + ": deep images are not supported");
@@ -497,10 +502,6 @@ void checkOutputPath(const std::string& path) {
     throw UserError(path + ": folder " + folder.string() + " does not exist");
 }
 
-}  // namespace
-
-namespace {
-
 // What OIIO's create() is given: an extension it maps to a format, or the path.
 std::string formatRequest(const std::string& path, const std::string& format) {
     return format.empty() ? path : "x." + format;
@@ -568,13 +569,13 @@ void convertRows(const OutputLayout& layout, const float* in, size_t count, floa
     }
 }
 
-}  // namespace
-
 // The quality setting of the lossy formats, in OIIO's "compression" attribute.
 void setQuality(const std::string& format, int quality, OIIO::ImageSpec& spec) {
     assert(quality >= 1 && quality <= 100);
     if (format == "jpeg" || format == "webp") spec.attribute("compression", format + ":" + std::to_string(quality));
 }
+
+}  // namespace
 
 struct ImageWriter::State {
     std::string path;
@@ -590,7 +591,7 @@ struct ImageWriter::State {
     // The reason a write failed: the file's own error where it saw one, since codecs that
     // ignore failed writes report something vaguer or nothing.
     UserError failure() {
-        std::string codec_reason = firstLine(codecError(*output));
+        std::string codec_reason = firstLine(codecError(*output));  // read either way: it clears it
         if (file && file->failure()) return UserError(name + ": " + std::strerror(file->failure()));
         return UserError(name + ": cannot write (" + codec_reason + ")");
     }
