@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cassert>
@@ -569,6 +570,13 @@ void convertRows(const OutputLayout& layout, const float* in, size_t count, floa
     }
 }
 
+// Whether the file system holding `path` has no space left, to name the cause of a failed
+// write by a codec that writes its file itself (TIFF) and reports it in its own words.
+bool noSpaceLeft(const std::string& path) {
+    struct statvfs status {};
+    return ::statvfs(path.c_str(), &status) == 0 && status.f_bavail == 0;
+}
+
 // The quality setting of the lossy formats, in OIIO's "compression" attribute.
 void setQuality(const std::string& format, int quality, OIIO::ImageSpec& spec) {
     assert(quality >= 1 && quality <= 100);
@@ -593,6 +601,7 @@ struct ImageWriter::State {
     UserError failure() {
         std::string codec_reason = firstLine(codecError(*output));  // read either way: it clears it
         if (file && file->failure()) return UserError(name + ": " + std::strerror(file->failure()));
+        if (!file && noSpaceLeft(temp->path())) return UserError(name + ": " + std::strerror(ENOSPC));
         return UserError(name + ": cannot write (" + codec_reason + ")");
     }
 

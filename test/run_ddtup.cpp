@@ -70,6 +70,12 @@ void requireOneLineError(const Run& run, int code, const std::string& subject, c
     CHECK(run.out.empty());
 }
 
+void requireExactError(const Run& run, int code, const std::string& line) {
+    CHECK(run.err == "ddtup: " + line + "\n");
+    CHECK(run.exit_code == code);
+    CHECK(run.out.empty());
+}
+
 BackgroundDdtup::BackgroundDdtup(const std::vector<std::string>& args, const std::vector<std::string>& environment,
                                  const std::string& input_file) {
     std::vector<std::string> argv_strings = {DDTUP_EXECUTABLE};

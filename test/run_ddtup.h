@@ -34,6 +34,9 @@ std::string readFile(const std::string& path);
 // nothing on stdout.
 void requireOneLineError(const Run& run, int code, const std::string& subject, const std::string& reason);
 
+// Exit `code`, stderr exactly "ddtup: " + `line` + "\n", nothing on stdout.
+void requireExactError(const Run& run, int code, const std::string& line);
+
 // ddtup started in the background, for tests that signal it.
 class BackgroundDdtup {
 public:

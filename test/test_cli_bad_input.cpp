@@ -86,7 +86,7 @@ bool canMountTmpfs() { return std::system("unshare -rm sh -c 'mount -t tmpfs -o 
 TEST_CASE("bad input: a folder given as the input file") {
     Workspace work;
     fs::create_directory(work.inputs / "photos.png");
-    requireOneLineError(work.upscale(work.inputs / "photos.png"), 1, "photos.png", ": is a folder, not an image file");
+    requireExactError(work.upscale(work.inputs / "photos.png"), 1, work.inputs / "photos.png" + ": is a folder, not an image file");
     CHECK(work.outputs.names().empty());
 }
 
@@ -121,7 +121,7 @@ TEST_CASE("bad input: a PNG with bytes flipped in its image data") {
 TEST_CASE("bad input: a zero-byte file") {
     Workspace work;
     writeBytes(work.inputs / "empty.png", "");
-    requireOneLineError(work.upscale(work.inputs / "empty.png"), 1, "empty.png", ": empty file (0 bytes)");
+    requireExactError(work.upscale(work.inputs / "empty.png"), 1, work.inputs / "empty.png" + ": empty file (0 bytes)");
     CHECK(work.outputs.names().empty());
 }
 
@@ -129,19 +129,18 @@ TEST_CASE("bad input: 0×0 and 1×N images") {
     Workspace work;
     // libpng refuses a 0×0 header itself ("Invalid IHDR data").
     writeBytes(work.inputs / "zero.png", ddt::test::pngClaiming(0, 0));
-    requireOneLineError(work.upscale(work.inputs / "zero.png"), 1, "zero.png", ": not a readable image (");
+    requireExactError(work.upscale(work.inputs / "zero.png"), 1,
+                      work.inputs / "zero.png" + ": not a readable image (PNG read error: Invalid IHDR data)");
     ddt::writeImage(work.inputs / "column.png", noiseImage(1, 7));
-    requireOneLineError(work.upscale(work.inputs / "column.png"), 1, "column.png",
-                        ": DDT needs at least 2×2 pixels (got 1×7)");
+    requireExactError(work.upscale(work.inputs / "column.png"), 1, work.inputs / "column.png" + ": DDT needs at least 2×2 pixels (got 1×7)");
     CHECK(work.outputs.names().empty());
 }
 
 TEST_CASE("bad input: a header claiming 100000×100000 pixels is refused before allocating") {
     Workspace work;
     writeBytes(work.inputs / "huge.png", ddt::test::pngClaiming(100000, 100000));
-    const Run run = work.upscale(work.inputs / "huge.png");
-    requireOneLineError(run, 1, "huge.png",
-                        ": image is 100000×100000 pixels; ddtup reads at most 268435456 pixels (16384×16384)");
+    requireExactError(work.upscale(work.inputs / "huge.png"), 1,
+                      work.inputs / "huge.png" + ": image is 100000×100000 pixels; ddtup reads at most 268435456 pixels (16384×16384)");
     CHECK(work.outputs.names().empty());
 }
 
@@ -151,8 +150,8 @@ TEST_CASE("bad input: 5-channel TIFF and EXR files") {
     writeChannels(work.inputs / "five.exr", 5, OIIO::TypeDesc::HALF);
     for (const char* name : {"five.tif", "five.exr"}) {
         INFO(name);
-        requireOneLineError(work.upscale(work.inputs / name), 1, name,
-                            ": 5 channels (R, G, B, A, channel4); ddtup reads grey, grey+alpha, RGB or RGBA images with alpha last");
+        requireExactError(work.upscale(work.inputs / name), 1,
+                          work.inputs / name + ": 5 channels (R, G, B, A, channel4); ddtup reads grey, grey+alpha, RGB or RGBA images with alpha last");
     }
     CHECK(work.outputs.names().empty());
 }
@@ -166,7 +165,7 @@ TEST_CASE("bad input: NaN or infinite samples in a float EXR") {
         image.sample_type = ddt::SampleType::Float;
         image.pixels[100] = bad;
         ddt::writeImage(work.inputs / "bad.exr", image);
-        requireOneLineError(work.upscale(work.inputs / "bad.exr"), 1, "bad.exr", ": contains NaN or infinite values");
+        requireExactError(work.upscale(work.inputs / "bad.exr"), 1, work.inputs / "bad.exr" + ": contains NaN or infinite values");
         CHECK(work.outputs.names().empty());
     }
 }
@@ -197,9 +196,7 @@ TEST_CASE("bad input: the disk fills up while writing (a full tmpfs)") {
                                  "--backend cpu -q; status=$?; ls -A \"$1\" >&2; exit $status' sh " +
                                  shellQuoted(work.outputs.path().string()) + " \"$DDTUP\" " +
                                  shellQuoted(work.inputs / "noise.png") + " " + name);
-        const std::string path = work.outputs / name;
-        // TIFF is written by libtiff itself, which reports a failed write in its own words.
-        requireOneLineError(run, 1, path + ": ", std::string(name) == "out.tif" ? "Write error" : "No space left on device");
+        requireExactError(run, 1, work.outputs / name + ": No space left on device");
     }
 }
 
@@ -209,7 +206,7 @@ TEST_CASE("bad input: the disk fills up while writing (injected)") {
     Workspace work;
     const Run run = work.upscale(ddt::test::testDataPath("crop32_astronaut.png"), {"--backend", "cpu", "-q"},
                                  {"DDTUP_TEST_WRITE_LIMIT=1000"});
-    requireOneLineError(run, 1, work.out, ": No space left on device");
+    requireExactError(run, 1, work.out + ": No space left on device");
     CHECK(work.outputs.names().empty());
 }
 
@@ -226,9 +223,9 @@ TEST_CASE("bad input: no Vulkan device") {
 TEST_CASE("bad input: standard input that is not an image") {
     Workspace work;
     writeBytes(work.inputs / "text", "not an image\n");
-    requireOneLineError(runDdtup({"-", "-s", "2", work.out}, {}, work.inputs / "text"), 1, "standard input",
-                        ": not a readable image (not recognised as any image format)");
-    requireOneLineError(runDdtup({"-", "-s", "2", work.out}, {}, "/dev/null"), 1, "standard input", ": empty file (0 bytes)");
+    requireExactError(runDdtup({"-", "-s", "2", work.out}, {}, work.inputs / "text"), 1,
+                      "standard input: not a readable image (not recognised as any image format)");
+    requireExactError(runDdtup({"-", "-s", "2", work.out}, {}, "/dev/null"), 1, "standard input: empty file (0 bytes)");
     CHECK(work.outputs.names().empty());
 }
 
