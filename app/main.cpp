@@ -9,6 +9,7 @@
 #include "exit_codes.h"
 #include "pipeline.h"
 #include "reporter.h"
+#include "temp_files.h"
 
 namespace {
 
@@ -84,6 +85,7 @@ int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    ddt::installInterruptCleanup();
     int exit_code = 0;
     std::optional<ddt::Settings> settings = ddt::parseCommandLine(argc, argv, exit_code);
     if (!settings) return exit_code;

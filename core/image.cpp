@@ -1,16 +1,25 @@
 #include "image.h"
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <cassert>
 #include <cerrno>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <new>
 #include <set>
+#include <system_error>
+
+#include "checked_file.h"
+#include "temp_files.h"
 
 namespace ddt {
 
@@ -168,46 +177,175 @@ const char* sampleTypeName(SampleType type) {
     return "float";
 }
 
+std::optional<SampleType> parseSampleType(const std::string& text) {
+    if (text == "8") return SampleType::UInt8;
+    if (text == "16") return SampleType::UInt16;
+    if (text == "half") return SampleType::Half;
+    if (text == "float") return SampleType::Float;
+    return std::nullopt;
+}
+
+std::string inputName(const std::string& path) { return path == kStandardStream ? "standard input" : path; }
+std::string outputName(const std::string& path) { return path == kStandardStream ? "standard output" : path; }
+
+namespace {
+
+// Codecs seek, and a pipe cannot: standard input is copied to a temporary file first.
+std::unique_ptr<TempFile> copyStandardInput() {
+    const std::string folder = tempFolder();
+    auto fail = [&](int error) {
+        return UserError("standard input: cannot copy it to a temporary file in " + folder + " (" + std::strerror(error) + ")");
+    };
+    std::unique_ptr<TempFile> copy;
+    try {
+        copy = std::make_unique<TempFile>(folder, "ddtup-stdin");
+    } catch (const std::system_error& error) {
+        throw fail(error.code().value());
+    }
+    CheckedFile file(copy->path());
+    std::vector<char> buffer(1 << 16);
+    for (;;) {
+        const ssize_t n = ::read(STDIN_FILENO, buffer.data(), buffer.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw UserError(std::string("standard input: cannot read it (") + std::strerror(errno) + ")");
+        if (n == 0) break;
+        if (file.write(buffer.data(), size_t(n)) != size_t(n)) break;
+    }
+    file.close();
+    if (file.failure()) throw fail(file.failure());
+    return copy;
+}
+
+// "" if `path` names a readable regular file, else the reason.
+std::string checkInputFile(const std::string& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) return "no such file";
+    if (fs::is_directory(status)) return "is a folder, not an image file";
+    // Devices and pipes can feed a reader forever (/dev/zero) or block it.
+    if (!fs::is_regular_file(status)) return "not a regular file";
+    if (::access(path.c_str(), R_OK) != 0) return std::string("cannot open (") + std::strerror(errno) + ")";
+    return "";
+}
+
+// Subimages of a multi-page TIFF or an animated GIF; MIP levels are not counted.
+int countSubimages(OIIO::ImageInput& input) {
+    int count = 1;
+    while (input.seek_subimage(count, 0)) ++count;
+    input.seek_subimage(0, 0);
+    globalError();  // the failed seek past the last one leaves a message
+    codecError(input);
+    return count;
+}
+
+// EXIF orientation 5..8 turn the stored image a quarter: the upright size is the stored size swapped.
+bool swapsSides(int orientation) { return orientation >= 5 && orientation <= 8; }
+
+// Turns and mirrors the pixels as EXIF orientation 2..8 asks, so that they are upright.
+// Not ImageBufAlgo::reorient: OIIO 2.4 swaps 5 and 7 there (OpenImageIO issue #4661).
+void makeUpright(Image& image, int orientation) {
+    namespace iba = OIIO::ImageBufAlgo;
+    const bool swapped = swapsSides(orientation);
+    const OIIO::ImageSpec stored_spec(int(swapped ? image.height : image.width), int(swapped ? image.width : image.height),
+                                      int(image.channels), OIIO::TypeDesc::FLOAT);
+    const OIIO::ImageBuf stored(stored_spec, image.pixels.data());
+    OIIO::ImageBuf upright, half_turned;
+    bool ok = false;
+    switch (orientation) {
+        case 2: ok = iba::flop(upright, stored); break;        // mirrored left to right
+        case 3: ok = iba::rotate180(upright, stored); break;
+        case 4: ok = iba::flip(upright, stored); break;        // mirrored top to bottom
+        case 5: ok = iba::transpose(upright, stored); break;   // mirrored across the main diagonal
+        case 6: ok = iba::rotate90(upright, stored); break;    // clockwise
+        case 7: ok = iba::rotate180(half_turned, stored) && iba::transpose(upright, half_turned); break;
+        case 8: ok = iba::rotate270(upright, stored); break;
+    }
+    if (!ok) throw std::runtime_error("orienting the image: " + upright.geterror());
+    upright.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data());
+}
+
+bool allFinite(const std::vector<float>& pixels) {
+    for (float value : pixels)
+        if (!std::isfinite(value)) return false;
+    return true;
+}
+
+}  // namespace
+
 struct ImageReader::State {
-    std::string path;
+    std::string name;                      // for messages: the path, or "standard input"
+    std::unique_ptr<TempFile> stdin_copy;  // what is read when the path is "-"
     std::unique_ptr<OIIO::ImageInput> input;
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
+    int orientation = 1;
 };
 
 ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<State>()) {
     State& s = *state_;
-    s.path = path;
+    s.name = inputName(path);
+    std::string file = path;
+    if (path == kStandardStream) {
+        s.stdin_copy = copyStandardInput();
+        file = s.stdin_copy->path();
+    } else if (std::string problem = checkInputFile(path); !problem.empty()) {
+        throw UserError(s.name + ": " + problem);
+    }
     std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) throw UserError(path + ": no such file");
-    if (fs::is_directory(status)) throw UserError(path + ": is a folder, not an image");
-    // Devices and pipes can feed a reader forever (/dev/zero) or block it.
-    if (!fs::is_regular_file(status)) throw UserError(path + ": not a regular file");
-    if (::access(path.c_str(), R_OK) != 0) throw UserError(path + ": cannot open (" + std::strerror(errno) + ")");
+    if (fs::file_size(file, ec) == 0 && !ec) throw UserError(s.name + ": empty file (0 bytes)");
 
     // Ask readers for straight alpha as stored; premultiplying in float loses nothing.
+    // OIIO picks the reader by extension and, when that one fails, tries every reader, so a
+    // mis-named file or the extension-less copy of standard input is recognised by content.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     {
         QuietStderr quiet;
-        s.input = OIIO::ImageInput::open(path, &config);
+        s.input = OIIO::ImageInput::open(file, &config);
     }
-    if (!s.input) throw UserError(path + ": not a readable image (" + firstLine(globalError()) + ")");
+    if (!s.input) {
+        std::string reason = firstLine(globalError());
+        if (s.stdin_copy) reason = "not recognised as any image format";  // OIIO's text names the copy
+        throw UserError(s.name + ": not a readable image (" + reason + ")");
+    }
 
+    int subimages;
+    {
+        QuietStderr quiet;
+        subimages = countSubimages(*s.input);
+    }
+    if (subimages > 1)
+        notes_.push_back(s.name + ": has " + std::to_string(subimages) + " images; using the first");
     const OIIO::ImageSpec& spec = s.input->spec();
-    if (spec.deep) throw UserError(path + ": deep images are not supported");
-    if (spec.depth > 1) throw UserError(path + ": volume images are not supported");
-    if (spec.width < 1 || spec.height < 1) throw UserError(path + ": the image has no pixels");
-    if (std::string problem = checkChannelLayout(spec); !problem.empty()) throw UserError(path + ": " + problem);
+    if (spec.deep) throw UserError(s.name + ": deep images are not supported");
+    if (spec.depth > 1) throw UserError(s.name + ": volume images are not supported");
+    if (spec.width < 1 || spec.height < 1) throw UserError(s.name + ": the image has no pixels");
+    if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxInputPixels)
+        throw UserError(s.name + ": image is " + std::to_string(spec.width) + "×" + std::to_string(spec.height) +
+                        " pixels; ddtup reads at most " + std::to_string(kMaxInputPixels) + " pixels (16384×16384)");
+    if (std::string problem = checkChannelLayout(spec); !problem.empty()) throw UserError(s.name + ": " + problem);
+
+    const int orientation = spec.get_int_attribute("Orientation", 1);
+    if (orientation >= 2 && orientation <= 8) s.orientation = orientation;
+    const bool swapped = swapsSides(s.orientation);
 
     auto metadata = std::make_shared<ImageMetadata>();
     metadata->spec = spec;
     metadata->format_name = s.input->format_name();
     metadata->alpha_storage = inputAlphaStorage(spec, metadata->format_name);
+    // The metadata describes the upright image the reader returns.
+    metadata->spec.erase_attribute("Orientation");
+    if (swapped) {
+        const float x_resolution = spec.get_float_attribute("XResolution", 0.0f);
+        const float y_resolution = spec.get_float_attribute("YResolution", 0.0f);
+        if (x_resolution > 0.0f && y_resolution > 0.0f) {
+            metadata->spec.attribute("XResolution", y_resolution);
+            metadata->spec.attribute("YResolution", x_resolution);
+        }
+    }
     s.alpha_storage = metadata->alpha_storage;
 
-    header_.width = uint32_t(spec.width);
-    header_.height = uint32_t(spec.height);
+    header_.width = uint32_t(swapped ? spec.height : spec.width);
+    header_.height = uint32_t(swapped ? spec.width : spec.height);
     header_.channels = uint32_t(spec.nchannels);
     header_.sample_type = sampleTypeOf(spec.format);
     header_.metadata = metadata;
@@ -222,7 +360,7 @@ Image ImageReader::read() {
     try {
         image.pixels.resize(size_t(image.width) * image.height * image.channels);
     } catch (const std::bad_alloc&) {
-        throw UserError(s.path + ": too large to hold in memory (" + std::to_string(image.width) + "×" +
+        throw UserError(s.name + ": too large to hold in memory (" + std::to_string(image.width) + "×" +
                         std::to_string(image.height) + ")");
     }
     bool ok;
@@ -232,8 +370,13 @@ Image ImageReader::read() {
     }
     // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
     if (!ok || s.input->has_error())
-        throw UserError(s.path + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
+        throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
     s.input.reset();
+    s.stdin_copy.reset();
+    // Interpolating across a NaN or an infinity spreads it over the whole neighbourhood.
+    if ((image.sample_type == SampleType::Half || image.sample_type == SampleType::Float) && !allFinite(image.pixels))
+        throw UserError(s.name + ": contains NaN or infinite values");
+    if (s.orientation != 1) makeUpright(image, s.orientation);
     if (image.hasAlpha() && s.alpha_storage == AlphaStorage::Straight) premultiply(image.pixels, image.channels);
     return image;
 }
@@ -302,22 +445,46 @@ std::vector<std::string> channelNames(uint32_t channels) {
     }
 }
 
-// Creates the hidden sibling of `path` that the image is written to, so the final rename stays
-// within one file system. Throws with the system's reason when the folder is not writable.
-std::string createTempFile(const std::string& path) {
+// Creates the temporary file the image is written to: a hidden sibling of `path`, so the
+// final rename stays within one file system, or for standard output one in $TMPDIR. Throws
+// with the system's reason when the folder is not writable.
+std::unique_ptr<TempFile> createTempFile(const std::string& path) {
+    const bool to_stdout = path == kStandardStream;
     const fs::path target(path);
-    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    const std::string prefix = target.filename().string().insert(0, 1, '.') + ".ddtup-" + std::to_string(::getpid());
-    for (int attempt = 0;; ++attempt) {
-        const fs::path temp = folder / (prefix + "-" + std::to_string(attempt));
-        int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd >= 0) {
-            ::close(fd);
-            return temp.string();
-        }
-        if (errno != EEXIST || attempt == 99)
-            throw UserError(path + ": cannot write in folder " + folder.string() + " (" + std::strerror(errno) + ")");
+    const std::string folder = to_stdout ? tempFolder()
+                               : target.parent_path().empty() ? std::string(".")
+                                                              : target.parent_path().string();
+    const std::string prefix = to_stdout ? "ddtup-stdout" : "." + target.filename().string() + ".ddtup";
+    try {
+        return std::make_unique<TempFile>(folder, prefix);
+    } catch (const std::system_error& error) {
+        throw UserError(outputName(path) + ": cannot write in folder " + folder + " (" + std::strerror(error.code().value()) + ")");
     }
+}
+
+// Copies the finished temporary file to standard output.
+void copyToStandardOutput(const std::string& file) {
+    auto fail = [](int error) { return UserError(std::string("standard output: ") + std::strerror(error)); };
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw fail(errno);
+    std::vector<char> buffer(1 << 16);
+    int error = 0;
+    while (!error) {
+        const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            error = n < 0 ? errno : 0;
+            break;
+        }
+        for (ssize_t done = 0; done < n && !error;) {
+            const ssize_t w = ::write(STDOUT_FILENO, buffer.data() + done, size_t(n - done));
+            if (w < 0 && errno == EINTR) continue;
+            if (w <= 0) error = w < 0 ? errno : EIO;
+            else done += w;
+        }
+    }
+    ::close(fd);
+    if (error) throw fail(error);
 }
 
 // Refuses outputs that are not a plain replaceable file in an existing folder.
@@ -336,13 +503,20 @@ void checkOutputPath(const std::string& path) {
     throw UserError(path + ": folder " + folder.string() + " does not exist");
 }
 
+// What OIIO's create() is given: an extension it maps to a format, or the path.
+std::string formatRequest(const std::string& path, const std::string& format) {
+    return format.empty() ? path : "x." + format;
+}
+
 }  // namespace
 
-std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height) {
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(path);
+std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height, const std::string& format) {
+    if (path == kStandardStream && format.empty()) return "the output format must be given (such as png)";
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(formatRequest(path, format));
     if (!output) {
         globalError();  // clear it: the message names no reason the user can act on
-        return "no image format is known for this file extension";
+        return format.empty() ? "no image format is known for this file extension"
+                              : "no image format is known for the extension " + format;
     }
     if (width < 1 || height < 1) return "an image needs at least 1×1 pixels";
     uint32_t max_side = kMaxSide;
@@ -396,36 +570,58 @@ void convertRows(const OutputLayout& layout, const float* in, size_t count, floa
     }
 }
 
+// Whether the file system holding `path` has no space left, to name the cause of a failed
+// write by a codec that writes its file itself (TIFF) and reports it in its own words.
+bool noSpaceLeft(const std::string& path) {
+    struct statvfs status {};
+    return ::statvfs(path.c_str(), &status) == 0 && status.f_bavail == 0;
+}
+
+// The quality setting of the lossy formats, in OIIO's "compression" attribute.
+void setQuality(const std::string& format, int quality, OIIO::ImageSpec& spec) {
+    assert(quality >= 1 && quality <= 100);
+    if (format == "jpeg" || format == "webp") spec.attribute("compression", format + ":" + std::to_string(quality));
+}
+
 }  // namespace
 
 struct ImageWriter::State {
     std::string path;
-    std::string temp_path;
+    std::string name;  // for messages: the path, or "standard output"
+    std::unique_ptr<TempFile> temp;
+    std::unique_ptr<CheckedFile> file;  // null for the few codecs that cannot write through one
     std::unique_ptr<OIIO::ImageOutput> output;
     uint32_t width = 0, height = 0;
     OutputLayout layout;
     uint32_t next_row = 0;
-    bool committed = false;
     std::vector<float> scratch;
 
+    // The reason a write failed: the file's own error where it saw one, since codecs that
+    // ignore failed writes report something vaguer or nothing.
+    UserError failure() {
+        std::string codec_reason = firstLine(codecError(*output));  // read either way: it clears it
+        if (file && file->failure()) return UserError(name + ": " + std::strerror(file->failure()));
+        if (!file && noSpaceLeft(temp->path())) return UserError(name + ": " + std::strerror(ENOSPC));
+        return UserError(name + ": cannot write (" + codec_reason + ")");
+    }
+
     ~State() {
-        if (committed) return;
         if (output) closeQuietly(*output);
-        std::error_code ec;
-        if (!temp_path.empty()) fs::remove(temp_path, ec);
     }
 };
 
-ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like)
+ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like,
+                         const WriteOptions& options)
     : state_(std::make_unique<State>()) {
     State& s = *state_;
     s.path = path;
+    s.name = outputName(path);
     s.width = width;
     s.height = height;
-    checkOutputPath(path);
-    if (std::string problem = checkOutputFormat(path, width, height); !problem.empty())
-        throw UserError(path + ": " + problem);
-    s.output = OIIO::ImageOutput::create(path);
+    if (path != kStandardStream) checkOutputPath(path);
+    if (std::string problem = checkOutputFormat(path, width, height, options.format); !problem.empty())
+        throw UserError(s.name + ": " + problem);
+    s.output = OIIO::ImageOutput::create(formatRequest(path, options.format));
     const std::string format = s.output->format_name();
 
     OutputLayout& layout = s.layout;
@@ -437,29 +633,43 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         layout.flatten = true;
         layout.out_alpha = false;
         layout.out_channels = like.channels - 1;
-        notes_.push_back(path + ": " + format + " has no alpha channel; transparent areas are flattened onto white");
+        notes_.push_back(s.name + ": " + format + " has no alpha channel; transparent areas are flattened onto white");
     }
     layout.straight = layout.out_alpha && outputAlphaStorage(format, like) == AlphaStorage::Straight;
     // OIIO 2.4's DPX writer aborts the process on grey+alpha.
     if (format == "dpx" && layout.out_channels == 2) expandGreyToRgb(layout);
 
+    s.temp = createTempFile(path);
+    // OIIO 2.4's TIFF writer loses the main directory when it writes EXIF data through a
+    // proxy (measured, with OIIO's own IOFile too); libtiff reports failed writes itself.
+    const bool checked = s.output->supports("ioproxy") && format != "tiff";
     auto openAs = [&](OIIO::TypeDesc type) {
         OIIO::ImageSpec spec(int(width), int(height), int(layout.out_channels), type);
         if (like.metadata) copyMetadata(like, width, height, format, spec);
         spec.channelnames = channelNames(layout.out_channels);
         spec.alpha_channel = layout.out_alpha ? int(layout.out_channels) - 1 : -1;
         if (layout.straight) spec.attribute("oiio:UnassociatedAlpha", 1);
+        setQuality(format, options.quality, spec);
+        if (checked) {
+            // Each attempt starts an empty file: a refused one may have written a header.
+            s.file.reset();
+            try {
+                s.file = std::make_unique<CheckedFile>(s.temp->path());
+            } catch (const std::system_error& error) {
+                throw UserError(s.name + ": cannot write (" + std::strerror(error.code().value()) + ")");
+            }
+            s.output->set_ioproxy(s.file.get());
+        }
         QuietStderr quiet;
-        return s.output->open(s.temp_path, spec);
+        return s.output->open(s.temp->path(), spec);
     };
-    auto failure = [&] { return UserError(path + ": cannot write (" + firstLine(codecError(*s.output)) + ")"); };
 
-    s.temp_path = createTempFile(path);
-    const OIIO::TypeDesc wanted = typeDescOf(like.sample_type);
+    const SampleType wanted_type = options.depth.value_or(like.sample_type);
+    const OIIO::TypeDesc wanted = typeDescOf(wanted_type);
     if (!openAs(wanted)) {
         // Some formats hold no grey (WebP, GIF, IFF, HDR) or no grey+alpha (BMP): try RGB(A).
-        if (layout.out_channels > 2 || layout.grey_to_rgb) throw failure();
-        UserError first_failure = failure();
+        if (layout.out_channels > 2 || layout.grey_to_rgb) throw s.failure();
+        UserError first_failure = s.failure();
         expandGreyToRgb(layout);
         if (!openAs(wanted)) {
             codecError(*s.output);  // drop the second attempt's message, the first says more
@@ -467,20 +677,20 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         }
     }
     if (layout.grey_to_rgb)
-        notes_.push_back(path + ": " + format + " cannot hold " + (layout.out_alpha ? "grey+alpha" : "grey") +
+        notes_.push_back(s.name + ": " + format + " cannot hold " + (layout.out_alpha ? "grey+alpha" : "grey") +
                          " images; written as " + (layout.out_alpha ? "RGBA" : "RGB"));
     // Formats that cannot hold a type fall back to 8 bits in OIIO 2.4 (PNG turns float into
     // 8-bit), while 16 bits is nearer for anything wider: ask for it once.
-    if (sampleTypeOf(s.output->spec().format) == SampleType::UInt8 && like.sample_type != SampleType::UInt8) {
+    if (sampleTypeOf(s.output->spec().format) == SampleType::UInt8 && wanted_type != SampleType::UInt8) {
         closeQuietly(*s.output);
         if (!openAs(OIIO::TypeDesc::UINT16)) {
             codecError(*s.output);  // this format refuses 16 bits: back to its own choice
-            if (!openAs(wanted)) throw failure();
+            if (!openAs(wanted)) throw s.failure();
         }
     }
     const SampleType written = sampleTypeOf(s.output->spec().format);
-    if (written != like.sample_type)
-        notes_.push_back(path + ": " + format + " cannot hold " + sampleTypeName(like.sample_type) +
+    if (written != wanted_type)
+        notes_.push_back(s.name + ": " + format + " cannot hold " + sampleTypeName(wanted_type) +
                          " samples; written as " + sampleTypeName(written));
 }
 
@@ -501,7 +711,7 @@ void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows)
         QuietStderr quiet;
         ok = s.output->write_scanlines(int(y_begin), int(y_end), 0, OIIO::TypeDesc::FLOAT, data);
     }
-    if (!ok) throw UserError(s.path + ": cannot write (" + firstLine(codecError(*s.output)) + ")");
+    if (!ok || (s.file && s.file->failure())) throw s.failure();
     s.next_row = y_end;
 }
 
@@ -513,16 +723,21 @@ void ImageWriter::commit() {
         QuietStderr quiet;
         ok = s.output->close();
     }
-    if (!ok) throw UserError(s.path + ": cannot write (" + firstLine(codecError(*s.output)) + ")");
+    if (s.file) s.file->close();
+    if (!ok || (s.file && s.file->failure())) throw s.failure();
     s.output.reset();
+    if (s.path == kStandardStream) {
+        copyToStandardOutput(s.temp->path());
+        return;
+    }
     std::error_code ec;
-    fs::rename(s.temp_path, s.path, ec);
-    if (ec) throw UserError(s.path + ": cannot replace the file (" + ec.message() + ")");
-    s.committed = true;
+    fs::rename(s.temp->path(), s.path, ec);
+    if (ec) throw UserError(s.name + ": cannot replace the file (" + ec.message() + ")");
+    s.temp->release();
 }
 
-std::vector<std::string> writeImage(const std::string& path, const Image& image) {
-    ImageWriter writer(path, image.width, image.height, image);
+std::vector<std::string> writeImage(const std::string& path, const Image& image, const WriteOptions& options) {
+    ImageWriter writer(path, image.width, image.height, image, options);
     writer.writeRows(0, image.height, image.pixels.data());
     writer.commit();
     return writer.notes();

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,17 @@ namespace ddt {
 // The file's sample type; the output is written with the same one where the format allows.
 enum class SampleType { UInt8, UInt16, Half, Float };
 const char* sampleTypeName(SampleType type);
+// "8", "16", "half" or "float" (the --depth values); nullopt for anything else.
+std::optional<SampleType> parseSampleType(const std::string& text);
+
+// The largest input read: 16384 × 16384. Larger headers are refused before any allocation.
+constexpr uint64_t kMaxInputPixels = uint64_t(1) << 28;
+
+// The path that means standard input to ImageReader and standard output to ImageWriter.
+constexpr const char* kStandardStream = "-";
+// How messages name `path`: "standard input" / "standard output" for "-", else the path.
+std::string inputName(const std::string& path);
+std::string outputName(const std::string& path);
 
 // What the input file carried beyond pixels (metadata to copy to the output). Opaque here.
 struct ImageMetadata;
@@ -38,8 +50,11 @@ struct Image {
 
 // Opens an image file and reads its header; the pixels follow with read(). Splitting the two
 // lets a caller check sizes and open the output before the expensive decode.
-// Any format OpenImageIO reads; throws UserError("PATH: reason") for a missing file, a
-// non-image, or a channel layout other than the four above.
+// Any format OpenImageIO reads, recognised by content; "-" reads standard input (copied to a
+// temporary file first: codecs seek). Throws UserError("PATH: reason") for a missing, empty or
+// non-image file, a folder, a channel layout other than the four above, or more than
+// kMaxInputPixels pixels. The image is made upright by its EXIF orientation; of a file with
+// several images (pages, frames) the first is used, with a note.
 class ImageReader {
 public:
     explicit ImageReader(const std::string& path);
@@ -47,34 +62,49 @@ public:
     ImageReader(const ImageReader&) = delete;
     ImageReader& operator=(const ImageReader&) = delete;
 
-    // The file's size, layout, sample type and metadata; `pixels` is empty.
+    // The upright size, layout, sample type and metadata; `pixels` is empty.
     const Image& header() const { return header_; }
     // Decodes the pixels (premultiplied when there is alpha). Throws UserError for a truncated
-    // or corrupt file. Call once.
+    // or corrupt file, or NaN or infinite samples. Call once.
     Image read();
+    // One-line remarks for the user ("PATH: has 3 images; using the first").
+    const std::vector<std::string>& notes() const { return notes_; }
 
 private:
     struct State;
     std::unique_ptr<State> state_;
     Image header_;
+    std::vector<std::string> notes_;
 };
 
 // Reads a whole image through ImageReader.
 Image readImage(const std::string& path);
 
-// "" if the format named by `path`'s extension can hold a width × height image, else the
-// reason. Some codecs fail only after all the work, or end the process (libjpeg), so the
-// known limits are checked before anything is opened.
-std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height);
+// How an image is written; the defaults follow the input.
+struct WriteOptions {
+    int quality = 95;                 // 1..100, for the lossy formats (JPEG, WebP)
+    std::optional<SampleType> depth;  // the sample type to write; default: the input's
+    std::string format;               // a file extension ("png") that overrides the path's;
+                                      // required when writing standard output
+};
+
+// "" if the format named by `format` (an extension), else by `path`'s extension, can hold a
+// width × height image, else the reason. Some codecs fail only after all the work, or end
+// the process (libjpeg), so the known limits are checked before anything is opened.
+std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height,
+                              const std::string& format = "");
 
 // Writes an image in bands of rows, to a temporary file in the output's folder that is
-// renamed over the output only by commit(): a failed or abandoned write leaves nothing.
-// The format follows the output's extension; the sample type follows `like` where the
-// format can hold it, else the nearest it supports (reported in notes()). `like` may be a
-// header without pixels; its size scales the resolution (dots per inch) metadata.
+// renamed over the output only by commit(): a failed, interrupted or abandoned write leaves
+// nothing. "-" writes standard output (through a temporary file in $TMPDIR, as codecs seek).
+// The sample type follows options.depth, else `like`, where the format can hold it, else the
+// nearest it supports (reported in notes()). `like` may be a header without pixels; its size
+// scales the resolution (dots per inch) metadata. Every write is checked: a full disk is a
+// UserError("PATH: No space left on device").
 class ImageWriter {
 public:
-    ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like);
+    ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like,
+                const WriteOptions& options = {});
     ~ImageWriter();
     ImageWriter(const ImageWriter&) = delete;
     ImageWriter& operator=(const ImageWriter&) = delete;
@@ -91,6 +121,6 @@ private:
 };
 
 // Writes a whole image through ImageWriter; returns its notes.
-std::vector<std::string> writeImage(const std::string& path, const Image& image);
+std::vector<std::string> writeImage(const std::string& path, const Image& image, const WriteOptions& options = {});
 
 }  // namespace ddt

@@ -3,13 +3,24 @@
 #include <catch2/catch.hpp>
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <random>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "image.h"
+#include "png_bytes.h"
+#include "run_ddtup.h"
 #include "temp_folder.h"
+#include "temp_files.h"
 
 using ddt::Image;
 using ddt::SampleType;
@@ -95,6 +106,83 @@ void writeRaw(const std::string& path, OIIO::TypeDesc type, const std::vector<fl
     if (unassociated) spec.attribute("oiio:UnassociatedAlpha", 1);
     REQUIRE(output->open(path, spec));
     REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    REQUIRE(output->close());
+}
+
+void writeBytes(const std::string& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// Points file descriptor `fd` (standard input or output) at `path` for the test's duration.
+class RedirectedStream {
+public:
+    RedirectedStream(int fd, const std::string& path, int flags) : fd_(fd), saved_(::dup(fd)) {
+        const int file = ::open(path.c_str(), flags, 0644);
+        REQUIRE(file >= 0);
+        ::dup2(file, fd);
+        ::close(file);
+    }
+    ~RedirectedStream() {
+        ::dup2(saved_, fd_);
+        ::close(saved_);
+    }
+    RedirectedStream(const RedirectedStream&) = delete;
+    RedirectedStream& operator=(const RedirectedStream&) = delete;
+
+private:
+    int fd_;
+    int saved_;
+};
+
+// Sets an environment variable for the test's duration.
+class ScopedEnvironment {
+public:
+    ScopedEnvironment(const char* name, const std::string& value) : name_(name) {
+        if (const char* old = ::getenv(name)) old_ = old;
+        ::setenv(name, value.c_str(), 1);
+    }
+    ~ScopedEnvironment() {
+        if (old_) ::setenv(name_, old_->c_str(), 1);
+        else ::unsetenv(name_);
+    }
+    ScopedEnvironment(const ScopedEnvironment&) = delete;
+    ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+private:
+    const char* name_;
+    std::optional<std::string> old_;
+};
+
+// A 3×2 RGB image whose six pixels are told apart by their red value (in 8-bit steps):
+//   a b c       a = 10, b = 20, c = 30
+//   d e f       d = 40, e = 50, f = 60
+Image makeLetters() {
+    Image image;
+    image.width = 3;
+    image.height = 2;
+    image.channels = 3;
+    for (uint32_t i = 0; i < 6; ++i) image.pixels.insert(image.pixels.end(), {fromByte(10 * (i + 1)), 0.0f, 0.0f});
+    return image;
+}
+
+// The red values of an image, row by row, as multiples of 10/255 ("abc/def" for the above).
+std::string letters(const Image& image) {
+    std::string text;
+    for (uint32_t y = 0; y < image.height; ++y) {
+        if (y) text += '/';
+        for (uint32_t x = 0; x < image.width; ++x)
+            text += char('a' - 1 + int(std::lround(image.row(y)[x * image.channels] * 255.0f / 10.0f)));
+    }
+    return text;
+}
+
+void writeWithOrientation(const std::string& path, const Image& image, int orientation) {
+    auto output = OIIO::ImageOutput::create(path);
+    REQUIRE(output);
+    OIIO::ImageSpec spec(int(image.width), int(image.height), int(image.channels), OIIO::TypeDesc::UINT8);
+    spec.attribute("Orientation", orientation);
+    REQUIRE(output->open(path, spec));
+    REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()));
     REQUIRE(output->close());
 }
 
@@ -326,4 +414,231 @@ TEST_CASE("image: sizes a format cannot hold are refused before opening") {
     CHECK_THAT(ddt::checkOutputFormat("x.png", 10, 1000001), Catch::Contains("1000000"));
     CHECK(ddt::checkOutputFormat("x.tif", 70000, 70000) == "");
     CHECK_THAT(ddt::checkOutputFormat("x.unknown", 10, 10), Catch::Contains("extension"));
+}
+
+TEST_CASE("image: --depth values parse as sample types") {
+    CHECK(ddt::parseSampleType("8") == SampleType::UInt8);
+    CHECK(ddt::parseSampleType("16") == SampleType::UInt16);
+    CHECK(ddt::parseSampleType("half") == SampleType::Half);
+    CHECK(ddt::parseSampleType("float") == SampleType::Float);
+    for (const char* bad : {"", "32", "8bit", "Float", "double"}) CHECK(!ddt::parseSampleType(bad));
+}
+
+TEST_CASE("image: WriteOptions::depth overrides the input's sample type") {
+    TempFolder folder;
+    ddt::WriteOptions options;
+    options.depth = SampleType::UInt16;
+    CHECK(ddt::writeImage(folder / "deep.png", makeImage(4, 4, 3, SampleType::UInt8), options).empty());
+    CHECK(ddt::readImage(folder / "deep.png").sample_type == SampleType::UInt16);
+
+    options.depth = SampleType::Half;
+    CHECK(ddt::writeImage(folder / "half.exr", makeImage(4, 4, 3, SampleType::UInt16), options).empty());
+    CHECK(ddt::readImage(folder / "half.exr").sample_type == SampleType::Half);
+
+    // Still the nearest the format holds, with a note naming the requested type.
+    options.depth = SampleType::Float;
+    const std::vector<std::string> notes = ddt::writeImage(folder / "f.png", makeImage(4, 4, 3, SampleType::UInt8), options);
+    REQUIRE(notes.size() == 1);
+    CHECK_THAT(notes[0], Catch::Contains("float") && Catch::Contains("16-bit"));
+    CHECK(ddt::readImage(folder / "f.png").sample_type == SampleType::UInt16);
+}
+
+TEST_CASE("image: WriteOptions::quality sets the JPEG and WebP quality") {
+    TempFolder folder;
+    std::mt19937 rng(7);
+    Image noise = makeImage(64, 64, 3, SampleType::UInt8);
+    for (float& value : noise.pixels) value = fromByte(rng() % 256);
+    for (const char* extension : {"jpg", "webp"}) {
+        INFO(extension);
+        ddt::WriteOptions low, high;
+        low.quality = 10;
+        high.quality = 95;
+        const std::string low_path = folder / (std::string("low.") + extension);
+        const std::string high_path = folder / (std::string("high.") + extension);
+        ddt::writeImage(low_path, noise, low);
+        ddt::writeImage(high_path, noise, high);
+        CHECK(std::filesystem::file_size(low_path) * 2 < std::filesystem::file_size(high_path));
+    }
+}
+
+TEST_CASE("image: WriteOptions::format overrides the extension and is recognised by content") {
+    TempFolder folder;
+    ddt::WriteOptions options;
+    options.format = "png";
+    const Image image = makeImage(5, 3, 3, SampleType::UInt8);
+    ddt::writeImage(folder / "picture.data", image, options);
+    CHECK(readFile(folder / "picture.data").compare(1, 3, "PNG") == 0);
+    requireSameImage(ddt::readImage(folder / "picture.data"), image);
+
+    options.format = "nosuchformat";
+    CHECK_THROWS_WITH(ddt::writeImage(folder / "x.png", image, options),
+                      Catch::Contains("x.png") && Catch::Contains("nosuchformat"));
+}
+
+TEST_CASE("image: \"-\" reads standard input, recognised by content, and leaves no copy") {
+    TempFolder folder, temp;
+    ScopedEnvironment tmpdir("TMPDIR", temp.path().string());
+    const Image image = makeImage(5, 3, 4, SampleType::UInt16);
+    ddt::writeImage(folder / "in.png", image);
+    {
+        RedirectedStream input(STDIN_FILENO, folder / "in.png", O_RDONLY);
+        ddt::ImageReader reader(ddt::kStandardStream);
+        CHECK(reader.header().width == 5);
+        CHECK(temp.names().size() == 1);  // the copy, while the reader needs it
+        requireSameImage(reader.read(), image);
+    }
+    CHECK(temp.names().empty());
+
+    writeBytes(folder / "text", "not an image\n");
+    RedirectedStream input(STDIN_FILENO, folder / "text", O_RDONLY);
+    CHECK_THROWS_WITH(ddt::ImageReader(ddt::kStandardStream), "standard input: not a readable image (not recognised as any image format)");
+    CHECK(temp.names().empty());
+}
+
+TEST_CASE("image: \"-\" writes standard output in the given format") {
+    TempFolder folder, temp;
+    ScopedEnvironment tmpdir("TMPDIR", temp.path().string());
+    const Image image = makeImage(5, 3, 3, SampleType::UInt8);
+    ddt::WriteOptions options;
+    options.format = "png";
+    {
+        RedirectedStream output(STDOUT_FILENO, folder / "out", O_WRONLY | O_CREAT | O_TRUNC);
+        ddt::writeImage(ddt::kStandardStream, image, options);
+    }
+    requireSameImage(ddt::readImage(folder / "out"), image);
+    CHECK(temp.names().empty());
+    CHECK_THROWS_WITH(ddt::writeImage(ddt::kStandardStream, image), Catch::StartsWith("standard output: ") && Catch::Contains("format"));
+}
+
+// /dev/full fails every write with ENOSPC: a real full device, no test hook.
+TEST_CASE("image: a full standard output is one error, and no temporary file stays") {
+    TempFolder temp;
+    ScopedEnvironment tmpdir("TMPDIR", temp.path().string());
+    ddt::WriteOptions options;
+    options.format = "png";
+    RedirectedStream output(STDOUT_FILENO, "/dev/full", O_WRONLY);
+    CHECK_THROWS_WITH(ddt::writeImage(ddt::kStandardStream, makeImage(5, 3, 3, SampleType::UInt8), options),
+                      "standard output: No space left on device");
+    CHECK(temp.names().empty());
+}
+
+// Injected through the writer's test hook (DDTUP_TEST_WRITE_LIMIT); the executable tests run a
+// real full tmpfs where the machine allows it.
+TEST_CASE("image: a write that runs out of space is one error, and no file stays") {
+    TempFolder folder;
+    ScopedEnvironment limit("DDTUP_TEST_WRITE_LIMIT", "100");
+    const Image image = makeImage(64, 64, 3, SampleType::UInt8);
+    for (const char* name : {"full.png", "full.jpg", "full.exr", "full.bmp", "full.tga", "full.webp"}) {
+        INFO(name);
+        CHECK_THROWS_WITH(ddt::writeImage(folder / name, image), folder / name + ": No space left on device");
+        CHECK(folder.names().empty());
+    }
+}
+
+// EXIF orientation n says how the stored pixels turn to be upright (TIFF 6.0, tag 274):
+//   stored   2 (mirror)  3 (half turn)  6 (quarter turn clockwise)  8 (anticlockwise)
+//   a b c    c b a       f e d          d a                          c f
+//   d e f    f e d       c b a          e b                          b e
+//                                       f c                          a d
+TEST_CASE("image: EXIF orientation is applied, and the output is written upright") {
+    TempFolder folder;
+    const std::pair<int, const char*> cases[] = {
+        {1, "abc/def"}, {2, "cba/fed"}, {3, "fed/cba"}, {4, "def/abc"},
+        {5, "ad/be/cf"}, {6, "da/eb/fc"}, {7, "fc/eb/da"}, {8, "cf/be/ad"},
+    };
+    for (const auto& [orientation, expected] : cases) {
+        INFO("orientation " << orientation);
+        const std::string path = folder / (std::to_string(orientation) + ".tif");
+        writeWithOrientation(path, makeLetters(), orientation);
+        ddt::ImageReader reader(path);
+        const Image upright = reader.read();
+        CHECK(reader.header().width == upright.width);
+        CHECK(reader.header().height == upright.height);
+        CHECK(letters(upright) == expected);
+
+        for (const char* extension : {"tif", "jpg"}) {
+            const std::string output = folder / (std::string("upright.") + extension);
+            ddt::writeImage(output, upright);
+            CHECK(readRaw(output).spec.get_int_attribute("Orientation", 1) == 1);
+        }
+    }
+}
+
+TEST_CASE("image: of several images in a file the first is read, with a note") {
+    TempFolder folder;
+    const Image first = makeImage(6, 4, 3, SampleType::UInt8), second = makeImage(6, 4, 3, SampleType::UInt8);
+    for (const char* name : {"pages.tif", "frames.gif"}) {
+        INFO(name);
+        auto output = OIIO::ImageOutput::create(folder / name);
+        REQUIRE(output->supports("multiimage"));
+        std::vector<OIIO::ImageSpec> specs(3, OIIO::ImageSpec(6, 4, 3, OIIO::TypeDesc::UINT8));
+        REQUIRE(output->open(folder / name, 3, specs.data()));
+        for (int i = 0; i < 3; ++i) {
+            if (i) REQUIRE(output->open(folder / name, specs[size_t(i)], OIIO::ImageOutput::AppendSubimage));
+            std::vector<float> pixels(6 * 4 * 3, float(i) / 2.0f);
+            if (i == 0) pixels = first.pixels;
+            REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+        }
+        REQUIRE(output->close());
+
+        ddt::ImageReader reader(folder / name);
+        REQUIRE(reader.notes().size() == 1);
+        CHECK(reader.notes()[0] == folder / name + ": has 3 images; using the first");
+        const Image image = reader.read();
+        CHECK(image.width == 6);
+        if (std::string(name) == "pages.tif") CHECK(image.pixels == first.pixels);
+    }
+    ddt::writeImage(folder / "single.tif", first);
+    CHECK(ddt::ImageReader(folder / "single.tif").notes().empty());
+}
+
+TEST_CASE("image: a header over 2^28 pixels is refused before anything is allocated") {
+    TempFolder folder;
+    writeBytes(folder / "huge.png", ddt::test::pngClaiming(100000, 100000));
+    CHECK_THROWS_WITH(ddt::ImageReader(folder / "huge.png"),
+                      folder / "huge.png" + ": image is 100000×100000 pixels; ddtup reads at most 268435456 pixels (16384×16384)");
+    writeBytes(folder / "just_over.png", ddt::test::pngClaiming(16385, 16384));
+    CHECK_THROWS_WITH(ddt::ImageReader(folder / "just_over.png"), Catch::Contains("16385×16384"));
+    // The limit itself is allowed: the header is accepted (the pixels are not there to read).
+    writeBytes(folder / "limit.png", ddt::test::pngClaiming(16384, 16384));
+    CHECK(ddt::ImageReader(folder / "limit.png").header().width == 16384);
+}
+
+TEST_CASE("image: empty files, folders and 0×0 headers are refused with the reason") {
+    TempFolder folder;
+    writeBytes(folder / "empty.png", "");
+    CHECK_THROWS_WITH(ddt::ImageReader(folder / "empty.png"), folder / "empty.png" + ": empty file (0 bytes)");
+    std::filesystem::create_directory(folder / "dir.png");
+    CHECK_THROWS_WITH(ddt::ImageReader(folder / "dir.png"), folder / "dir.png" + ": is a folder, not an image file");
+    writeBytes(folder / "zero.png", ddt::test::pngClaiming(0, 0));
+    CHECK_THROWS_WITH(ddt::ImageReader(folder / "zero.png"), Catch::StartsWith(folder / "zero.png" + ": "));
+}
+
+TEST_CASE("image: NaN or infinite samples are refused after decoding") {
+    TempFolder folder;
+    for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                      -std::numeric_limits<float>::infinity()}) {
+        Image image = makeImage(4, 4, 3, SampleType::Float);
+        image.pixels[7] = bad;
+        ddt::writeImage(folder / "bad.exr", image);
+        ddt::ImageReader reader(folder / "bad.exr");
+        CHECK_THROWS_WITH(reader.read(), folder / "bad.exr" + ": contains NaN or infinite values");
+    }
+}
+
+TEST_CASE("image: a temporary file is removed unless released") {
+    TempFolder folder;
+    std::string kept;
+    {
+        ddt::TempFile removed(folder.path().string(), "t");
+        CHECK(std::filesystem::exists(removed.path()));
+    }
+    CHECK(folder.names().empty());
+    {
+        ddt::TempFile renamed(folder.path().string(), "t");
+        std::filesystem::rename(renamed.path(), folder / "final");
+        renamed.release();
+    }
+    CHECK(folder.names() == std::set<std::string>{"final"});
+    CHECK_THROWS_AS(ddt::TempFile(folder / "missing", "t"), std::system_error);
 }
