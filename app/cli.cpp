@@ -2,7 +2,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include "exit_codes.h"
@@ -40,7 +43,7 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (!settings.variant.empty() && !parseFlipRule(settings.variant))
         return "--variant " + settings.variant + ": unknown flip rule (see --help)";
     if (!settings.variant.empty() && settings.backend != "vulkan") return "--variant needs --backend vulkan";
-    if (!settings.depth.empty() && settings.depth != "8" && settings.depth != "16" && settings.depth != "half" && settings.depth != "float")  // MERGE: parseSampleType
+    if (!settings.depth.empty() && !parseSampleType(settings.depth))
         return "--depth " + settings.depth + ": use 8, 16, half or float";
     if (!settings.format.empty() && settings.format.find_first_of("./") != std::string::npos)
         return "--format " + settings.format + ": give an extension such as png, jpg, tif or exr";
@@ -62,6 +65,13 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     }
     if (settings.recursive && settings.input_folder.empty()) return "-r needs -i DIR";
     if (settings.stats && settings.output == "-") return "--stats prints to standard output; it can't be combined with output -";
+    // A terminal holds no image: reading it would wait for ever, writing it would spew bytes.
+    if (!settings.inputs.empty() && settings.inputs.front() == "-" && ::isatty(STDIN_FILENO))
+        return "standard input is a terminal; pipe an image into `ddtup - OUT`";
+    if (settings.output == "-" && ::isatty(STDOUT_FILENO))
+        return "standard output is a terminal; redirect it to a file or a pipe";
+    if (settings.output == "-" && settings.format.empty() && !std::filesystem::path(settings.inputs.front()).has_extension())
+        return "writing to standard output needs -f FORMAT (the input has no extension to follow)";
     return "";
 }
 

@@ -20,9 +20,9 @@ bool runStage(ImageJob& job, Reporter& reporter, Stage stage) {
     } catch (const UserError& error) {
         reporter.failed(input, error.what());
     } catch (const std::bad_alloc&) {
-        reporter.failed(input, input + ": out of memory");
+        reporter.failed(input, inputName(input) + ": out of memory");
     } catch (const std::exception& error) {
-        reporter.failed(input, input + ": internal error: " + error.what());
+        reporter.failed(input, inputName(input) + ": internal error: " + error.what());
     }
     return false;
 }

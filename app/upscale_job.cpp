@@ -20,13 +20,13 @@ const size_t kBandFloats = size_t(16) << 20;
 
 void checkMagnifiable(const std::string& input, const Image& header) {
     if (header.width < 2 || header.height < 2)
-        throw UserError(input + ": DDT needs at least 2×2 pixels (got " + std::to_string(header.width) + "×" +
+        throw UserError(inputName(input) + ": DDT needs at least 2×2 pixels (got " + std::to_string(header.width) + "×" +
                         std::to_string(header.height) + ")");
 }
 
 void checkOutputLimit(const std::string& output, OutputSize out) {
     if (uint64_t(out.width) * out.height > kMaxOutputPixels)
-        throw UserError(output + ": the output would be " + std::to_string(out.width) + "×" + std::to_string(out.height) +
+        throw UserError(outputName(output) + ": the output would be " + std::to_string(out.width) + "×" + std::to_string(out.height) +
                         " pixels; ddtup writes at most " + std::to_string(kMaxOutputPixels) + " pixels (4 gigapixels)");
 }
 
@@ -51,6 +51,17 @@ OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_
     return scaledOutputSize(width, height, settings.scale);
 }
 
+WriteOptions ImageJob::writeOptions() const {
+    WriteOptions options;
+    options.quality = settings_.quality;
+    if (!settings_.depth.empty()) options.depth = parseSampleType(settings_.depth);
+    options.format = settings_.format;
+    // Standard output has no extension to go by: follow the input's (the CLI made sure of one).
+    if (task_.output == kStandardStream && options.format.empty())
+        options.format = fs::path(task_.input).extension().string().substr(1);
+    return options;
+}
+
 void ImageJob::read() {
     reporter_.stage(index_, task_.input, Stage::Read);
     const auto start = std::chrono::steady_clock::now();
@@ -60,7 +71,7 @@ void ImageJob::read() {
     report_.out = requestedOutputSize(settings_, header.width, header.height);
     checkOutputLimit(task_.output, report_.out);
     if (std::string problem = checkOutputSize(header.width, header.height, report_.out); !problem.empty())
-        throw UserError(task_.input + ": " + problem);
+        throw UserError(inputName(task_.input) + ": " + problem);
     // A batch writes into sub-folders that mirror the input folder's.
     if (task_.output != "-") {
         std::error_code error;
@@ -70,8 +81,9 @@ void ImageJob::read() {
     }
     // Open the output before decoding the input: an unwritable path, or a size the format
     // cannot hold, fails before any of the long parts.
-    state_->writer.emplace(task_.output, report_.out.width, report_.out.height, header);
+    state_->writer.emplace(task_.output, report_.out.width, report_.out.height, header, writeOptions());
     state_->image = reader.read();
+    for (const std::string& note : reader.notes()) reporter_.notice(task_.input, note);
     report_.times.init_s = secondsSince(start);
 }
 
@@ -80,7 +92,7 @@ void ImageJob::process(Backend& backend) {
     try {
         backend.prepare(state_->image);
     } catch (const UserError& error) {
-        throw UserError(task_.input + ": " + error.what());
+        throw UserError(inputName(task_.input) + ": " + error.what());
     }
     report_.times.init_s += secondsSince(start);
 

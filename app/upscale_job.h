@@ -47,6 +47,8 @@ public:
     const JobReport& report() const { return report_; }
 
 private:
+    WriteOptions writeOptions() const;
+
     struct State;
     size_t index_;
     ImageTask task_;

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <new>
 #include <set>
 #include <system_error>
@@ -55,10 +56,13 @@ std::string codecError(const Codec& codec) {
 // OIIO 2.4's PNG plugin leaves libpng's default handlers installed, and they print
 // "libpng error: …" (and warnings) to stderr on top of the error OIIO returns to us; newer OIIO
 // installs its own handlers, 2.4 has no hook for them. The user must get one line, so stderr
-// points at /dev/null for the duration of each call into a codec, and only then.
+// points at /dev/null for the duration of each call into a codec, and only then. Batches read
+// and write on two threads at once: the first to enter redirects, the last to leave restores.
 class QuietStderr {
 public:
     QuietStderr() {
+        std::lock_guard lock(mutex_);
+        if (users_++ > 0) return;
         std::fflush(stderr);
         int null_fd = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
         if (null_fd < 0) return;
@@ -67,16 +71,20 @@ public:
         ::close(null_fd);
     }
     ~QuietStderr() {
-        if (saved_fd_ < 0) return;
+        std::lock_guard lock(mutex_);
+        if (--users_ > 0 || saved_fd_ < 0) return;
         std::fflush(stderr);
         ::dup2(saved_fd_, STDERR_FILENO);
         ::close(saved_fd_);
+        saved_fd_ = -1;
     }
     QuietStderr(const QuietStderr&) = delete;
     QuietStderr& operator=(const QuietStderr&) = delete;
 
 private:
-    int saved_fd_ = -1;
+    static inline std::mutex mutex_;
+    static inline int users_ = 0;
+    static inline int saved_fd_ = -1;
 };
 
 SampleType sampleTypeOf(OIIO::TypeDesc format) {
