@@ -224,7 +224,6 @@ std::unique_ptr<VulkanContext> createContext(const ContextOptions& options) {
     c.timestamps = families[c.queue_family].timestampValidBits > 0 && c.properties.limits.timestampPeriod > 0.0f;
 
     c.memory_budget = hasDeviceExtension(c.physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
-    if (const char* limit = std::getenv("DDTUP_TEST_DEVICE_MEMORY")) c.test_allocation_limit = std::strtoull(limit, nullptr, 10);
 
     // Enable exactly what the kernels use.
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};

@@ -44,9 +44,6 @@ struct VulkanContext {
     DeviceInfo info;
     bool timestamps = false;  // the queue supports timestamp queries
     bool memory_budget = false;  // VK_EXT_memory_budget is enabled
-    // Test hook (DDTUP_TEST_DEVICE_MEMORY=bytes): allocations larger than this fail as if the
-    // device were out of memory, which CI cannot provoke for real.
-    uint64_t test_allocation_limit = UINT64_MAX;
     std::atomic<uint32_t> validation_messages{0};
 
     VulkanContext() = default;
