@@ -61,7 +61,7 @@ Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placeme
                           : vkAllocateMemory(context.device, &allocate, nullptr, &buffer.memory);
     if (result != VK_SUCCESS) {
         vkDestroyBuffer(context.device, buffer.buffer, nullptr);
-        VK_CHECK(result);
+        checkVulkan(result, "vkAllocateMemory");
     }
     VK_CHECK(vkBindBufferMemory(context.device, buffer.buffer, buffer.memory, 0));
     const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;

@@ -237,3 +237,109 @@ TEST_CASE("tiling: tiled and untiled upscales agree within 1/255 on 99.9 % of sa
 }
 
 }  // namespace
+
+namespace {
+
+// The injected limit fails the untiled job's edge arrays (2.9 MB each); halving the tile side
+// (300 → 150) gets crops whose buffers fit. The result is the untiled image.
+TEST_CASE("tiling: an injected device out-of-memory error retries with smaller tiles, never a partial image") {
+    const Image image = photoCrop();
+    const OutputSize out = scaledOutputSize(image.width, image.height, 2.0);
+    std::unique_ptr<Backend> backend = makeBackendNamed("vulkan");
+    const std::vector<float> untiled = upscale(*backend, image, out, {});
+    uint32_t tiles = 0;
+    std::vector<float> retried;
+    {
+        // Test hook: allocations above 1 MiB fail as VK_ERROR_OUT_OF_DEVICE_MEMORY.
+        ScopedEnv limit("DDTUP_TEST_DEVICE_MEMORY", std::to_string(1 << 20));
+        retried = upscale(*backend, image, out, {}, &tiles);
+    }
+    CHECK(tiles == 4);  // tiles of 150: 2 columns, 2 strips
+    const Agreement a = compare(retried, untiled);
+    std::printf("tiling: out-of-memory retry, %u tiles: max difference %.4f, %.4f %% within 1/255\n", tiles,
+                a.max_difference, 100.0 * a.within_one_level);
+    CHECK(a.within_one_level >= 0.999);
+    CHECK(test::samePixels(retried, upscale(*backend, image, out, {150})));
+    CHECK(validationMessages(*backend) == 0);
+}
+
+// A narrow, tall input streams strip by strip: the first strip's crop fits the limit, the
+// second's (overlap on both sides) does not. The retry must not resend the first strip's rows.
+TEST_CASE("tiling: a retry after rows were sent resends none of them") {
+    const Image image = edgeImage(60, 300);
+    const OutputSize out = scaledOutputSize(image.width, image.height, 1.5);
+    const uint64_t first_strip = gridEdgeCount(60, 100 + kDefaultOverlap) * 16;
+    const uint64_t second_strip = gridEdgeCount(60, 100 + 2 * kDefaultOverlap) * 16;
+    std::unique_ptr<Backend> backend = makeBackendNamed("vulkan");
+    const std::vector<float> untiled = upscale(*backend, image, out, {});
+    uint32_t tiles = 0;
+    std::vector<float> retried;
+    {
+        ScopedEnv limit("DDTUP_TEST_DEVICE_MEMORY", std::to_string((first_strip + second_strip) / 2));
+        retried = upscale(*backend, image, out, {100}, &tiles);  // checks each row arrives once, in order
+    }
+    CHECK(tiles == 5);  // one strip of 100 rows, then four of 50
+    CHECK(compare(retried, untiled).within_one_level >= 0.999);
+    CHECK(validationMessages(*backend) == 0);
+}
+
+TEST_CASE("tiling: when even the smallest tiles fail, one error, and the backend stays usable") {
+    const Image image = edgeImage(100, 80);
+    const OutputSize out = scaledOutputSize(image.width, image.height, 2.0);
+    std::unique_ptr<Backend> backend = makeBackendNamed("vulkan");
+    {
+        ScopedEnv limit("DDTUP_TEST_DEVICE_MEMORY", "1000");
+        CHECK_THROWS_WITH(upscale(*backend, image, out, {}),
+                          Catch::StartsWith("not enough device memory even for 64×64 tiles (Vulkan: vkAllocateMemory "
+                                            "failed with VK_ERROR_OUT_OF_DEVICE_MEMORY"));
+    }
+    const std::vector<float> after = upscale(*backend, image, out, {});
+    const std::vector<float> fresh = upscale(*makeBackendNamed("vulkan"), image, out, {});
+    CHECK(test::samePixels(after, fresh));
+    CHECK(validationMessages(*backend) == 0);
+}
+
+// lavapipe's 2 GiB heap holds about 2900² pixels of DDT's arrays: a 4096² input (4.1 GB
+// untiled) must be tiled automatically. Checks rows arrive once each, in order, finite and
+// within the input's range (no black or missing tiles: the disc's colour is everywhere it should be).
+TEST_CASE("tiling: a 4096x4096 input upscales on lavapipe in automatic tiles") {
+    const Image image = edgeImage(4096, 4096);
+    const OutputSize out = scaledOutputSize(image.width, image.height, 1.5);
+    VulkanOptions options;
+    options.validation = true;
+    VulkanBackend backend(options);
+    const uint32_t side = automaticTileSide(backend, image.width, image.height, image.channels, kDefaultOverlap);
+    CHECK(side > 0);
+    const size_t row_floats = size_t(out.width) * image.channels;
+    uint32_t next_row = 0, tiles = 0;
+    double sum = 0.0;
+    float low = 1.0f, high = 0.0f;
+    const auto start = std::chrono::steady_clock::now();
+    upscaleRows(
+        backend, image, out, {},
+        [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+            REQUIRE(y_begin == next_row);
+            next_row = y_end;
+            for (size_t i = 0; i < (y_end - y_begin) * row_floats; ++i) {
+                REQUIRE(std::isfinite(rows[i]));
+                low = std::min(low, rows[i]);
+                high = std::max(high, rows[i]);
+                sum += rows[i];
+            }
+        },
+        [&](uint32_t, uint32_t n) { tiles = n; });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("tiling: vulkan 4096x4096 -> %ux%u: %u tiles of %u, %.1f s\n", out.width, out.height, tiles, side,
+                seconds);
+    CHECK(next_row == out.height);
+    CHECK(tiles > 1);
+    CHECK(low >= 0.0f);
+    CHECK(high <= 1.0f);
+    // The mean of the input, up to the interpolation at edges.
+    double input_sum = 0.0;
+    for (float v : image.pixels) input_sum += v;
+    CHECK(sum / (double(row_floats) * out.height) == Approx(input_sum / image.pixels.size()).epsilon(0.01));
+    CHECK(backend.validationMessages() == 0);
+}
+
+}  // namespace
