@@ -240,26 +240,31 @@ TEST_CASE("tiling: tiled and untiled upscales agree within 1/255 on 99.9 % of sa
 
 namespace {
 
-// The injected limit fails the untiled job's edge arrays (2.9 MB each); halving the tile side
+// The injected limits fail the untiled job in prepare (its 2.9 MB edge arrays) or, past
+// prepare and optimize, in render (its 3.8 MB band of rendered rows); halving the tile side
 // (300 → 150) gets crops whose buffers fit. The result is the untiled image.
 TEST_CASE("tiling: an injected device out-of-memory error retries with smaller tiles, never a partial image") {
     const Image image = photoCrop();
     const OutputSize out = scaledOutputSize(image.width, image.height, 2.0);
     std::unique_ptr<Backend> backend = makeBackendNamed("vulkan");
     const std::vector<float> untiled = upscale(*backend, image, out, {});
-    uint32_t tiles = 0;
-    std::vector<float> retried;
-    {
-        // Test hook: allocations above 1 MiB fail as VK_ERROR_OUT_OF_DEVICE_MEMORY.
-        ScopedEnv limit("DDTUP_TEST_DEVICE_MEMORY", std::to_string(1 << 20));
-        retried = upscale(*backend, image, out, {}, &tiles);
+    const std::vector<float> tiled_150 = upscale(*backend, image, out, {150});
+    for (const char* limit_bytes : {"1048576", "3500000"}) {
+        CAPTURE(limit_bytes);
+        uint32_t tiles = 0;
+        std::vector<float> retried;
+        {
+            // Test hook: allocations above the limit fail as VK_ERROR_OUT_OF_DEVICE_MEMORY.
+            ScopedEnv limit("DDTUP_TEST_DEVICE_MEMORY", limit_bytes);
+            retried = upscale(*backend, image, out, {}, &tiles);
+        }
+        CHECK(tiles == 4);  // tiles of 150: 2 columns, 2 strips
+        const Agreement a = compare(retried, untiled);
+        std::printf("tiling: out-of-memory retry (limit %s bytes), %u tiles: max difference %.4f, %.4f %% within 1/255\n",
+                    limit_bytes, tiles, a.max_difference, 100.0 * a.within_one_level);
+        CHECK(a.within_one_level >= 0.999);
+        CHECK(test::samePixels(retried, tiled_150));
     }
-    CHECK(tiles == 4);  // tiles of 150: 2 columns, 2 strips
-    const Agreement a = compare(retried, untiled);
-    std::printf("tiling: out-of-memory retry, %u tiles: max difference %.4f, %.4f %% within 1/255\n", tiles,
-                a.max_difference, 100.0 * a.within_one_level);
-    CHECK(a.within_one_level >= 0.999);
-    CHECK(test::samePixels(retried, upscale(*backend, image, out, {150})));
     CHECK(validationMessages(*backend) == 0);
 }
 
