@@ -1,7 +1,6 @@
 #include "tiled_upscale.h"
 
 #include <algorithm>
-#include <cassert>
 #include <new>
 #include <string>
 #include <vector>
@@ -67,9 +66,11 @@ void addStats(OptimizeStats& total, const OptimizeStats& tile) {
     total.capped = total.capped || tile.capped;
 }
 
+// Whether a job fits with 1/8 of the available memory to spare: drivers round allocations
+// up and keep their own, and an estimate is only an estimate.
 bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels) {
-    const uint64_t needed = backend.memoryNeeded(width, height, channels);
-    return needed != UINT64_MAX && needed <= backend.memoryAvailable();
+    const uint64_t needed = backend.memoryNeeded(width, height, channels), available = backend.memoryAvailable();
+    return needed != UINT64_MAX && needed <= available - available / 8;
 }
 
 // Input rows per strip: the tile side, or fewer where a strip of several tiles would not fit
@@ -171,10 +172,11 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
 
 OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,
                           const Sink& sink, const std::function<void(uint32_t tile, uint32_t tiles)>& on_tile) {
-    assert(options.overlap >= 1);  // a core's last samples must lie inside its crop's hull
+    // A core's last samples must lie inside its crop's hull, or they would stay unwritten.
+    const uint32_t overlap = std::max(1u, options.overlap);
     const uint32_t largest_side = std::max(image.width, image.height);
-    uint32_t side = options.tile ? options.tile
-                                 : automaticTileSide(backend, image.width, image.height, image.channels, options.overlap);
+    uint32_t side =
+        options.tile ? options.tile : automaticTileSide(backend, image.width, image.height, image.channels, overlap);
     if (side == 0 || side > largest_side) side = largest_side;
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
@@ -184,7 +186,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
     for (uint32_t y0 = 0; y0 < image.height;) {
         const uint32_t strip_side = stripSide(image, out, side);
         const uint32_t y1 = stripEnd(image.height, y0, strip_side);
-        const std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, options.overlap);
+        const std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap);
         std::string out_of_memory;
         try {
             addStats(stats, upscaleStrip(job, tiles, tiles_done,

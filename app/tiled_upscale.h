@@ -24,12 +24,12 @@ const uint32_t kMinTileSide = 64;
 
 struct TileOptions {
     uint32_t tile = 0;  // tile side in input pixels; 0 = automatic: tiles only when the input does not fit
-    uint32_t overlap = kDefaultOverlap;  // at least 1
+    uint32_t overlap = kDefaultOverlap;  // 0 counts as 1
 };
 
 // The tile side automatic tiling picks for a width × height input with `channels`
 // channels: 0 when it fits the backend untiled, else the largest multiple of 256 (or 128,
-// then 64) whose crops fit.
+// then 64) whose crops fit; either with 1/8 of the backend's memory to spare.
 uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
                            uint32_t overlap);
 

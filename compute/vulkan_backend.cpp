@@ -146,10 +146,11 @@ uint32_t VulkanBackend::validationMessages() const { return state_->context->val
 
 // Device memory of a width × height job, and "" or the per-buffer limit it breaks. What
 // bites on lavapipe (2 GiB heap, 2 GiB allocations, 2^27 texel-buffer elements; no
-// VK_EXT_memory_budget): a 4096² input needs ~4.1 GB in all (3 edges and ~240 bytes per
-// pixel), beyond the heap, though each array fits; an 8192² input has 201 M edges, beyond
-// the texel-buffer elements (and its 3.2 GB edge arrays beyond the largest allocation).
-// maxStorageBufferRange (128 MiB) does not bite: the big arrays are texel buffers.
+// VK_EXT_memory_budget): a 4096² input needs 3.7 GB in all (3 edges and 216 bytes per pixel
+// with the default rule, 240 with the round-based ones), beyond the heap, though each array
+// fits; an 8192² input has 201 M edges, beyond the texel-buffer elements (and its 3.2 GB
+// edge arrays beyond the largest allocation). maxStorageBufferRange (128 MiB) does not
+// bite: the big arrays are texel buffers. Automatic tiling picks 2816-pixel tiles there.
 VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h) const {
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
