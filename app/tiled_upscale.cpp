@@ -100,6 +100,7 @@ struct Job {
 // Optimises one tile's crop and renders `window` of it, in bands, to `deliver(y_begin, y_end, rows)`.
 template <typename Deliver>
 OptimizeStats upscaleTile(Job& job, const Tile& tile, Deliver deliver) {
+    if (tile.output.width() == 0 || tile.output.height() == 0) return {};  // a core between two samples
     const bool whole = tile.crop.width() == job.image.width && tile.crop.height() == job.image.height;
     Image crop;
     if (!whole) crop = cropOf(job.image, tile.crop);
@@ -114,7 +115,6 @@ OptimizeStats upscaleTile(Job& job, const Tile& tile, Deliver deliver) {
     window.crop_y = tile.crop.y0;
     window.x_begin = tile.output.x0;
     window.x_end = tile.output.x1;
-    if (tile.output.width() == 0) return stats;
     const size_t row_floats = size_t(tile.output.width()) * job.image.channels;
     const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
     std::vector<float> band(std::min<size_t>(band_rows, tile.output.height()) * row_floats);

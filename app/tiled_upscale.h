@@ -36,8 +36,8 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
 // Upscales `image` to `out` and hands the output rows to `sink` in order, each row exactly
 // once: sink(y_begin, y_end, rows) with out.width × channels floats per row. `on_tile(k, n)`
 // is called before tile k of n is optimised (n may grow after a retry with smaller tiles).
-// Returns the optimisation statistics summed over the tiles. Throws UserError when even
-// kMinTileSide tiles do not fit the device.
+// Returns the optimisation statistics summed over the tiles (overlaps counted in each tile).
+// Throws UserError when even kMinTileSide tiles do not fit the device.
 OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,
                           const std::function<void(uint32_t y_begin, uint32_t y_end, const float* rows)>& sink,
                           const std::function<void(uint32_t tile, uint32_t tiles)>& on_tile = {});

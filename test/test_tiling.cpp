@@ -260,7 +260,8 @@ TEST_CASE("tiling: an injected device out-of-memory error retries with smaller t
         }
         CHECK(tiles == 4);  // tiles of 150: 2 columns, 2 strips
         const Agreement a = compare(retried, untiled);
-        std::printf("tiling: out-of-memory retry (limit %s bytes), %u tiles: max difference %.4f, %.4f %% within 1/255\n",
+        std::printf("tiling: out-of-memory retry (limit %s bytes), %u tiles: max difference %.4f, "
+                    "%.4f %% within 1/255\n",
                     limit_bytes, tiles, a.max_difference, 100.0 * a.within_one_level);
         CHECK(a.within_one_level >= 0.999);
         CHECK(test::samePixels(retried, tiled_150));
