@@ -1,6 +1,7 @@
 // A DDT backend runs the three stages the paper times: prepare (build the initial mesh,
 // upload), optimize, render. The serial CPU reference and the Vulkan backend implement it
-// with the same step names.
+// with the same step names. Inputs too large for a backend's memory are split into tiles by
+// app/tiled_upscale.h, which asks the backend what an input needs and what it has.
 #pragma once
 
 #include <memory>
@@ -11,8 +12,17 @@
 #include "lawson.h"
 #include "mesh.h"
 #include "render.h"
+#include "user_error.h"
 
 namespace ddt {
+
+// The device (or host) ran out of memory in prepare, optimize or render. The backend stays
+// usable: the next prepare starts afresh. A UserError, so that where nobody retries with
+// smaller tiles it still reaches the user as one line.
+class DeviceOutOfMemory : public UserError {
+public:
+    using UserError::UserError;
+};
 
 class Backend {
 public:
@@ -20,10 +30,25 @@ public:
     // Builds the initial triangulation of `image` (which must outlive the backend's use).
     virtual void prepare(const Image& image) = 0;
     virtual OptimizeStats optimize() = 0;
-    // Renders output rows [y_begin, y_end) at `out` (out.width × channels floats per row).
-    virtual void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) = 0;
+    // Renders `window` (see core/render.h) of the prepared image, which is the crop at
+    // (window.crop_x, window.crop_y) of the whole input: window.width() × channels floats per row.
+    virtual void renderWindow(const RenderWindow& window, float* rows) = 0;
     // The current mesh (for tests and checks).
     virtual Mesh mesh() = 0;
+
+    // Bytes prepare, optimize and render need for a width × height input (UINT64_MAX when
+    // one of its buffers exceeds a per-buffer limit of the device), and the bytes available.
+    virtual uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const = 0;
+    virtual uint64_t memoryAvailable() const = 0;
+
+    // The image given to prepare.
+    virtual const Image& preparedImage() const = 0;
+
+    // Renders output rows [y_begin, y_end) of an untiled input (out.width × channels floats per row).
+    void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
+        const Image& image = preparedImage();
+        renderWindow(wholeRows(image.width, image.height, out, y_begin, y_end), rows);
+    }
 };
 
 std::unique_ptr<Backend> makeCpuBackend();

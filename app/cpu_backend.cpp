@@ -1,4 +1,6 @@
 // The serial reference backend: core's mesh, Lawson sweeps and rasteriser on the host.
+#include <unistd.h>
+
 #include <optional>
 
 #include "backend.h"
@@ -11,9 +13,9 @@ class CpuBackend final : public Backend {
 public:
     void prepare(const Image& image) override {
         image_ = &image;
+        renderer_.reset();
         field_ = costFieldOf(image);
         mesh_ = buildGridMesh(image.width, image.height);
-        renderer_.reset();
     }
 
     OptimizeStats optimize() override {
@@ -21,22 +23,34 @@ public:
         return optimizeSerial(mesh_, field_);
     }
 
-    void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) override {
-        if (!renderer_ || renderer_size_.width != out.width || renderer_size_.height != out.height) {
-            renderer_.emplace(mesh_, *image_, out);
-            renderer_size_ = out;
-        }
-        renderer_->renderRows(y_begin, y_end, rows);
+    void renderWindow(const RenderWindow& window, float* rows) override {
+        if (!renderer_) renderer_.emplace(mesh_, *image_);
+        renderer_->renderWindow(window, rows);
     }
 
     Mesh mesh() override { return mesh_; }
+    const Image& preparedImage() const override { return *image_; }
+
+    // A rough count of the host arrays: the mesh's two records per edge (32 bytes), the
+    // renderer's triangle list (about two 12-byte triangles per vertex), the cost field and
+    // the sweeps' per-edge state (about 16 bytes per edge, ~3 edges per vertex).
+    uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const override {
+        const uint64_t vertices = uint64_t(width) * height;
+        return vertices * (3 * (32 + 16) + 2 * 12 + 4 * (channels + 2));
+    }
+
+    // Half the machine's memory: the input, the output bands and the rest of the process
+    // need the other half.
+    uint64_t memoryAvailable() const override {
+        const long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGE_SIZE);
+        return pages > 0 && page_size > 0 ? uint64_t(pages) * uint64_t(page_size) / 2 : UINT64_MAX;
+    }
 
 private:
     const Image* image_ = nullptr;
     CostField field_;
     Mesh mesh_;
     std::optional<MeshRenderer> renderer_;
-    OutputSize renderer_size_;
 };
 
 }  // namespace

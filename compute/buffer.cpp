@@ -1,6 +1,7 @@
 #include "buffer.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #include "commands.h"
@@ -25,6 +26,14 @@ uint32_t findMemoryType(const VulkanContext& context, uint32_t allowed, Placemen
     throw UserError("Vulkan: no suitable memory type on " + context.info.name);
 }
 
+// Test hook: with DDTUP_TEST_DEVICE_MEMORY=bytes set, allocations larger than that fail as if
+// the device were out of memory, which tests cannot provoke for real. Read at every
+// allocation, so a test can lift it and check that the backend recovers.
+VkDeviceSize testAllocationLimit() {
+    const char* limit = std::getenv("DDTUP_TEST_DEVICE_MEMORY");
+    return limit && *limit ? std::strtoull(limit, nullptr, 10) : ~VkDeviceSize(0);
+}
+
 // Copies between a device-only buffer and the host through a staging buffer, in chunks.
 const VkDeviceSize kStagingChunk = VkDeviceSize(32) << 20;
 
@@ -47,10 +56,12 @@ Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placeme
     VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     allocate.allocationSize = requirements.size;
     allocate.memoryTypeIndex = type;
-    VkResult result = vkAllocateMemory(context.device, &allocate, nullptr, &buffer.memory);
+    VkResult result = requirements.size > testAllocationLimit()
+                          ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                          : vkAllocateMemory(context.device, &allocate, nullptr, &buffer.memory);
     if (result != VK_SUCCESS) {
         vkDestroyBuffer(context.device, buffer.buffer, nullptr);
-        VK_CHECK(result);
+        checkVulkan(result, "vkAllocateMemory");
     }
     VK_CHECK(vkBindBufferMemory(context.device, buffer.buffer, buffer.memory, 0));
     const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;

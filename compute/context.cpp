@@ -117,6 +117,16 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
     return info;
 }
 
+bool hasDeviceExtension(VkPhysicalDevice physical, const char* name) {
+    uint32_t count = 0;
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> extensions(count);
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()));
+    for (uint32_t i = 0; i < count; ++i)
+        if (std::strcmp(extensions[i].extensionName, name) == 0) return true;
+    return false;
+}
+
 int typePreference(VkPhysicalDeviceType type) {
     switch (type) {
         case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
@@ -213,6 +223,8 @@ std::unique_ptr<VulkanContext> createContext(const ContextOptions& options) {
     vkGetPhysicalDeviceQueueFamilyProperties(c.physical, &family_count, families.data());
     c.timestamps = families[c.queue_family].timestampValidBits > 0 && c.properties.limits.timestampPeriod > 0.0f;
 
+    c.memory_budget = hasDeviceExtension(c.physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+
     // Enable exactly what the kernels use.
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.features.shaderFloat64 = VK_TRUE;
@@ -226,6 +238,11 @@ std::unique_ptr<VulkanContext> createContext(const ContextOptions& options) {
     info.pNext = &features;
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
+    const char* budget_extension = VK_EXT_MEMORY_BUDGET_EXTENSION_NAME;
+    if (c.memory_budget) {
+        info.enabledExtensionCount = 1;
+        info.ppEnabledExtensionNames = &budget_extension;
+    }
     VK_CHECK(vkCreateDevice(c.physical, &info, nullptr, &c.device));
     vkGetDeviceQueue(c.device, c.queue_family, 0, &c.queue);
 
@@ -234,6 +251,22 @@ std::unique_ptr<VulkanContext> createContext(const ContextOptions& options) {
     pool.queueFamilyIndex = c.queue_family;
     VK_CHECK(vkCreateCommandPool(c.device, &pool, nullptr, &c.command_pool));
     return context;
+}
+
+uint64_t memoryAvailable(const VulkanContext& context) {
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+    VkPhysicalDeviceMemoryProperties2 memory{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+    if (context.memory_budget) memory.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(context.physical, &memory);
+    uint64_t largest = 0;
+    for (uint32_t i = 0; i < memory.memoryProperties.memoryHeapCount; ++i) {
+        if (!(memory.memoryProperties.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)) continue;
+        const uint64_t size = memory.memoryProperties.memoryHeaps[i].size;
+        // heapBudget includes what this process holds now, which the next prepare releases.
+        const uint64_t usable = context.memory_budget ? std::min<uint64_t>(size, budget.heapBudget[i]) : size;
+        largest = std::max(largest, usable);
+    }
+    return largest;
 }
 
 VulkanContext::~VulkanContext() {

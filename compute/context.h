@@ -43,6 +43,7 @@ struct VulkanContext {
     VkPhysicalDeviceMemoryProperties memory{};
     DeviceInfo info;
     bool timestamps = false;  // the queue supports timestamp queries
+    bool memory_budget = false;  // VK_EXT_memory_budget is enabled
     std::atomic<uint32_t> validation_messages{0};
 
     VulkanContext() = default;
@@ -57,5 +58,9 @@ std::vector<DeviceInfo> listDevices();
 
 // Throws UserError naming the fix when no usable device exists.
 std::unique_ptr<VulkanContext> createContext(const ContextOptions& options);
+
+// Bytes of the largest device-local heap this process may still use: its budget where the
+// device reports one (VK_EXT_memory_budget), else the heap's size.
+uint64_t memoryAvailable(const VulkanContext& context);
 
 }  // namespace ddt

@@ -95,7 +95,12 @@ struct VulkanBackend::State {
         return p;
     }
 
-    void checkMemory(uint64_t edges, uint64_t vertices);
+    struct MemoryNeed {
+        uint64_t bytes = 0;
+        std::string problem;  // "" or the per-buffer limit the job breaks
+    };
+    MemoryNeed memoryNeed(uint32_t w, uint32_t h) const;
+    void checkMemory(uint32_t w, uint32_t h);
     void createBuffers(const Image& image);
     void writeDescriptors();
     void resetOptimisation();
@@ -107,7 +112,7 @@ struct VulkanBackend::State {
     void recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip);
     void recordControlReadback(VkCommandBuffer commands);
     void computeRowSpans();
-    void renderWindow(OutputSize out, uint32_t y_begin, uint32_t y_end, uint32_t x_begin, uint32_t x_end);
+    void renderPart(const RenderWindow& window, uint32_t y_begin, uint32_t y_end, uint32_t x_begin, uint32_t x_end);
     OptimizeStats finishStats(const Control& control, double cost_init, uint64_t dispatches, double device_ns);
 };
 
@@ -139,33 +144,58 @@ VulkanBackend::~VulkanBackend() {
 const DeviceInfo& VulkanBackend::device() const { return state_->context->info; }
 uint32_t VulkanBackend::validationMessages() const { return state_->context->validation_messages.load(); }
 
-// Refuses, before allocating anything, a job the device cannot hold.
-void VulkanBackend::State::checkMemory(uint64_t edges, uint64_t vertices) {
+// Device memory of a width × height job, and "" or the per-buffer limit it breaks. What
+// bites on lavapipe (2 GiB heap, 2 GiB allocations, 2^27 texel-buffer elements; no
+// VK_EXT_memory_budget): a 4096² input needs 3.7 GB in all (3 edges and 216 bytes per pixel
+// with the default rule, 240 with the round-based ones), beyond the heap, though each array
+// fits; an 8192² input has 201 M edges, beyond the texel-buffer elements (and its 3.2 GB
+// edge arrays beyond the largest allocation). maxStorageBufferRange (128 MiB) does not
+// bite: the big arrays are texel buffers. Automatic tiling picks 2816-pixel tiles there.
+VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h) const {
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &maintenance;
     vkGetPhysicalDeviceProperties2(context->physical, &properties);
 
+    const uint64_t edges = gridEdgeCount(w, h), vertices = uint64_t(w) * h;
     const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 4 + (options.active_set ? 2 * 4 : 0) +
                               (rule.single_round ? 0 : 2 * 4);
     const uint64_t largest = edges * 16;
+    MemoryNeed need;
     // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels.
-    const uint64_t total = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes;
-    std::string problem;
-    if (edges >= kCopyEntry) problem = "more edges than the kernels can index";
+    need.bytes = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes;
+    if (edges >= kCopyEntry) need.problem = "more edges than the kernels can index";
     else if (edges > context->properties.limits.maxTexelBufferElements)
-        problem = std::to_string(edges) + " edges, more than the device's " +
-                  std::to_string(context->properties.limits.maxTexelBufferElements) + " texel-buffer elements";
+        need.problem = std::to_string(edges) + " edges, more than the device's " +
+                       std::to_string(context->properties.limits.maxTexelBufferElements) + " texel-buffer elements";
     else if (largest > maintenance.maxMemoryAllocationSize)
-        problem = "its edge arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
-                  mebibytes(maintenance.maxMemoryAllocationSize);
-    else if (total > context->info.memory_bytes)
-        problem = "it needs " + mebibytes(total) + " of device memory, more than the " +
-                  mebibytes(context->info.memory_bytes) + " available";
-    if (!problem.empty())
-        throw UserError(std::to_string(width) + "×" + std::to_string(height) + " image too large for " +
-                        context->info.name + ": " + problem + "; try --backend cpu or a smaller image");
+        need.problem = "its edge arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
+                       mebibytes(maintenance.maxMemoryAllocationSize);
+    return need;
 }
+
+// Refuses, before allocating anything, a job the device cannot hold: as an out-of-memory
+// error, so that a tiled upscale retries with smaller tiles.
+void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h) {
+    const MemoryNeed need = memoryNeed(w, h);
+    std::string problem = need.problem;
+    const uint64_t available = ddt::memoryAvailable(*context);
+    if (problem.empty() && need.bytes > available)
+        problem = "it needs " + mebibytes(need.bytes) + " of device memory, more than the " + mebibytes(available) +
+                  " available";
+    if (!problem.empty())
+        throw DeviceOutOfMemory(std::to_string(w) + "×" + std::to_string(h) + " image too large for " +
+                                context->info.name + ": " + problem + "; try --tile or --backend cpu");
+}
+
+uint64_t VulkanBackend::memoryNeeded(uint32_t width, uint32_t height, uint32_t) const {
+    const State::MemoryNeed need = state_->memoryNeed(width, height);
+    return need.problem.empty() ? need.bytes : UINT64_MAX;
+}
+
+uint64_t VulkanBackend::memoryAvailable() const { return ddt::memoryAvailable(*state_->context); }
+
+const Image& VulkanBackend::preparedImage() const { return *state_->image; }
 
 void VulkanBackend::State::createBuffers(const Image& img) {
     VulkanContext& c = *context;
@@ -254,7 +284,7 @@ void VulkanBackend::prepare(const Image& image) {
     s.height = image.height;
     const uint64_t edges = gridEdgeCount(image.width, image.height);
     s.edge_count = uint32_t(std::min<uint64_t>(edges, UINT32_MAX));
-    s.checkMemory(edges, uint64_t(image.width) * image.height);
+    s.checkMemory(image.width, image.height);
 
     const Mesh mesh = buildGridMesh(image.width, image.height);
     const CostField field = costFieldOf(image);
@@ -494,16 +524,20 @@ void VulkanBackend::State::computeRowSpans() {
     downloadFromBuffer(*context, row_spans, spans.data(), spans.size() * 4);
 }
 
-// Renders output rows [y_begin, y_end), columns [x_begin, x_end) into the band buffer.
-void VulkanBackend::State::renderWindow(OutputSize out, uint32_t y_begin, uint32_t y_end, uint32_t x_begin,
-                                        uint32_t x_end) {
-    // Input rows the band samples, and the edge rows whose triangles touch them.
+// Renders output rows [y_begin, y_end), columns [x_begin, x_end) of the window into the
+// band buffer, which holds rows of the window's width from y_begin on.
+void VulkanBackend::State::renderPart(const RenderWindow& window, uint32_t y_begin, uint32_t y_end, uint32_t x_begin,
+                                      uint32_t x_end) {
+    // Crop rows the part samples, and the edge rows whose triangles touch them.
+    const OutputSize out = window.out;
     const int64_t unit = vertexCoord(1, out.height);
-    const uint32_t v_first = uint32_t(sampleCoord(y_begin, height, out.height) / unit);
-    const uint32_t v_last = uint32_t((sampleCoord(y_end - 1, height, out.height) + unit - 1) / unit);
+    const uint32_t v_first = uint32_t(sampleCoord(y_begin, window.input_height, out.height) / unit);
+    const uint32_t v_last = uint32_t((sampleCoord(y_end - 1, window.input_height, out.height) + unit - 1) / unit);
+    const uint32_t local_first = v_first > window.crop_y ? v_first - window.crop_y : 0;
+    const uint32_t local_last = v_last > window.crop_y ? v_last - window.crop_y : 0;
     uint32_t first_row = height, last_row = 0;
     for (uint32_t y = 0; y < height; ++y) {
-        if (spans[2 * y] <= v_last && spans[2 * y + 1] >= v_first) {
+        if (spans[2 * y] <= local_last && spans[2 * y + 1] >= local_first) {
             first_row = std::min(first_row, y);
             last_row = std::max(last_row, y);
         }
@@ -515,6 +549,12 @@ void VulkanBackend::State::renderWindow(OutputSize out, uint32_t y_begin, uint32
     p.col_count = x_end - x_begin;
     p.out_width = out.width;
     p.out_height = out.height;
+    p.input_width = window.input_width;
+    p.input_height = window.input_height;
+    p.crop_x = window.crop_x;
+    p.crop_y = window.crop_y;
+    p.band_first_col = window.x_begin;
+    p.band_width = window.width();
     CommandBatch commands(*context);
     const uint32_t groups_per_row = (3 * width - 2 + kGroupSize - 1) / kGroupSize;
     for (uint32_t row = first_row; row <= last_row && first_row <= last_row; row += kMaxGroups) {
@@ -525,34 +565,38 @@ void VulkanBackend::State::renderWindow(OutputSize out, uint32_t y_begin, uint32
     commands.submitAndWait();
 }
 
-void VulkanBackend::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
+void VulkanBackend::renderWindow(const RenderWindow& window, float* rows) {
     State& s = *state_;
+    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return;
     if (s.spans.empty()) s.computeRowSpans();
-    // Window size: an invocation rasterises two triangles, each looping over its rows and
-    // columns within the window; keep that below lavapipe's loop budget (kItemsPerInvocation).
-    const uint32_t widest = uint32_t(std::ceil(double(s.spans[2 * s.height] + 1) * out.width / s.width)) + 2;
-    const uint32_t window_cols = std::min(out.width, kRasterLoopBudget / 4);
-    const uint32_t loop_rows = std::max(1u, kRasterLoopBudget / (std::min(widest, window_cols) + 2) - 1);
-    const VkDeviceSize row_bytes = VkDeviceSize(out.width) * 16;  // an rgba32f texel per pixel
+    const OutputSize out = window.out;
+    const uint32_t window_w = window.width();
+    // Part size: an invocation rasterises two triangles, each looping over its rows and
+    // columns within the part; keep that below lavapipe's loop budget (kItemsPerInvocation).
+    const uint32_t widest =
+        uint32_t(std::ceil(double(s.spans[2 * s.height] + 1) * out.width / window.input_width)) + 2;
+    const uint32_t part_cols = std::min(window_w, kRasterLoopBudget / 4);
+    const uint32_t loop_rows = std::max(1u, kRasterLoopBudget / (std::min(widest, part_cols) + 2) - 1);
+    const VkDeviceSize row_bytes = VkDeviceSize(window_w) * 16;  // an rgba32f texel per pixel
     const VkDeviceSize band_bytes =
         std::min<VkDeviceSize>(kBandBytes, VkDeviceSize(s.context->properties.limits.maxTexelBufferElements) * 16);
     const uint32_t band_rows =
         uint32_t(std::min<VkDeviceSize>(loop_rows, std::max<VkDeviceSize>(1, band_bytes / row_bytes)));
-    if (s.band.size < std::min<VkDeviceSize>(y_end - y_begin, band_rows) * row_bytes) {
+    const VkDeviceSize band_needed = std::min<VkDeviceSize>(window.height(), band_rows) * row_bytes;
+    if (s.band.size < band_needed) {
         destroyBuffer(*s.context, s.band);
         // The host reads every rendered row: keep the band in host-visible memory.
-        s.band = createBuffer(*s.context, std::min<VkDeviceSize>(band_rows, out.height) * row_bytes, Placement::Readback,
-                              VK_FORMAT_R32G32B32A32_SFLOAT);
+        s.band = createBuffer(*s.context, band_needed, Placement::Readback, VK_FORMAT_R32G32B32A32_SFLOAT);
         s.writeDescriptors();
     }
     const uint32_t c = s.image->channels;
-    for (uint32_t y = y_begin; y < y_end; y += band_rows) {
-        const uint32_t band_end = std::min(y_end, y + band_rows);
-        for (uint32_t x = 0; x < out.width; x += window_cols)
-            s.renderWindow(out, y, band_end, x, std::min(out.width, x + window_cols));
+    for (uint32_t y = window.y_begin; y < window.y_end; y += band_rows) {
+        const uint32_t band_end = std::min(window.y_end, y + band_rows);
+        for (uint32_t x = window.x_begin; x < window.x_end; x += part_cols)
+            s.renderPart(window, y, band_end, x, std::min(window.x_end, x + part_cols));
         // The band holds four floats per pixel; the caller wants `channels`.
-        const size_t pixels = size_t(band_end - y) * out.width;
-        float* band_rows_out = rows + size_t(y - y_begin) * out.width * c;
+        const size_t pixels = size_t(band_end - y) * window_w;
+        float* band_rows_out = rows + size_t(y - window.y_begin) * window_w * c;
         if (c == 4) {
             downloadFromBuffer(*s.context, s.band, band_rows_out, pixels * 16);
         } else {

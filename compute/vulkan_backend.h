@@ -48,8 +48,11 @@ public:
 
     void prepare(const Image& image) override;
     OptimizeStats optimize() override;
-    void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) override;
+    void renderWindow(const RenderWindow& window, float* rows) override;
     Mesh mesh() override;
+    uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const override;
+    uint64_t memoryAvailable() const override;
+    const Image& preparedImage() const override;
 
     // Like optimize(), one submit per step, showing each iteration before its flips.
     OptimizeStats optimizeStepwise(const std::function<void(const IterationSnapshot&)>& inspect);

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "backend.h"
+
 namespace ddt {
 
 const char* vulkanResultName(VkResult result) {
@@ -40,8 +42,11 @@ void checkVulkan(VkResult result, const char* call) {
     if (result == VK_SUCCESS) return;
     std::string name(call);
     name = name.substr(0, name.find('('));  // "vkCreateDevice(physical, …)" -> "vkCreateDevice"
-    throw UserError("Vulkan: " + name + " failed with " + vulkanResultName(result) + " (" +
-                    std::to_string(int(result)) + ")");
+    const std::string message =
+        "Vulkan: " + name + " failed with " + vulkanResultName(result) + " (" + std::to_string(int(result)) + ")";
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+        throw DeviceOutOfMemory(message);
+    throw UserError(message);
 }
 
 }  // namespace ddt

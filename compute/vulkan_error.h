@@ -10,7 +10,8 @@ namespace ddt {
 
 const char* vulkanResultName(VkResult result);
 
-// Throws UserError("Vulkan: vkCall failed with VK_ERROR_…") unless result is VK_SUCCESS.
+// Throws UserError("Vulkan: vkCall failed with VK_ERROR_…") unless result is VK_SUCCESS;
+// DeviceOutOfMemory (app/backend.h) for the out-of-memory results, which smaller tiles may avoid.
 void checkVulkan(VkResult result, const char* call);
 
 }  // namespace ddt

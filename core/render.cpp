@@ -47,7 +47,18 @@ std::string checkOutputSize(uint32_t width, uint32_t height, OutputSize out) {
     return "";
 }
 
-MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, OutputSize out) : image_(image), out_(out) {
+RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t y_begin, uint32_t y_end) {
+    RenderWindow window;
+    window.input_width = width;
+    window.input_height = height;
+    window.out = out;
+    window.x_end = out.width;
+    window.y_begin = y_begin;
+    window.y_end = y_end;
+    return window;
+}
+
+MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image) : image_(image) {
     assert(image.width == mesh.width && image.height == mesh.height);
     std::vector<Triangle> triangles = listTriangles(mesh);
     // Counting sort by top row, so a band of output rows visits only nearby triangles.
@@ -63,35 +74,49 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, OutputSize out)
     for (const Triangle& t : triangles) triangles_[next[topRow(t, mesh.width)]++] = t;
 }
 
-void MeshRenderer::renderRows(uint32_t y_begin, uint32_t y_end, float* rows) const {
+void MeshRenderer::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const {
+    renderWindow(wholeRows(image_.width, image_.height, out, y_begin, y_end), rows);
+}
+
+void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
+    // w, h: the crop the mesh covers; in_w, in_h: the whole input, which sets the sampling.
     const uint32_t w = image_.width, h = image_.height, c = image_.channels;
-    const uint32_t out_w = out_.width, out_h = out_.height;
-    // Input rows the band's samples fall in, widened by the tallest triangle.
-    const uint32_t v_first = uint32_t(sampleCoord(y_begin, h, out_h) / vertexCoord(1, out_h));
-    const uint32_t v_last = uint32_t((sampleCoord(y_end - 1, h, out_h) + vertexCoord(1, out_h) - 1) / vertexCoord(1, out_h));
-    const uint32_t top_first = v_first > tallest_ ? v_first - tallest_ : 0;
-    const uint32_t top_last = std::min(v_last, h - 1);
+    const uint32_t in_w = window.input_width, in_h = window.input_height;
+    const uint32_t out_w = window.out.width, out_h = window.out.height;
+    const uint32_t cx = window.crop_x, cy = window.crop_y;
+    assert(cx + w <= in_w && cy + h <= in_h && window.x_end <= out_w && window.y_end <= out_h);
+    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return;
+    const size_t row_floats = size_t(window.width()) * c;
+    // Crop rows the window's samples fall in, widened by the tallest triangle.
+    const int64_t unit = vertexCoord(1, out_h);
+    const uint32_t v_first = uint32_t(sampleCoord(window.y_begin, in_h, out_h) / unit);
+    const uint32_t v_last = uint32_t((sampleCoord(window.y_end - 1, in_h, out_h) + unit - 1) / unit);
+    const uint32_t local_first = v_first > cy ? v_first - cy : 0;
+    const uint32_t top_first = local_first > tallest_ ? local_first - tallest_ : 0;
+    const uint32_t top_last = std::min(v_last > cy ? v_last - cy : 0, h - 1);
 
     for (uint32_t i = first_in_row_[top_first]; i < first_in_row_[top_last + 1]; ++i) {
         const Triangle& t = triangles_[i];
         const Bounds b = boundsOf(t, w);
-        const uint32_t x_lo = firstSampleAtOrAfter(b.x0, w, out_w);
-        const uint32_t x_hi = std::min(lastSampleAtOrBefore(b.x1, w, out_w), out_w - 1);
-        const uint32_t y_lo = std::max(firstSampleAtOrAfter(b.y0, h, out_h), y_begin);
-        const uint32_t y_hi = std::min(lastSampleAtOrBefore(b.y1, h, out_h), y_end - 1);
+        const uint32_t x_lo = std::max(firstSampleAtOrAfter(b.x0 + cx, in_w, out_w), window.x_begin);
+        const uint32_t x_hi = std::min(lastSampleAtOrBefore(b.x1 + cx, in_w, out_w), window.x_end - 1);
+        const uint32_t y_lo = std::max(firstSampleAtOrAfter(b.y0 + cy, in_h, out_h), window.y_begin);
+        const uint32_t y_hi = std::min(lastSampleAtOrBefore(b.y1 + cy, in_h, out_h), window.y_end - 1);
         if (x_lo > x_hi || y_lo > y_hi) continue;
 
-        const int64_t px[3] = {vertexCoord(t.v0 % w, out_w), vertexCoord(t.v1 % w, out_w), vertexCoord(t.v2 % w, out_w)};
-        const int64_t py[3] = {vertexCoord(t.v0 / w, out_h), vertexCoord(t.v1 / w, out_h), vertexCoord(t.v2 / w, out_h)};
+        const int64_t px[3] = {vertexCoord(t.v0 % w + cx, out_w), vertexCoord(t.v1 % w + cx, out_w),
+                               vertexCoord(t.v2 % w + cx, out_w)};
+        const int64_t py[3] = {vertexCoord(t.v0 / w + cy, out_h), vertexCoord(t.v1 / w + cy, out_h),
+                               vertexCoord(t.v2 / w + cy, out_h)};
         const float* z[3] = {image_.pixels.data() + size_t(t.v0) * c, image_.pixels.data() + size_t(t.v1) * c,
                              image_.pixels.data() + size_t(t.v2) * c};
         for (uint32_t y = y_lo; y <= y_hi; ++y) {
-            const int64_t sv = sampleCoord(y, h, out_h);
-            const int dir_v = sampleDirection(sv, h, out_h);
-            float* out_row = rows + size_t(y - y_begin) * out_w * c;
+            const int64_t sv = sampleCoord(y, in_h, out_h);
+            const int dir_v = sampleDirection(sv, in_h, out_h);
+            float* out_row = rows + size_t(y - window.y_begin) * row_floats;
             for (uint32_t x = x_lo; x <= x_hi; ++x) {
-                const int64_t su = sampleCoord(x, w, out_w);
-                const int dir_u = sampleDirection(su, w, out_w);
+                const int64_t su = sampleCoord(x, in_w, out_w);
+                const int dir_u = sampleDirection(su, in_w, out_w);
                 bool inside = true;
                 int64_t weight[3];  // edge function opposite each vertex = its barycentric weight × 2·area
                 for (int k = 0; k < 3 && inside; ++k) {
@@ -103,7 +128,7 @@ void MeshRenderer::renderRows(uint32_t y_begin, uint32_t y_end, float* rows) con
                 const double total = double(weight[0]) + double(weight[1]) + double(weight[2]);
                 const double l0 = double(weight[0]) / total, l1 = double(weight[1]) / total,
                              l2 = double(weight[2]) / total;
-                float* pixel = out_row + size_t(x) * c;
+                float* pixel = out_row + size_t(x - window.x_begin) * c;
                 for (uint32_t k = 0; k < c; ++k) pixel[k] = float(l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k]);
             }
         }
@@ -118,7 +143,7 @@ Image renderImage(const Mesh& mesh, const Image& image, OutputSize out) {
     result.sample_type = image.sample_type;
     result.metadata = image.metadata;
     result.pixels.resize(size_t(out.width) * out.height * image.channels);
-    MeshRenderer(mesh, image, out).renderRows(0, out.height, result.pixels.data());
+    MeshRenderer(mesh, image).renderRows(out, 0, out.height, result.pixels.data());
     return result;
 }
 

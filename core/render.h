@@ -5,6 +5,11 @@
 // samples the mesh at ((X + 0.5)/sx − 0.5, (Y + 0.5)/sy − 0.5), clamped into the hull.
 // Triangles are rasterised with exact integer coverage tests (glsl/raster.h), so every
 // output pixel is written exactly once and -s 1 reproduces the input exactly.
+//
+// Tiles: a mesh may be built on a crop of the whole input at an integer offset. Its vertices
+// are then placed at their whole-input coordinates, so its output pixels are sampled exactly
+// as the whole image's are (same integers, same ties, same weights): where two meshes agree,
+// so do their pixels, bit for bit.
 #pragma once
 
 #include <cstdint>
@@ -29,17 +34,35 @@ OutputSize outputSizeForHeight(uint32_t width, uint32_t height, uint32_t out_hei
 // magnification, and sizes whose exact coverage arithmetic fits in 64 bits).
 std::string checkOutputSize(uint32_t width, uint32_t height, OutputSize out);
 
+// A rectangle of output pixels, [x_begin, x_end) × [y_begin, y_end) of the whole output
+// `out`, rendered from a mesh of the crop at (crop_x, crop_y) of the whole
+// input_width × input_height input. The crop must contain every vertex of the triangles
+// that cover the rectangle's samples (a tile's crop does: see core/tiling.h).
+struct RenderWindow {
+    uint32_t input_width = 0, input_height = 0;
+    OutputSize out;
+    uint32_t crop_x = 0, crop_y = 0;
+    uint32_t x_begin = 0, x_end = 0, y_begin = 0, y_end = 0;
+
+    uint32_t width() const { return x_end - x_begin; }
+    uint32_t height() const { return y_end - y_begin; }
+};
+
+// Output rows [y_begin, y_end) of an untiled width × height input.
+RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t y_begin, uint32_t y_end);
+
 class MeshRenderer {
 public:
     // `image` holds the vertex values (premultiplied); both must outlive the renderer.
-    MeshRenderer(const Mesh& mesh, const Image& image, OutputSize out);
+    MeshRenderer(const Mesh& mesh, const Image& image);
 
-    // Renders output rows [y_begin, y_end) into `rows`: out.width × channels floats per row.
-    void renderRows(uint32_t y_begin, uint32_t y_end, float* rows) const;
+    // Renders the window into `rows`: window.width() × channels floats per row.
+    void renderWindow(const RenderWindow& window, float* rows) const;
+    // Output rows [y_begin, y_end) of the whole image (`image` is the whole input).
+    void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const;
 
 private:
     const Image& image_;
-    OutputSize out_;
     std::vector<Triangle> triangles_;        // sorted by their top row
     std::vector<uint32_t> first_in_row_;     // index of the first triangle per top row, + end
     uint32_t tallest_ = 0;                   // most rows any triangle spans

@@ -110,8 +110,14 @@ struct PushConstants {
     uint row_count;
     uint first_col;            // render: the window's output columns
     uint col_count;
-    uint out_width;            // render: output size
+    uint out_width;            // render: the whole output's size
     uint out_height;
+    uint input_width;          // render: the whole input's size (the job is its crop at crop_x, crop_y)
+    uint input_height;
+    uint crop_x;
+    uint crop_y;
+    uint band_first_col;       // render: the band's first output column and its width in pixels
+    uint band_width;
 };
 
 // Workgroups for `count` items: kItemsPerInvocation per invocation, more only past
@@ -126,7 +132,7 @@ uint groupsFor(uint count) {
 
 #ifdef __cplusplus
 static_assert(sizeof(Control) == 16 * 4, "Control layout");
-static_assert(sizeof(PushConstants) == 17 * 4, "PushConstants layout");
+static_assert(sizeof(PushConstants) == 23 * 4, "PushConstants layout");
 }  // namespace ddt
 #endif
 #endif

@@ -7,18 +7,21 @@
 // convention as core/render.cpp. The dispatch is two-dimensional: y picks an edge row (the
 // edges the initial grid gave to one vertex row), x an edge within it. The host sizes the
 // window so that no invocation loops more than lavapipe allows (see kItemsPerInvocation).
+// The mesh may be a tile's: the crop at (crop_x, crop_y) of the whole input, whose vertices
+// are placed at whole-input coordinates so that sampling is the untiled image's.
 #include "common.glsl"
 #include "raster.h"
 
 void renderTriangle(uint i0, uint i1, uint i2) {
-    const uint w = push.width, h = push.height;
+    const uint w = push.width;  // the crop's width, which vertex ids count in
+    const uint in_w = push.input_width, in_h = push.input_height;
     const uint out_w = push.out_width, out_h = push.out_height;
     const uint ids[3] = uint[3](i0, i1, i2);
     int64_t px[3], py[3];
     vec4 z[3];  // premultiplied vertex values
-    uint x0 = w, x1 = 0, y0 = h, y1 = 0;
+    uint x0 = in_w, x1 = 0, y0 = in_h, y1 = 0;
     for (int k = 0; k < 3; ++k) {
-        const uint x = ids[k] % w, y = ids[k] / w;
+        const uint x = ids[k] % w + push.crop_x, y = ids[k] / w + push.crop_y;
         px[k] = vertexCoord(x, out_w);
         py[k] = vertexCoord(y, out_h);
         z[k] = imageLoad(pixels, int(ids[k]));
@@ -26,16 +29,16 @@ void renderTriangle(uint i0, uint i1, uint i2) {
         y0 = min(y0, y); y1 = max(y1, y);
     }
     const uint band_end = push.first_row + push.row_count;
-    const uint x_lo = max(firstSampleAtOrAfter(x0, w, out_w), push.first_col);
-    const uint x_hi = min(lastSampleAtOrBefore(x1, w, out_w), push.first_col + push.col_count - 1);
-    const uint y_lo = max(firstSampleAtOrAfter(y0, h, out_h), push.first_row);
-    const uint y_hi = min(lastSampleAtOrBefore(y1, h, out_h), band_end - 1);
+    const uint x_lo = max(firstSampleAtOrAfter(x0, in_w, out_w), push.first_col);
+    const uint x_hi = min(lastSampleAtOrBefore(x1, in_w, out_w), push.first_col + push.col_count - 1);
+    const uint y_lo = max(firstSampleAtOrAfter(y0, in_h, out_h), push.first_row);
+    const uint y_hi = min(lastSampleAtOrBefore(y1, in_h, out_h), band_end - 1);
     for (uint y = y_lo; y <= y_hi && y_lo <= y_hi; ++y) {
-        const int64_t sv = sampleCoord(y, h, out_h);
-        const int dir_v = sampleDirection(sv, h, out_h);
+        const int64_t sv = sampleCoord(y, in_h, out_h);
+        const int dir_v = sampleDirection(sv, in_h, out_h);
         for (uint x = x_lo; x <= x_hi && x_lo <= x_hi; ++x) {
-            const int64_t su = sampleCoord(x, w, out_w);
-            const int dir_u = sampleDirection(su, w, out_w);
+            const int64_t su = sampleCoord(x, in_w, out_w);
+            const int dir_u = sampleDirection(su, in_w, out_w);
             int64_t weight[3];  // edge function opposite each vertex = barycentric weight × 2·area
             bool inside = true;
             for (int k = 0; k < 3; ++k) {
@@ -47,7 +50,7 @@ void renderTriangle(uint i0, uint i1, uint i2) {
             const float total = float(weight[0] + weight[1] + weight[2]);
             const vec3 lambda = vec3(float(weight[0]), float(weight[1]), float(weight[2])) / total;
             const vec4 value = lambda.x * z[0] + lambda.y * z[1] + lambda.z * z[2];
-            imageStore(band, int((y - push.first_row) * out_w + x), value);
+            imageStore(band, int((y - push.first_row) * push.band_width + x - push.band_first_col), value);
         }
     }
 }

@@ -76,7 +76,7 @@ std::vector<int> coverageCounts(const ddt::Mesh& mesh, OutputSize out) {
 
 std::vector<float> renderInto(const ddt::Mesh& mesh, const ddt::Image& image, OutputSize out, float fill) {
     std::vector<float> rows(size_t(out.width) * out.height * image.channels, fill);
-    ddt::MeshRenderer(mesh, image, out).renderRows(0, out.height, rows.data());
+    ddt::MeshRenderer(mesh, image).renderRows(out, 0, out.height, rows.data());
     return rows;
 }
 
@@ -161,12 +161,12 @@ TEST_CASE("render: rendering in bands equals rendering at once, bit for bit") {
         ddt::Mesh mesh = scrambledMesh(w, h, rng);
         const OutputSize out = ddt::scaledOutputSize(w, h, s);
         const std::vector<float> whole = renderInto(mesh, image, out, 0.0f);
-        const ddt::MeshRenderer renderer(mesh, image, out);
+        const ddt::MeshRenderer renderer(mesh, image);
         for (uint32_t band : {1u, 2u, 3u, 7u, out.height}) {
             std::vector<float> banded(whole.size(), std::numeric_limits<float>::quiet_NaN());
             const size_t row_floats = size_t(out.width) * image.channels;
             for (uint32_t y = 0; y < out.height; y += band)
-                renderer.renderRows(y, std::min(y + band, out.height), banded.data() + y * row_floats);
+                renderer.renderRows(out, y, std::min(y + band, out.height), banded.data() + y * row_floats);
             INFO(w << "x" << h << " s=" << s << " bands of " << band);
             CHECK(ddt::test::samePixels(banded, whole));
         }

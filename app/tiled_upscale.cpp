@@ -1,0 +1,213 @@
+#include "tiled_upscale.h"
+
+#include <algorithm>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "tiling.h"
+
+namespace ddt {
+
+namespace {
+
+// Output rows are rendered in bands of at most this many floats, which keeps the host's
+// memory flat whatever the output size.
+const size_t kBandFloats = size_t(16) << 20;
+// A strip of several tiles is assembled on the host before its rows go out: strips are cut
+// thinner than the tile side where a strip of square tiles would exceed this.
+const size_t kStripFloats = size_t(128) << 20;  // 512 MiB
+
+using Sink = std::function<void(uint32_t y_begin, uint32_t y_end, const float* rows)>;
+
+// Hands rows to the sink once each: rows already sent before a retry are skipped.
+class RowEmitter {
+public:
+    RowEmitter(const Sink& sink, size_t row_floats) : sink_(sink), row_floats_(row_floats) {}
+
+    void emit(uint32_t y_begin, uint32_t y_end, const float* rows) {
+        if (y_end <= next_row_) return;
+        const uint32_t first = std::max(y_begin, next_row_);
+        sink_(first, y_end, rows + size_t(first - y_begin) * row_floats_);
+        next_row_ = y_end;
+    }
+
+    uint32_t nextRow() const { return next_row_; }
+
+private:
+    const Sink& sink_;
+    size_t row_floats_;
+    uint32_t next_row_ = 0;
+};
+
+Image cropOf(const Image& image, const PixelRect& rect) {
+    Image crop;
+    crop.width = rect.width();
+    crop.height = rect.height();
+    crop.channels = image.channels;
+    crop.sample_type = image.sample_type;
+    crop.pixels.resize(size_t(crop.width) * crop.height * crop.channels);
+    const size_t row_floats = size_t(crop.width) * crop.channels;
+    for (uint32_t y = 0; y < crop.height; ++y)
+        std::copy_n(image.row(rect.y0 + y) + size_t(rect.x0) * image.channels, row_floats,
+                    crop.pixels.data() + y * row_floats);
+    return crop;
+}
+
+void addStats(OptimizeStats& total, const OptimizeStats& tile) {
+    total.cost_init += tile.cost_init;
+    total.cost_final += tile.cost_final;
+    total.flips += tile.flips;
+    total.iterations += tile.iterations;
+    total.rounds += tile.rounds;
+    total.max_rounds_in_iteration = std::max(total.max_rounds_in_iteration, tile.max_rounds_in_iteration);
+    total.dispatches += tile.dispatches;
+    total.device_ms += tile.device_ms;
+    total.capped = total.capped || tile.capped;
+}
+
+// Whether a job fits with 1/8 of the available memory to spare: drivers round allocations
+// up and keep their own, and an estimate is only an estimate.
+bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels) {
+    const uint64_t needed = backend.memoryNeeded(width, height, channels), available = backend.memoryAvailable();
+    return needed != UINT64_MAX && needed <= available - available / 8;
+}
+
+// Input rows per strip: the tile side, or fewer where a strip of several tiles would not fit
+// kStripFloats (a strip of one tile streams its rows out).
+uint32_t stripSide(const Image& image, OutputSize out, uint32_t side) {
+    if (side >= image.width) return side;
+    const size_t row_floats = size_t(out.width) * image.channels;
+    const uint64_t out_rows = std::max<size_t>(1, kStripFloats / row_floats);
+    const uint64_t in_rows = out_rows * image.height / out.height;
+    return uint32_t(std::clamp<uint64_t>(in_rows, std::min(kMinTileSide, side), side));
+}
+
+uint32_t tilesFrom(uint32_t width, uint32_t height, uint32_t y0, uint32_t side, uint32_t strip_side) {
+    uint32_t columns = (width + side - 1) / side, tiles = 0;
+    for (uint32_t y = y0; y < height; y = stripEnd(height, y, strip_side)) tiles += columns;
+    return tiles;
+}
+
+struct Job {
+    Backend& backend;
+    const Image& image;
+    OutputSize out;
+    const std::function<void(uint32_t, uint32_t)>& on_tile;
+    RowEmitter& rows;
+};
+
+// Optimises one tile's crop and renders `window` of it, in bands, to `deliver(y_begin, y_end, rows)`.
+template <typename Deliver>
+OptimizeStats upscaleTile(Job& job, const Tile& tile, Deliver deliver) {
+    if (tile.output.width() == 0 || tile.output.height() == 0) return {};  // a core between two samples
+    const bool whole = tile.crop.width() == job.image.width && tile.crop.height() == job.image.height;
+    Image crop;
+    if (!whole) crop = cropOf(job.image, tile.crop);
+    job.backend.prepare(whole ? job.image : crop);
+    const OptimizeStats stats = job.backend.optimize();
+
+    RenderWindow window;
+    window.input_width = job.image.width;
+    window.input_height = job.image.height;
+    window.out = job.out;
+    window.crop_x = tile.crop.x0;
+    window.crop_y = tile.crop.y0;
+    window.x_begin = tile.output.x0;
+    window.x_end = tile.output.x1;
+    const size_t row_floats = size_t(tile.output.width()) * job.image.channels;
+    const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
+    std::vector<float> band(std::min<size_t>(band_rows, tile.output.height()) * row_floats);
+    for (uint32_t y = tile.output.y0; y < tile.output.y1; y += band_rows) {
+        window.y_begin = y;
+        window.y_end = std::min(tile.output.y1, y + band_rows);
+        job.backend.renderWindow(window, band.data());
+        deliver(window.y_begin, window.y_end, band.data());
+    }
+    return stats;
+}
+
+// One strip of tiles: a single tile streams its rows out; several are assembled first.
+OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t first_index, uint32_t total) {
+    OptimizeStats stats;
+    const uint32_t c = job.image.channels;
+    const size_t row_floats = size_t(job.out.width) * c;
+    if (tiles.size() == 1) {
+        if (job.on_tile) job.on_tile(first_index, total);
+        addStats(stats, upscaleTile(job, tiles[0], [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+                     job.rows.emit(y_begin, y_end, rows);
+                 }));
+        return stats;
+    }
+    const PixelRect strip = {0, tiles[0].output.y0, job.out.width, tiles[0].output.y1};
+    std::vector<float> strip_rows(size_t(strip.height()) * row_floats);
+    for (uint32_t i = 0; i < tiles.size(); ++i) {
+        if (job.on_tile) job.on_tile(first_index + i, total);
+        const Tile& tile = tiles[i];
+        const size_t tile_row_floats = size_t(tile.output.width()) * c;
+        addStats(stats, upscaleTile(job, tile, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+                     for (uint32_t y = y_begin; y < y_end; ++y)
+                         std::copy_n(rows + (y - y_begin) * tile_row_floats, tile_row_floats,
+                                     strip_rows.data() + (y - strip.y0) * row_floats + size_t(tile.output.x0) * c);
+                 }));
+    }
+    if (strip.height() > 0) job.rows.emit(strip.y0, strip.y1, strip_rows.data());
+    return stats;
+}
+
+}  // namespace
+
+uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
+                           uint32_t overlap) {
+    if (fits(backend, width, height, channels)) return 0;
+    auto crop_fits = [&](uint32_t side) {
+        return fits(backend, std::min(width, side + 2 * overlap), std::min(height, side + 2 * overlap), channels);
+    };
+    for (uint32_t side = std::max(width, height) / 256 * 256; side >= 256; side -= 256)
+        if (crop_fits(side)) return side;
+    for (uint32_t side : {128u, 64u})
+        if (crop_fits(side)) return side;
+    return kMinTileSide;  // the retry below reports that nothing fits
+}
+
+OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,
+                          const Sink& sink, const std::function<void(uint32_t tile, uint32_t tiles)>& on_tile) {
+    // A core's last samples must lie inside its crop's hull, or they would stay unwritten.
+    const uint32_t overlap = std::max(1u, options.overlap);
+    const uint32_t largest_side = std::max(image.width, image.height);
+    uint32_t side =
+        options.tile ? options.tile : automaticTileSide(backend, image.width, image.height, image.channels, overlap);
+    if (side == 0 || side > largest_side) side = largest_side;
+
+    RowEmitter rows(sink, size_t(out.width) * image.channels);
+    Job job{backend, image, out, on_tile, rows};
+    OptimizeStats stats;
+    uint32_t tiles_done = 0;
+    for (uint32_t y0 = 0; y0 < image.height;) {
+        const uint32_t strip_side = stripSide(image, out, side);
+        const uint32_t y1 = stripEnd(image.height, y0, strip_side);
+        const std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap);
+        std::string out_of_memory;
+        try {
+            addStats(stats, upscaleStrip(job, tiles, tiles_done,
+                                         tiles_done + tilesFrom(image.width, image.height, y0, side, strip_side)));
+        } catch (const DeviceOutOfMemory& error) {
+            out_of_memory = error.what();
+        } catch (const std::bad_alloc&) {
+            out_of_memory = "out of host memory";
+        }
+        if (!out_of_memory.empty()) {
+            // Redo this strip with tiles half as large; rows already sent stay sent.
+            if (side <= kMinTileSide)
+                throw UserError("not enough device memory even for " + std::to_string(kMinTileSide) + "×" +
+                                std::to_string(kMinTileSide) + " tiles (" + out_of_memory + ")");
+            side = std::max(kMinTileSide, side / 2);
+            continue;
+        }
+        tiles_done += uint32_t(tiles.size());
+        y0 = y1;
+    }
+    return stats;
+}
+
+}  // namespace ddt

@@ -1,0 +1,60 @@
+#include "tiling.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include "raster.h"
+
+namespace ddt {
+
+namespace {
+
+// Near-equal parts of [begin, end), none longer than `side`: the first part's end.
+uint32_t firstPartEnd(uint32_t begin, uint32_t end, uint32_t side) {
+    const uint64_t length = end - begin, parts = (length + side - 1) / side;
+    return begin + uint32_t((length + parts - 1) / parts);
+}
+
+}  // namespace
+
+uint32_t firstOutputOf(uint32_t c, uint32_t in_size, uint32_t out_size) {
+    assert(c <= in_size);
+    if (c == 0) return 0;
+    if (c >= in_size) return out_size;
+    return firstSampleAtOrAfter(c, in_size, out_size);
+}
+
+uint32_t stripEnd(uint32_t height, uint32_t y0, uint32_t side) {
+    assert(y0 < height && side > 0);
+    return firstPartEnd(y0, height, side);
+}
+
+std::vector<Tile> planStrip(uint32_t width, uint32_t height, OutputSize out, uint32_t y0, uint32_t y1, uint32_t side,
+                            uint32_t overlap) {
+    assert(y0 < y1 && y1 <= height && side > 0);
+    std::vector<Tile> tiles;
+    for (uint32_t x0 = 0; x0 < width;) {
+        const uint32_t x1 = firstPartEnd(x0, width, side);
+        Tile tile;
+        tile.core = {x0, y0, x1, y1};
+        tile.crop = {x0 > overlap ? x0 - overlap : 0, y0 > overlap ? y0 - overlap : 0,
+                     std::min<uint32_t>(width, x1 + overlap), std::min<uint32_t>(height, y1 + overlap)};
+        tile.output = {firstOutputOf(x0, width, out.width), firstOutputOf(y0, height, out.height),
+                       firstOutputOf(x1, width, out.width), firstOutputOf(y1, height, out.height)};
+        tiles.push_back(tile);
+        x0 = x1;
+    }
+    return tiles;
+}
+
+std::vector<Tile> planTiles(uint32_t width, uint32_t height, OutputSize out, uint32_t side, uint32_t overlap) {
+    std::vector<Tile> tiles;
+    for (uint32_t y0 = 0; y0 < height;) {
+        const uint32_t y1 = stripEnd(height, y0, side);
+        for (const Tile& tile : planStrip(width, height, out, y0, y1, side, overlap)) tiles.push_back(tile);
+        y0 = y1;
+    }
+    return tiles;
+}
+
+}  // namespace ddt
