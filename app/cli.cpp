@@ -12,6 +12,7 @@
 #include "flip_rule.h"
 #include "image.h"
 #include "json_line.h"
+#include "tiled_upscale.h"
 
 namespace ddt {
 
@@ -43,6 +44,8 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (!settings.variant.empty() && !parseFlipRule(settings.variant))
         return "--variant " + settings.variant + ": unknown flip rule (see --help)";
     if (!settings.variant.empty() && settings.backend != "vulkan") return "--variant needs --backend vulkan";
+    if (settings.tile && settings.tile < kMinTileSide)
+        return "--tile must be 0 (automatic) or at least " + std::to_string(kMinTileSide) + " pixels";
     if (!settings.depth.empty() && !parseSampleType(settings.depth))
         return "--depth " + settings.depth + ": use 8, 16, half or float";
     if (!settings.format.empty() && settings.format.find_first_of("./") != std::string::npos)

@@ -27,8 +27,8 @@ void printStats(const ddt::ImageJob& job, bool batch) {
                               s.max_rounds_in_iteration);
     if (s.dispatches) std::printf("dispatches     %llu\n", static_cast<unsigned long long>(s.dispatches));
     if (s.device_ms > 0.0) std::printf("device-comp    %.3f s  (GPU timestamps)\n", s.device_ms * 1e-3);
-    std::printf("time-init      %.3f s  (load + build mesh)\n", report.times.init_s);
-    std::printf("time-comp      %.3f s  (optimize)\n", report.times.comp_s);
+    std::printf("time-init      %.3f s  (read the image)\n", report.times.init_s);
+    std::printf("time-comp      %.3f s  (build the mesh, upload, optimize)\n", report.times.comp_s);
     std::printf("time-final     %.3f s  (render + save image; the paper's time-final saved the mesh)\n",
                 report.times.final_s);
     std::printf("time-sum       %.3f s\n", report.times.init_s + report.times.comp_s + report.times.final_s);

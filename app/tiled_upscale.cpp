@@ -93,19 +93,25 @@ struct Job {
     Backend& backend;
     const Image& image;
     OutputSize out;
-    const std::function<void(uint32_t, uint32_t)>& on_tile;
+    const TileStepCallback& on_step;
     RowEmitter& rows;
+
+    void step(uint32_t tile, uint32_t tiles, TilePhase phase) const {
+        if (on_step) on_step({tile, tiles, phase});
+    }
 };
 
 // Optimises one tile's crop and renders `window` of it, in bands, to `deliver(y_begin, y_end, rows)`.
 template <typename Deliver>
-OptimizeStats upscaleTile(Job& job, const Tile& tile, Deliver deliver) {
+OptimizeStats upscaleTile(Job& job, const Tile& tile, uint32_t index, uint32_t total, Deliver deliver) {
     if (tile.output.width() == 0 || tile.output.height() == 0) return {};  // a core between two samples
+    job.step(index, total, TilePhase::Optimize);
     const bool whole = tile.crop.width() == job.image.width && tile.crop.height() == job.image.height;
     Image crop;
     if (!whole) crop = cropOf(job.image, tile.crop);
     job.backend.prepare(whole ? job.image : crop);
     const OptimizeStats stats = job.backend.optimize();
+    job.step(index, total, TilePhase::Render);
 
     RenderWindow window;
     window.input_width = job.image.width;
@@ -133,8 +139,7 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
     const uint32_t c = job.image.channels;
     const size_t row_floats = size_t(job.out.width) * c;
     if (tiles.size() == 1) {
-        if (job.on_tile) job.on_tile(first_index, total);
-        addStats(stats, upscaleTile(job, tiles[0], [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+        addStats(stats, upscaleTile(job, tiles[0], first_index, total, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
                      job.rows.emit(y_begin, y_end, rows);
                  }));
         return stats;
@@ -142,10 +147,9 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
     const PixelRect strip = {0, tiles[0].output.y0, job.out.width, tiles[0].output.y1};
     std::vector<float> strip_rows(size_t(strip.height()) * row_floats);
     for (uint32_t i = 0; i < tiles.size(); ++i) {
-        if (job.on_tile) job.on_tile(first_index + i, total);
         const Tile& tile = tiles[i];
         const size_t tile_row_floats = size_t(tile.output.width()) * c;
-        addStats(stats, upscaleTile(job, tile, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+        addStats(stats, upscaleTile(job, tile, first_index + i, total, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
                      for (uint32_t y = y_begin; y < y_end; ++y)
                          std::copy_n(rows + (y - y_begin) * tile_row_floats, tile_row_floats,
                                      strip_rows.data() + (y - strip.y0) * row_floats + size_t(tile.output.x0) * c);
@@ -171,7 +175,7 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
 }
 
 OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,
-                          const Sink& sink, const std::function<void(uint32_t tile, uint32_t tiles)>& on_tile) {
+                          const Sink& sink, const TileStepCallback& on_step) {
     // A core's last samples must lie inside its crop's hull, or they would stay unwritten.
     const uint32_t overlap = std::max(1u, options.overlap);
     const uint32_t largest_side = std::max(image.width, image.height);
@@ -180,7 +184,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
     if (side == 0 || side > largest_side) side = largest_side;
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
-    Job job{backend, image, out, on_tile, rows};
+    Job job{backend, image, out, on_step, rows};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

@@ -22,6 +22,15 @@ const uint32_t kDefaultOverlap = 16;
 // Smaller tiles would be mostly overlap; below this the device is hopeless.
 const uint32_t kMinTileSide = 64;
 
+// Where upscaleRows is: about to prepare and optimise tile k of n, or to render it.
+enum class TilePhase { Optimize, Render };
+struct TileStep {
+    uint32_t tile = 0;
+    uint32_t tiles = 1;
+    TilePhase phase = TilePhase::Optimize;
+};
+using TileStepCallback = std::function<void(const TileStep&)>;
+
 struct TileOptions {
     uint32_t tile = 0;  // tile side in input pixels; 0 = automatic: tiles only when the input does not fit
     uint32_t overlap = kDefaultOverlap;  // 0 counts as 1
@@ -34,12 +43,13 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
                            uint32_t overlap);
 
 // Upscales `image` to `out` and hands the output rows to `sink` in order, each row exactly
-// once: sink(y_begin, y_end, rows) with out.width × channels floats per row. `on_tile(k, n)`
-// is called before tile k of n is optimised (n may grow after a retry with smaller tiles).
+// once: sink(y_begin, y_end, rows) with out.width × channels floats per row. `on_step` is
+// called before each tile is optimised and before it is rendered (the tile count may grow
+// after a retry with smaller tiles).
 // Returns the optimisation statistics summed over the tiles (overlaps counted in each tile).
 // Throws UserError when even kMinTileSide tiles do not fit the device.
 OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,
                           const std::function<void(uint32_t y_begin, uint32_t y_end, const float* rows)>& sink,
-                          const std::function<void(uint32_t tile, uint32_t tiles)>& on_tile = {});
+                          const TileStepCallback& on_step = {});
 
 }  // namespace ddt

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <optional>
 
+#include "tiled_upscale.h"
+
 namespace ddt {
 
 namespace {
@@ -14,9 +16,6 @@ namespace fs = std::filesystem;
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-// Bands of at most this many floats keep memory flat while streaming a huge output.
-const size_t kBandFloats = size_t(16) << 20;
 
 void checkMagnifiable(const std::string& input, const Image& header) {
     if (header.width < 2 || header.height < 2)
@@ -88,36 +87,42 @@ void ImageJob::read() {
 }
 
 void ImageJob::process(Backend& backend) {
-    auto start = std::chrono::steady_clock::now();
+    const OutputSize out = report_.out;
+    const size_t row_floats = size_t(out.width) * state_->image.channels;
+    // A large output is written while it is rendered rather than held for the write stage.
+    const bool buffered = row_floats * out.height <= kMaxBufferedOutputFloats;
+    if (buffered) state_->rendered.resize(row_floats * out.height);
+    auto sink = [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+        if (buffered)
+            std::copy_n(rows, size_t(y_end - y_begin) * row_floats, state_->rendered.data() + y_begin * row_floats);
+        else
+            state_->writer->writeRows(y_begin, y_end, rows);
+    };
+    // Time spent in each phase, for --stats: optimize (with building and uploading each
+    // tile's mesh) and render.
+    auto mark = std::chrono::steady_clock::now();
+    TilePhase phase = TilePhase::Optimize;
+    bool told_tiles = false;
+    auto on_step = [&](const TileStep& step) {
+        (phase == TilePhase::Optimize ? report_.times.comp_s : report_.times.final_s) += secondsSince(mark);
+        mark = std::chrono::steady_clock::now();
+        phase = step.phase;
+        reporter_.stage(index_, task_.input, phase == TilePhase::Optimize ? Stage::Optimize : Stage::Render, step.tile,
+                        step.tiles);
+        if (step.tiles > 1 && !told_tiles && !settings_.tile) {
+            reporter_.notice(task_.input, inputName(task_.input) + ": too large for the device's memory in one piece; " +
+                                              "processed in " + std::to_string(step.tiles) + " tiles");
+            told_tiles = true;
+        }
+    };
     try {
-        backend.prepare(state_->image);
+        TileOptions options;
+        options.tile = settings_.tile;
+        report_.stats = upscaleRows(backend, state_->image, out, options, sink, on_step);
     } catch (const UserError& error) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }
-    report_.times.init_s += secondsSince(start);
-
-    reporter_.stage(index_, task_.input, Stage::Optimize);
-    start = std::chrono::steady_clock::now();
-    report_.stats = backend.optimize();
-    report_.times.comp_s = secondsSince(start);
-
-    reporter_.stage(index_, task_.input, Stage::Render);
-    start = std::chrono::steady_clock::now();
-    const OutputSize out = report_.out;
-    const size_t row_floats = size_t(out.width) * state_->image.channels;
-    if (row_floats * out.height <= kMaxBufferedOutputFloats) {
-        state_->rendered.resize(row_floats * out.height);
-        backend.renderRows(out, 0, out.height, state_->rendered.data());
-    } else {
-        const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
-        std::vector<float> band(size_t(std::min(band_rows, out.height)) * row_floats);
-        for (uint32_t y = 0; y < out.height; y += band_rows) {
-            const uint32_t y_end = std::min(out.height, y + band_rows);
-            backend.renderRows(out, y, y_end, band.data());
-            state_->writer->writeRows(y, y_end, band.data());
-        }
-    }
-    report_.times.final_s = secondsSince(start);
+    (phase == TilePhase::Optimize ? report_.times.comp_s : report_.times.final_s) += secondsSince(mark);
     state_->image.pixels = {};  // the next image may need the memory
 }
 

@@ -92,8 +92,8 @@ std::vector<float> upscale(Backend& backend, const Image& image, OutputSize out,
             std::copy_n(rows, (y_end - y_begin) * row_floats, result.begin() + y_begin * row_floats);
             next_row = y_end;
         },
-        [&](uint32_t, uint32_t n) {
-            if (tiles) *tiles = n;
+        [&](const TileStep& step) {
+            if (tiles) *tiles = step.tiles;
         });
     REQUIRE(next_row == out.height);
     return result;
@@ -334,7 +334,7 @@ void checkLargeUpscale(uint32_t side_px) {
                 sum += rows[i];
             }
         },
-        [&](uint32_t, uint32_t n) { tiles = n; });
+        [&](const TileStep& step) { tiles = step.tiles; });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("tiling: %s %ux%u -> %ux%u: %u tiles (automatic side %u), %.1f s (%llu flips, %u iterations, "
                 "%.1f s optimising on the device)\n",
