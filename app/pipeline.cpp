@@ -22,7 +22,7 @@ bool runStage(ImageJob& job, Reporter& reporter, Stage stage) {
     } catch (const std::bad_alloc&) {
         reporter.failed(input, inputName(input) + ": out of memory");
     } catch (const std::exception& error) {
-        reporter.failed(input, inputName(input) + ": internal error: " + error.what());
+        reporter.failed(input, inputName(input) + ": internal error: " + error.what(), true);
     }
     return false;
 }

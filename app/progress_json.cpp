@@ -64,6 +64,11 @@ public:
         emit(event.field("message", message));
     }
 
+    void failed(const RunCounts& counts, const std::string& input, const std::string& message) override {
+        error(input, message);
+        progress(counts);
+    }
+
     void summary(const RunCounts& counts, const std::vector<std::string>&, int exit_code) override {
         emit(JsonLine()
                  .field("event", "summary")

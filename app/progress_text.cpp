@@ -86,6 +86,8 @@ public:
 
     void error(const std::string&, const std::string& message) override { line(message); }
 
+    void failed(const RunCounts&, const std::string&, const std::string& message) override { line(message); }
+
     void summary(const RunCounts& counts, const std::vector<std::string>& failures, int) override {
         clearLive();
         if (!batch_ || (verbosity_ == Verbosity::Quiet && failures.empty())) return;

@@ -106,11 +106,12 @@ void Reporter::notice(const std::string& input, const std::string& message) {
     sink_->notice(input, message);
 }
 
-void Reporter::failed(const std::string& input, const std::string& message) {
+void Reporter::failed(const std::string& input, const std::string& message, bool internal) {
     std::lock_guard lock(mutex_);
     ++counts_.failed;
+    internal_error_ |= internal;
     failures_.push_back(message);
-    sink_->error(input, message);
+    sink_->failed(countsLocked(), input, message);
 }
 
 void Reporter::fatal(const std::string& message, int exit_code) {
@@ -123,7 +124,10 @@ int Reporter::finish() {
     std::lock_guard lock(mutex_);
     finished_ = true;
     finished_signal_.notify_all();
-    const int exit_code = fatal_exit_code_ ? fatal_exit_code_ : counts_.failed ? int(kExitSomeFailed) : int(kExitDone);
+    const int exit_code = fatal_exit_code_   ? fatal_exit_code_
+                          : internal_error_  ? int(kExitInternal)
+                          : counts_.failed   ? int(kExitSomeFailed)
+                                             : int(kExitDone);
     sink_->summary(countsLocked(), failures_, exit_code);
     return exit_code;
 }

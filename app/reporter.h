@@ -43,6 +43,8 @@ public:
     virtual void skipped(const RunCounts& counts, size_t index, const ImageTask& task) = 0;
     virtual void notice(const std::string& input, const std::string& message) = 0;
     virtual void error(const std::string& input, const std::string& message) = 0;
+    // An image failed: its error, and the counts that include it.
+    virtual void failed(const RunCounts& counts, const std::string& input, const std::string& message) = 0;
     // `failures` holds each failed image's message.
     virtual void summary(const RunCounts& counts, const std::vector<std::string>& failures, int exit_code) = 0;
 };
@@ -67,7 +69,8 @@ public:
     void done(size_t index, const ImageTask& task, OutputSize size, double seconds);
     void skipped(size_t index, const ImageTask& task);
     void notice(const std::string& input, const std::string& message);  // `message` names its file
-    void failed(const std::string& input, const std::string& message);  // an image failed
+    // An image failed; `internal` when by a bug in ddtup rather than its input (exit code 4).
+    void failed(const std::string& input, const std::string& message, bool internal = false);
     // An error that ends the run before or outside any image (usage, no device, a bug).
     void fatal(const std::string& message, int exit_code);
     // Prints the summary; returns the exit code the counts call for.
@@ -91,6 +94,7 @@ private:
     std::vector<std::string> failures_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     int fatal_exit_code_ = 0;
+    bool internal_error_ = false;
     std::optional<LastStage> last_stage_;
     bool finished_ = false;
     std::condition_variable finished_signal_;
