@@ -1,8 +1,12 @@
-// Standard input and output, and the output options (--depth, --quality, -f), through the
-// real executable.
+// Standard input and output, the output options (--depth, --quality, -f), and what the
+// input file says beyond its pixels (orientation, several images, DPI), through the real
+// executable.
 #include <catch2/catch.hpp>
 
+#include <OpenImageIO/imageio.h>
+
 #include <filesystem>
+#include <functional>
 
 #include "image.h"
 #include "run_ddtup.h"
@@ -60,4 +64,58 @@ TEST_CASE("output options: --depth, --quality and -f reach the file") {
     CHECK(batch.exit_code == 0);
     CHECK(fs::exists(folder / "out/crop32_astronaut.tif"));
     CHECK(ddt::ImageReader(folder / "out/crop32_astronaut.tif").header().width == 64);
+}
+
+namespace {
+
+// A 6×4 RGB image written with OIIO directly, its spec amended by `describe`, in `pages`
+// subimages.
+void writeRaw(const std::string& path, const std::function<void(OIIO::ImageSpec&)>& describe, int pages = 1) {
+    OIIO::ImageSpec spec(6, 4, 3, OIIO::TypeDesc::UINT8);
+    describe(spec);
+    std::vector<OIIO::ImageSpec> specs(size_t(pages), spec);
+    auto output = OIIO::ImageOutput::create(path);
+    REQUIRE(output);
+    REQUIRE(output->open(path, pages, specs.data()));
+    std::vector<uint8_t> pixels(6 * 4 * 3);
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = uint8_t(i * 7);
+    for (int page = 0; page < pages; ++page) {
+        if (page) REQUIRE(output->open(path, spec, OIIO::ImageOutput::AppendSubimage));
+        REQUIRE(output->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+    }
+    REQUIRE(output->close());
+}
+
+OIIO::ImageSpec specOf(const std::string& path) {
+    auto input = OIIO::ImageInput::open(path);
+    REQUIRE(input);
+    return input->spec();
+}
+
+}  // namespace
+
+TEST_CASE("files: EXIF orientation, several images in one file and DPI through the executable") {
+    TempFolder folder;
+    // Orientation 6: the stored 6×4 pixels show rotated a quarter turn, upright 4×6.
+    writeRaw(folder / "turned.tif", [](OIIO::ImageSpec& spec) { spec.attribute("Orientation", 6); });
+    const Run turned = runDdtup({folder / "turned.tif", folder / "upright.tif", "-s", "2", "-q"});
+    REQUIRE(turned.exit_code == 0);
+    const OIIO::ImageSpec upright = specOf(folder / "upright.tif");
+    CHECK(upright.width == 8);
+    CHECK(upright.height == 12);
+    CHECK(upright.get_int_attribute("Orientation", 1) == 1);
+
+    writeRaw(folder / "pages.tif", [](OIIO::ImageSpec&) {}, 3);
+    const Run pages = runDdtup({folder / "pages.tif", folder / "first.png", "--backend", "cpu"});
+    CHECK(pages.exit_code == 0);
+    CHECK(pages.err == "ddtup: note: " + folder / "pages.tif" + ": has 3 images; using the first\n");
+    CHECK(specOf(folder / "first.png").width == 12);
+
+    writeRaw(folder / "dpi.tif", [](OIIO::ImageSpec& spec) {
+        spec.attribute("XResolution", 72.0f);
+        spec.attribute("YResolution", 72.0f);
+        spec.attribute("ResolutionUnit", "inch");
+    });
+    REQUIRE(runDdtup({folder / "dpi.tif", folder / "dpi-x3.tif", "-s", "3", "-q"}).exit_code == 0);
+    CHECK(specOf(folder / "dpi-x3.tif").get_float_attribute("XResolution") == Approx(216.0f));
 }
