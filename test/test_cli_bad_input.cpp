@@ -273,3 +273,47 @@ TEST_CASE("cli: SIGINT while standard input is copied removes the copy") {
     CHECK(temp.names().empty());
     CHECK(work.outputs.names().empty());
 }
+
+TEST_CASE("bad input: in a batch every bad file fails alone, with its own line, and the good ones are done") {
+    Workspace work;
+    const auto in = [&](const std::string& name) { return work.inputs / name; };
+    ddt::writeImage(in("good1.png"), noiseImage(8, 8));
+    ddt::writeImage(in("good2.png"), noiseImage(9, 7));
+    fs::create_directory(in("folder.png"));
+    writeBytes(in("text.png"), "not an image");
+    const std::string png = readFile(in("good1.png"));
+    writeBytes(in("truncated.png"), png.substr(0, png.size() / 2));
+    writeBytes(in("empty.png"), "");
+    writeBytes(in("zero.png"), ddt::test::pngClaiming(0, 0));
+    ddt::writeImage(in("column.png"), noiseImage(1, 7));
+    writeBytes(in("huge.png"), ddt::test::pngClaiming(100000, 100000));
+    writeChannels(in("five.tif"), 5, OIIO::TypeDesc::UINT8);
+    ddt::Image nan_image = noiseImage(8, 8);
+    nan_image.sample_type = ddt::SampleType::Float;
+    nan_image.pixels[5] = std::numeric_limits<float>::quiet_NaN();
+    ddt::writeImage(in("nan.exr"), nan_image);
+    const std::vector<std::string> bad = {"missing.png", "folder.png", "text.png", "truncated.png", "empty.png",
+                                          "zero.png",    "column.png", "huge.png", "five.tif",      "nan.exr"};
+
+    std::vector<std::string> args = {in("good1.png")};
+    for (const std::string& name : bad) args.push_back(in(name));
+    args.push_back(in("good2.png"));
+    args.insert(args.end(), {"-o", work.outputs.path().string(), "-s", "2", "-q"});
+    const Run batch = runDdtup(args);
+    INFO("stderr: " << batch.err);
+    CHECK(batch.exit_code == 1);
+    CHECK(batch.out.empty());
+    for (const std::string& name : bad) {
+        INFO(name);
+        // The same line as when the file is given alone, once as it fails and once in the summary.
+        const Run alone = runDdtup({in(name), work.outputs / "alone.png", "-s", "2", "-q"});
+        REQUIRE(alone.exit_code == 1);
+        REQUIRE(alone.err.rfind("ddtup: ", 0) == 0);
+        const std::string reason = alone.err.substr(7);
+        CHECK_THAT(batch.err, Catch::Contains("ddtup: " + reason));
+        CHECK_THAT(batch.err, Catch::Contains("ddtup: failed: " + reason));
+    }
+    CHECK_THAT(batch.err, Catch::Contains("ddtup: summary: 2 done, 0 skipped, 10 failed"));
+    CHECK(work.outputs.names() == std::set<std::string>{"good1.png", "good2.png"});
+    CHECK(ddt::ImageReader(work.outputs / "good2.png").header().width == 18);
+}
