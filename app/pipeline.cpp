@@ -35,12 +35,15 @@ void runPipeline(const std::vector<ImageTask>& tasks, const Settings& settings,
     // One image waits between each pair of stages: at most four are in memory at once.
     BoundedQueue<std::unique_ptr<ImageJob>> decoded(1), processed(1);
     std::atomic<bool> stopped = false;
+    MemoryBudget budget(defaultHostBudget());
 
     std::thread reader([&] {
         for (size_t i = 0; i < tasks.size() && !stopped; ++i) {
             if (tasks[i].state != ImageTask::State::Ready) continue;
             auto job = std::make_unique<ImageJob>(i, tasks[i], settings, reporter);
-            if (runStage(*job, reporter, [&] { job->read(); })) decoded.push(std::move(job));
+            if (!runStage(*job, reporter, [&] { job->open(); })) continue;
+            job->holdMemory(budget.acquire(job->hostMemory()));
+            if (runStage(*job, reporter, [&] { job->decode(); })) decoded.push(std::move(job));
         }
         decoded.close();
     });

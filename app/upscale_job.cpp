@@ -32,6 +32,8 @@ void checkOutputLimit(const std::string& output, OutputSize out) {
 }  // namespace
 
 struct ImageJob::State {
+    std::optional<ImageReader> reader;  // from open() to decode()
+    uint32_t channels = 0;
     Image image;
     std::optional<ImageWriter> writer;
     std::vector<float> rendered;  // the whole output, or empty when it was streamed
@@ -61,11 +63,12 @@ WriteOptions ImageJob::writeOptions() const {
     return options;
 }
 
-void ImageJob::read() {
+void ImageJob::open() {
     reporter_.stage(index_, task_.input, Stage::Read);
     const auto start = std::chrono::steady_clock::now();
-    ImageReader reader(task_.input);
-    const Image& header = reader.header();
+    state_->reader.emplace(task_.input);
+    const Image& header = state_->reader->header();
+    state_->channels = header.channels;
     checkMagnifiable(task_.input, header);
     report_.out = requestedOutputSize(settings_, header.width, header.height);
     checkOutputLimit(task_.output, report_.out);
@@ -81,16 +84,34 @@ void ImageJob::read() {
     // Open the output before decoding the input: an unwritable path, or a size the format
     // cannot hold, fails before any of the long parts.
     state_->writer.emplace(task_.output, report_.out.width, report_.out.height, header, writeOptions());
-    state_->image = reader.read();
-    for (const std::string& note : reader.notes()) reporter_.notice(task_.input, note);
     report_.times.init_s = secondsSince(start);
+}
+
+uint64_t ImageJob::hostMemory() const {
+    const Image& header = state_->reader->header();
+    const uint64_t input_floats = uint64_t(header.width) * header.height * header.channels;
+    const uint64_t output_floats = uint64_t(report_.out.width) * report_.out.height * header.channels;
+    // The image, a tile's crop of it at most as large, and the output when it is held whole.
+    return sizeof(float) * (2 * input_floats + (bufferedOutput() ? output_floats : 0));
+}
+
+bool ImageJob::bufferedOutput() const {
+    return uint64_t(report_.out.width) * report_.out.height * state_->channels <= kMaxBufferedOutputFloats;
+}
+
+void ImageJob::decode() {
+    const auto start = std::chrono::steady_clock::now();
+    state_->image = state_->reader->read();
+    for (const std::string& note : state_->reader->notes()) reporter_.notice(task_.input, note);
+    state_->reader.reset();
+    report_.times.init_s += secondsSince(start);
 }
 
 void ImageJob::process(Backend& backend) {
     const OutputSize out = report_.out;
     const size_t row_floats = size_t(out.width) * state_->image.channels;
     // A large output is written while it is rendered rather than held for the write stage.
-    const bool buffered = row_floats * out.height <= kMaxBufferedOutputFloats;
+    const bool buffered = bufferedOutput();
     if (buffered) state_->rendered.resize(row_floats * out.height);
     auto sink = [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
         if (buffered)

@@ -9,6 +9,7 @@
 
 #include "backend.h"
 #include "batch_plan.h"
+#include "memory_budget.h"
 #include "reporter.h"
 #include "settings.h"
 
@@ -37,10 +38,17 @@ public:
     ImageJob(size_t index, const ImageTask& task, const Settings& settings, Reporter& reporter);
     ~ImageJob();
 
-    // Each throws UserError ("PATH: reason") when the image fails.
-    void read();
+    // Each throws UserError ("PATH: reason") when the image fails. open() reads the header
+    // and opens the output, decode() the pixels.
+    void open();
+    void decode();
     void process(Backend& backend);
     void write();
+
+    // Host memory the job holds at most from decode() to its end (after open()).
+    uint64_t hostMemory() const;
+    // The lease on the pipeline's memory budget, ended with the job.
+    void holdMemory(MemoryBudget::Lease lease) { memory_ = std::move(lease); }
 
     size_t index() const { return index_; }
     const ImageTask& task() const { return task_; }
@@ -48,6 +56,7 @@ public:
 
 private:
     WriteOptions writeOptions() const;
+    bool bufferedOutput() const;
 
     struct State;
     size_t index_;
@@ -56,6 +65,7 @@ private:
     Reporter& reporter_;
     JobReport report_;
     std::unique_ptr<State> state_;
+    MemoryBudget::Lease memory_;
 };
 
 // The output size the settings ask for, for an input of width × height.
