@@ -24,9 +24,13 @@ void checkMagnifiable(const std::string& input, const Image& header) {
 }
 
 void checkOutputLimit(const std::string& output, OutputSize out) {
-    if (uint64_t(out.width) * out.height > kMaxOutputPixels)
-        throw UserError(outputName(output) + ": the output would be " + std::to_string(out.width) + "×" + std::to_string(out.height) +
-                        " pixels; ddtup writes at most " + std::to_string(kMaxOutputPixels) + " pixels (4 gigapixels)");
+    if (uint64_t(out.width) * out.height <= kMaxOutputPixels) return;
+    // Sides beyond 32 bits arrive saturated (render.h): say "more than" rather than a false size.
+    const bool saturated = out.width == UINT32_MAX || out.height == UINT32_MAX;
+    const std::string size = saturated ? "more than 4294967295 pixels a side"
+                                       : std::to_string(out.width) + "×" + std::to_string(out.height) + " pixels";
+    throw UserError(outputName(output) + ": the output would be " + size + "; ddtup writes at most " +
+                    std::to_string(kMaxOutputPixels) + " pixels (4 gigapixels)");
 }
 
 }  // namespace
