@@ -21,25 +21,11 @@ std::string lowercase(std::string text) {
     return text;
 }
 
-// Extensions OpenImageIO can read, lower case without the dot. Its "extension_list" reads
-// "tiff:tif,tiff;png:png;…".
+// Extensions OpenImageIO can read, lower case without the dot.
 std::set<std::string> readableExtensions() {
     std::set<std::string> extensions;
-    const std::string list = OIIO::get_string_attribute("extension_list");
-    size_t begin = 0;
-    while (begin < list.size()) {
-        size_t end = list.find(';', begin);
-        if (end == std::string::npos) end = list.size();
-        const std::string entry = list.substr(begin, end - begin);
-        size_t item = entry.find(':') == std::string::npos ? entry.size() : entry.find(':') + 1;
-        while (item < entry.size()) {
-            size_t comma = entry.find(',', item);
-            if (comma == std::string::npos) comma = entry.size();
-            extensions.insert(lowercase(entry.substr(item, comma - item)));
-            item = comma + 1;
-        }
-        begin = end + 1;
-    }
+    for (const auto& [format, format_extensions] : OIIO::get_extension_map())
+        for (const std::string& extension : format_extensions) extensions.insert(lowercase(extension));
     return extensions;
 }
 

@@ -1,9 +1,8 @@
 // The serial reference backend: core's mesh, Lawson sweeps and rasteriser on the host.
-#include <unistd.h>
-
 #include <optional>
 
 #include "backend.h"
+#include "memory_budget.h"
 
 namespace ddt {
 
@@ -41,10 +40,7 @@ public:
 
     // Half the machine's memory: the input, the output bands and the rest of the process
     // need the other half.
-    uint64_t memoryAvailable() const override {
-        const long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGE_SIZE);
-        return pages > 0 && page_size > 0 ? uint64_t(pages) * uint64_t(page_size) / 2 : UINT64_MAX;
-    }
+    uint64_t memoryAvailable() const override { return physicalMemory() / 2; }
 
 private:
     const Image* image_ = nullptr;

@@ -56,11 +56,14 @@ private:
     uint64_t held_ = 0;
 };
 
-// Half the machine's physical memory: the rest is for the device (lavapipe's buffers live in
-// host memory too) and everything else.
-inline uint64_t defaultHostBudget() {
+// The machine's physical memory in bytes (4 GiB when the system does not say).
+inline uint64_t physicalMemory() {
     const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page_size > 0 ? uint64_t(pages) * uint64_t(page_size) / 2 : uint64_t(4) << 30;
+    return pages > 0 && page_size > 0 ? uint64_t(pages) * uint64_t(page_size) : uint64_t(4) << 30;
 }
+
+// What the pipeline's images may hold: half the physical memory; the rest is for the device
+// (lavapipe's buffers live in host memory too) and everything else.
+inline uint64_t defaultHostBudget() { return physicalMemory() / 2; }
 
 }  // namespace ddt

@@ -3,6 +3,7 @@
 // their fields are listed in the README.
 #include <unistd.h>
 
+#include "checked_file.h"
 #include "json_line.h"
 #include "reporter.h"
 
@@ -90,7 +91,10 @@ private:
                  .field("elapsed", counts.elapsed_s)
                  .field("remaining", counts.remaining_s >= 0.0 ? counts.remaining_s : -1.0));
     }
-    void emit(const JsonLine& event) { writeAll(fd_, event.text()); }
+    void emit(const JsonLine& event) {
+        const std::string text = event.text();
+        writeAll(fd_, text.data(), text.size());  // a failure means stderr is gone
+    }
 
     int fd_;
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "checked_file.h"
 #include "reporter.h"
 
 namespace ddt {
@@ -97,7 +98,8 @@ public:
     }
 
 private:
-    void write(const std::string& text) { writeAll(fd_, text); }
+    // A failure means stderr is gone: there is no one left to tell.
+    void write(const std::string& text) { writeAll(fd_, text.data(), text.size()); }
     // A message on its own line, with the live line redrawn under it.
     void line(const std::string& message) {
         clearLive();

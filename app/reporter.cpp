@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "checked_file.h"
 #include "exit_codes.h"
 
 namespace ddt {
@@ -19,15 +20,6 @@ const char* stageName(Stage stage) {
             return "write";
     }
     return "?";
-}
-
-void writeAll(int fd, const std::string& text) {
-    size_t written = 0;
-    while (written < text.size()) {
-        const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-        if (n <= 0) return;
-        written += size_t(n);
-    }
 }
 
 Reporter::Reporter(const Settings& settings) {

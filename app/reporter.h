@@ -53,8 +53,6 @@ public:
 // stderr for a moment (core/image.cpp) cannot swallow a message from another thread.
 std::unique_ptr<ProgressSink> makeTextProgress(int fd, Verbosity verbosity, bool live_line);
 std::unique_ptr<ProgressSink> makeJsonProgress(int fd);
-// Writes all of `text` to `fd`, giving up quietly if stderr is gone.
-void writeAll(int fd, const std::string& text);
 
 class Reporter {
 public:

@@ -23,6 +23,16 @@ uint64_t injectedWriteLimit() {
 
 }  // namespace
 
+int writeAll(int fd, const void* data, size_t size) {
+    for (size_t done = 0; done < size;) {
+        const ssize_t n = ::write(fd, static_cast<const char*>(data) + done, size - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return n < 0 ? errno : EIO;
+        done += size_t(n);
+    }
+    return 0;
+}
+
 CheckedFile::CheckedFile(const std::string& path) : IOProxy(path, Write), limit_(injectedWriteLimit()) {
     fd_ = ::open(path.c_str(), O_RDWR | O_TRUNC | O_CLOEXEC);
     if (fd_ < 0) throw std::system_error(errno, std::generic_category());

@@ -1,4 +1,5 @@
-// The file an ImageWriter's codec writes to, through OIIO's IOProxy: every write is checked.
+// Writes whose every failure is seen. CheckedFile is the file an ImageWriter's codec writes to,
+// through OIIO's IOProxy.
 // OIIO 2.4's PNG, BMP and Targa writers ignore failed writes: on a full disk they report
 // success and leave a truncated file (measured on a 64 KiB tmpfs), so the writer asks this
 // file instead of the codec whether everything reached the disk.
@@ -10,6 +11,10 @@
 #include <string>
 
 namespace ddt {
+
+// Writes all `size` bytes to `fd`, retrying short writes and EINTR; 0, or errno of the
+// failure (EIO when the file takes nothing).
+int writeAll(int fd, const void* data, size_t size);
 
 class CheckedFile final : public OIIO::Filesystem::IOProxy {
 public:

@@ -484,12 +484,7 @@ void copyToStandardOutput(const std::string& file) {
             error = n < 0 ? errno : 0;
             break;
         }
-        for (ssize_t done = 0; done < n && !error;) {
-            const ssize_t w = ::write(STDOUT_FILENO, buffer.data() + done, size_t(n - done));
-            if (w < 0 && errno == EINTR) continue;
-            if (w <= 0) error = w < 0 ? errno : EIO;
-            else done += w;
-        }
+        error = writeAll(STDOUT_FILENO, buffer.data(), size_t(n));
     }
     ::close(fd);
     if (error) throw fail(error);

@@ -26,7 +26,7 @@ private:
     int slot_ = -1;  // in the signal handler's list; -1 when the list was full
 };
 
-// $TMPDIR, else /tmp: where files not tied to an output folder go.
+// The system's temporary folder ($TMPDIR, else /tmp): where files not tied to an output folder go.
 std::string tempFolder();
 
 // On SIGINT, SIGTERM, SIGHUP or SIGPIPE: removes every live TempFile, then dies of the signal

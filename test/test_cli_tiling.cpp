@@ -4,7 +4,6 @@
 // black or partial image.
 #include <catch2/catch.hpp>
 
-#include <cmath>
 #include <filesystem>
 
 #include "flat_json.h"
@@ -17,39 +16,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A 300×200 crop of a photo, so tiles of 64 meet in every direction.
+// The shared 300×200 photo crop as a file: tiles of 64 meet in every direction.
 std::string writePhotoCrop(const TempFolder& folder) {
-    const ddt::Image photo = ddt::readImage(std::string(DDTUP_TEST_DATA) + "/../../bench/data/real/astronaut.png");
-    ddt::Image crop = photo;
-    crop.width = 300;
-    crop.height = 200;
-    crop.pixels.clear();
-    for (uint32_t y = 0; y < crop.height; ++y)
-        crop.pixels.insert(crop.pixels.end(), photo.row(y + 100), photo.row(y + 100) + crop.rowFloats());
     const std::string path = folder / "photo.png";
-    ddt::writeImage(path, crop);
+    ddt::writeImage(path, ddt::test::photoCrop());
     return path;
 }
 
-// The share of samples that differ by more than 1/255, and the largest difference.
-struct Agreement {
-    double differing_share = 1.0;
-    float max_difference = 1.0f;
-};
-
-Agreement compare(const ddt::Image& a, const ddt::Image& b) {
-    REQUIRE(a.width == b.width);
-    REQUIRE(a.height == b.height);
-    REQUIRE(a.pixels.size() == b.pixels.size());
-    Agreement agreement{0.0, 0.0f};
-    size_t differing = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const float difference = std::fabs(a.pixels[i] - b.pixels[i]);
-        agreement.max_difference = std::max(agreement.max_difference, difference);
-        differing += difference > 1.0f / 255.0f + 1e-6f;
-    }
-    agreement.differing_share = double(differing) / double(a.pixels.size());
-    return agreement;
+ddt::test::Agreement compareFiles(const std::string& a, const std::string& b) {
+    const ddt::Image image_a = ddt::readImage(a), image_b = ddt::readImage(b);
+    REQUIRE(image_a.width == image_b.width);
+    REQUIRE(image_a.height == image_b.height);
+    return ddt::test::compareSamples(image_a.pixels, image_b.pixels);
 }
 
 }  // namespace
@@ -63,10 +41,9 @@ TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the
         REQUIRE(runDdtup({input, whole, "-s", "2", "-q", "--backend", backend}).exit_code == 0);
         const Run run = runDdtup({input, tiled, "-s", "2", "--tile", "64", "--progress=json", "--backend", backend});
         REQUIRE(run.exit_code == 0);
-        const Agreement agreement = compare(ddt::readImage(whole), ddt::readImage(tiled));
-        // The issue's bar: within 1/255 on at least 99.9 % of the samples (overlap 16: all).
-        CHECK(agreement.differing_share <= 0.001);
-        CHECK(agreement.max_difference <= 1.0f / 255.0f + 1e-6f);
+        // The issue's bar: within 1/255 on at least 99.9 % of the samples. (Measured with the
+        // default overlap of 16: equal, bit for bit; test_tiling.cpp prints the numbers.)
+        CHECK(compareFiles(whole, tiled).within_one_level >= 0.999);
         std::set<std::string> tiles_seen;
         for (const auto& event : parseJsonLines(run.err))
             if (event.at("event") == "stage" && event.count("tiles")) {
@@ -86,8 +63,7 @@ TEST_CASE("tiling cli: a device out of memory leads to smaller tiles, never a pa
     const Run run = runDdtup({input, retried, "-s", "2", "-q"}, {"DDTUP_TEST_DEVICE_MEMORY=1048576"});
     INFO("stderr: " << run.err);
     REQUIRE(run.exit_code == 0);
-    const Agreement agreement = compare(ddt::readImage(whole), ddt::readImage(retried));
-    CHECK(agreement.differing_share <= 0.001);
+    CHECK(compareFiles(whole, retried).within_one_level >= 0.999);  // the issue's bar, as above
 
     // With too little memory for even the smallest tile: one line, no file.
     const Run hopeless = runDdtup({input, folder / "none.png", "-s", "2", "-q"}, {"DDTUP_TEST_DEVICE_MEMORY=1000"});

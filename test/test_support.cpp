@@ -1,8 +1,11 @@
 #include "test_support.h"
 
+#include <catch2/catch.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <set>
@@ -155,6 +158,32 @@ bool samePixels(const std::vector<float>& a, const std::vector<float>& b) {
     for (size_t i = 0; i < a.size(); ++i)
         if (!(a[i] == b[i])) return false;
     return true;
+}
+
+Image photoCrop() {
+    const Image photo = readImage(std::string(DDTUP_TEST_DATA) + "/../../bench/data/real/astronaut.png");
+    const uint32_t x0 = 120, y0 = 40, w = 300, h = 200;
+    REQUIRE(photo.width >= x0 + w);
+    REQUIRE(photo.height >= y0 + h);
+    std::vector<float> pixels;
+    for (uint32_t y = y0; y < y0 + h; ++y)
+        pixels.insert(pixels.end(), photo.row(y) + size_t(x0) * photo.channels,
+                      photo.row(y) + size_t(x0 + w) * photo.channels);
+    return makeImage(w, h, photo.channels, pixels);
+}
+
+Agreement compareSamples(const std::vector<float>& a, const std::vector<float>& b) {
+    REQUIRE(a.size() == b.size());
+    Agreement agreement;
+    size_t close = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const float d = std::fabs(a[i] - b[i]);
+        REQUIRE(std::isfinite(d));
+        agreement.max_difference = std::max(agreement.max_difference, d);
+        close += d <= 1.0f / 255.0f;
+    }
+    agreement.within_one_level = double(close) / double(a.size());
+    return agreement;
 }
 
 }  // namespace ddt::test

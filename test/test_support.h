@@ -55,4 +55,15 @@ bool sameRecords(const Mesh& a, const Mesh& b);
 // Exact float equality of two pixel arrays (NaN never equal).
 bool samePixels(const std::vector<float>& a, const std::vector<float>& b);
 
+// A 300×200 crop of bench/data's astronaut photo: texture, soft and hard edges.
+Image photoCrop();
+
+// How closely two renderings of one image agree, sample by sample (for tiled vs untiled).
+struct Agreement {
+    float max_difference = 0.0f;
+    double within_one_level = 0.0;  // share of samples that differ by at most 1/255
+};
+// Fails the calling test when the sizes differ or a difference is not finite.
+Agreement compareSamples(const std::vector<float>& a, const std::vector<float>& b);
+
 }  // namespace ddt::test

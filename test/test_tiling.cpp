@@ -46,19 +46,6 @@ private:
     const char* name_;
 };
 
-// A 300×200 crop of a photo: texture, soft and hard edges.
-Image photoCrop() {
-    const Image photo = readImage(std::string(DDTUP_TEST_DATA) + "/../../bench/data/real/astronaut.png");
-    const uint32_t x0 = 120, y0 = 40, w = 300, h = 200;
-    REQUIRE(photo.width >= x0 + w);
-    REQUIRE(photo.height >= y0 + h);
-    std::vector<float> pixels;
-    for (uint32_t y = y0; y < y0 + h; ++y)
-        pixels.insert(pixels.end(), photo.row(y) + size_t(x0) * photo.channels,
-                      photo.row(y) + size_t(x0 + w) * photo.channels);
-    return test::makeImage(w, h, photo.channels, pixels);
-}
-
 // Hard edges in every direction, the case DDT's flips are for: a disc, a slanted step and
 // thin diagonal lines, in RGB.
 Image edgeImage(uint32_t w = 300, uint32_t h = 200) {
@@ -99,24 +86,6 @@ std::vector<float> upscale(Backend& backend, const Image& image, OutputSize out,
     return result;
 }
 
-struct Agreement {
-    float max_difference = 0.0f;
-    double within_one_level = 0.0;  // share of samples within 1/255
-};
-
-Agreement compare(const std::vector<float>& a, const std::vector<float>& b) {
-    REQUIRE(a.size() == b.size());
-    Agreement agreement;
-    size_t close = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-        const float d = std::fabs(a[i] - b[i]);
-        REQUIRE(std::isfinite(d));
-        agreement.max_difference = std::max(agreement.max_difference, d);
-        close += d <= 1.0f / 255.0f;
-    }
-    agreement.within_one_level = double(close) / double(a.size());
-    return agreement;
-}
 
 TEST_CASE("tiling: cores partition the input and every output pixel belongs to exactly one tile") {
     const uint32_t sizes[][2] = {{2, 2}, {7, 5}, {97, 61}, {300, 200}, {64, 65}, {129, 3}};
@@ -211,7 +180,7 @@ TEST_CASE("tiling: tiled and untiled upscales agree within 1/255 on 99.9 % of sa
         Image image;
     };
     std::mt19937 rng(6);
-    const Case cases[] = {{"photo 300x200", photoCrop()},
+    const Case cases[] = {{"photo 300x200", test::photoCrop()},
                           {"edges 300x200", edgeImage()},
                           {"noise 300x200", test::randomImage(rng, 300, 200, 3)}};
     for (const char* name : {"cpu", "vulkan"}) {
@@ -222,7 +191,8 @@ TEST_CASE("tiling: tiled and untiled upscales agree within 1/255 on 99.9 % of sa
             for (uint32_t overlap : {4u, 8u, 16u, 32u}) {
                 const uint32_t side = 64;
                 uint32_t tiles = 0;
-                const Agreement a = compare(upscale(*backend, c.image, out, {side, overlap}, &tiles), untiled);
+                const test::Agreement a =
+                    test::compareSamples(upscale(*backend, c.image, out, {side, overlap}, &tiles), untiled);
                 std::printf("tiling: %s, %s, x2, %u tiles of %u, overlap %2u: max difference %.4f (%.1f/255), "
                             "%.4f %% within 1/255\n",
                             name, c.label, tiles, side, overlap, a.max_difference, a.max_difference * 255.0f,
@@ -244,7 +214,7 @@ namespace {
 // prepare and optimize, in render (its 3.8 MB band of rendered rows); halving the tile side
 // (300 → 150) gets crops whose buffers fit. The result is the untiled image.
 TEST_CASE("tiling: an injected device out-of-memory error retries with smaller tiles, never a partial image") {
-    const Image image = photoCrop();
+    const Image image = test::photoCrop();
     const OutputSize out = scaledOutputSize(image.width, image.height, 2.0);
     std::unique_ptr<Backend> backend = makeBackendNamed("vulkan");
     const std::vector<float> untiled = upscale(*backend, image, out, {});
@@ -259,7 +229,7 @@ TEST_CASE("tiling: an injected device out-of-memory error retries with smaller t
             retried = upscale(*backend, image, out, {}, &tiles);
         }
         CHECK(tiles == 4);  // tiles of 150: 2 columns, 2 strips
-        const Agreement a = compare(retried, untiled);
+        const test::Agreement a = test::compareSamples(retried, untiled);
         std::printf("tiling: out-of-memory retry (limit %s bytes), %u tiles: max difference %.4f, "
                     "%.4f %% within 1/255\n",
                     limit_bytes, tiles, a.max_difference, 100.0 * a.within_one_level);
@@ -285,7 +255,7 @@ TEST_CASE("tiling: a retry after rows were sent resends none of them") {
         retried = upscale(*backend, image, out, {100}, &tiles);  // checks each row arrives once, in order
     }
     CHECK(tiles == 5);  // one strip of 100 rows, then four of 50
-    CHECK(compare(retried, untiled).within_one_level >= 0.999);
+    CHECK(test::compareSamples(retried, untiled).within_one_level >= 0.999);
     CHECK(validationMessages(*backend) == 0);
 }
 
