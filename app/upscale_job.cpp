@@ -33,6 +33,14 @@ void checkOutputLimit(const std::string& output, OutputSize out) {
                     std::to_string(kMaxOutputPixels) + " pixels (4 gigapixels)");
 }
 
+// The output size the settings ask for, for an input of width × height.
+OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_t height) {
+    if (settings.width && settings.height) return {settings.width, settings.height};
+    if (settings.width) return outputSizeForWidth(width, height, settings.width);
+    if (settings.height) return outputSizeForHeight(width, height, settings.height);
+    return scaledOutputSize(width, height, settings.scale);
+}
+
 }  // namespace
 
 struct ImageJob::State {
@@ -48,13 +56,6 @@ ImageJob::ImageJob(size_t index, const ImageTask& task, const Settings& settings
     : index_(index), task_(task), settings_(settings), reporter_(reporter), state_(std::make_unique<State>()) {}
 
 ImageJob::~ImageJob() = default;
-
-OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_t height) {
-    if (settings.width && settings.height) return {settings.width, settings.height};
-    if (settings.width) return outputSizeForWidth(width, height, settings.width);
-    if (settings.height) return outputSizeForHeight(width, height, settings.height);
-    return scaledOutputSize(width, height, settings.scale);
-}
 
 WriteOptions ImageJob::writeOptions() const {
     WriteOptions options;

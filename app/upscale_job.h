@@ -68,7 +68,4 @@ private:
     MemoryBudget::Lease memory_;
 };
 
-// The output size the settings ask for, for an input of width × height.
-OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_t height);
-
 }  // namespace ddt

@@ -236,14 +236,15 @@ std::string checkInputFile(const std::string& path) {
     return "";
 }
 
-// Subimages of a multi-page TIFF or an animated GIF; MIP levels are not counted.
-int countSubimages(OIIO::ImageInput& input) {
-    int count = 1;
-    while (input.seek_subimage(count, 0)) ++count;
+// Whether the file holds a second image (a page, a frame; MIP levels do not count). Only
+// one seek: counting them all decodes every frame of an animated GIF (0.85 s for 300 frames
+// of 512², measured), for a note.
+bool hasSeveralImages(OIIO::ImageInput& input) {
+    const bool several = input.seek_subimage(1, 0);
     input.seek_subimage(0, 0);
-    globalError();  // the failed seek past the last one leaves a message
+    globalError();  // a failed seek past the last image leaves a message
     codecError(input);
-    return count;
+    return several;
 }
 
 // EXIF orientation 5..8 turn the stored image a quarter: the upright size is the stored size swapped.
@@ -316,13 +317,12 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
         throw UserError(s.name + ": not a readable image (" + reason + ")");
     }
 
-    int subimages;
+    bool several;
     {
         QuietStderr quiet;
-        subimages = countSubimages(*s.input);
+        several = hasSeveralImages(*s.input);
     }
-    if (subimages > 1)
-        notes_.push_back(s.name + ": has " + std::to_string(subimages) + " images; using the first");
+    if (several) notes_.push_back(s.name + ": has more than one image (pages or frames); using the first");
     const OIIO::ImageSpec& spec = s.input->spec();
     if (spec.deep) throw UserError(s.name + ": deep images are not supported");
     if (spec.depth > 1) throw UserError(s.name + ": volume images are not supported");

@@ -67,7 +67,7 @@ public:
     // Decodes the pixels (premultiplied when there is alpha). Throws UserError for a truncated
     // or corrupt file, or NaN or infinite samples. Call once.
     Image read();
-    // One-line remarks for the user ("PATH: has 3 images; using the first").
+    // One-line remarks for the user ("PATH: has more than one image (pages or frames); using the first").
     const std::vector<std::string>& notes() const { return notes_; }
 
 private:

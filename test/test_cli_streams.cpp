@@ -108,7 +108,7 @@ TEST_CASE("files: EXIF orientation, several images in one file and DPI through t
     writeRaw(folder / "pages.tif", [](OIIO::ImageSpec&) {}, 3);
     const Run pages = runDdtup({folder / "pages.tif", folder / "first.png", "--backend", "cpu"});
     CHECK(pages.exit_code == 0);
-    CHECK(pages.err == "ddtup: note: " + folder / "pages.tif" + ": has 3 images; using the first\n");
+    CHECK(pages.err == "ddtup: note: " + folder / "pages.tif" + ": has more than one image (pages or frames); using the first\n");
     CHECK(specOf(folder / "first.png").width == 12);
 
     writeRaw(folder / "dpi.tif", [](OIIO::ImageSpec& spec) {
