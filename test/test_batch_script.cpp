@@ -61,7 +61,9 @@ struct Workspace {
     }
 
     Run batch(const std::vector<std::string>& args, const std::vector<std::string>& environment = {}) const {
-        std::string command = "env " + quoted("HOME=" + home) + " " + quoted(std::string("DDTUP=") + DDTUP_EXECUTABLE);
+        // SHELL=/bin/sh: a login shell that is not bash, as on many machines (and none at all in
+        // CI), must not matter to the script's bash function.
+        std::string command = "env SHELL=/bin/sh " + quoted("HOME=" + home) + " " + quoted(std::string("DDTUP=") + DDTUP_EXECUTABLE);
         for (const std::string& assignment : environment) command.append(" ").append(quoted(assignment));
         command.append(" bash ").append(quoted(kScript));
         for (const std::string& arg : args) command.append(" ").append(quoted(arg));
