@@ -23,6 +23,7 @@ const char* const kDescription =
     "\n"
     "  ddtup IN OUT [options]              one image (IN or OUT may be - for standard input/output)\n"
     "  ddtup IN... -o DIR [options]        several images into the folder DIR\n"
+    "  ddtup IN... DIR/ [options]          the same, when DIR exists or ends in /\n"
     "  ddtup -i DIR -o DIR [-r] [options]  a folder of images (-r: and its sub-folders) into a folder\n"
     "\n"
     "Examples:\n"
@@ -63,7 +64,7 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     } else {
         if (settings.output.empty()) {
             if (!paths) return "no input image given (see --help)";
-            return paths == 1 ? "no output given: `ddtup IN OUT`, or -o DIR" : "several inputs need -o DIR, the folder to write into";
+            return paths == 1 ? "no output given: `ddtup IN OUT`, or -o DIR" : "several inputs need a folder to write into: -o DIR, or an existing folder last";
         }
     }
     if (settings.recursive && settings.input_folder.empty()) return "-r needs -i DIR";
@@ -169,9 +170,16 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                         : progress == "none" ? ProgressMode::None
                                              : ProgressMode::Auto;
     settings.verbosity = quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal;
-    if (settings.output_folder.empty() && settings.input_folder.empty() && settings.inputs.size() == 2) {
-        settings.output = settings.inputs.back();
-        settings.inputs.pop_back();
+    if (settings.output_folder.empty() && settings.input_folder.empty() && settings.inputs.size() >= 2) {
+        // Like cp: a last argument that is a folder (or ends in "/") is where the outputs go.
+        const std::string& last = settings.inputs.back();
+        if (last.ends_with('/') || std::filesystem::is_directory(last)) {
+            settings.output_folder = last;
+            settings.inputs.pop_back();
+        } else if (settings.inputs.size() == 2) {
+            settings.output = last;
+            settings.inputs.pop_back();
+        }
     }
     if (std::string problem = validateSettings(app, settings); !problem.empty()) return usageError(problem);
     if (!app.count("--scale") && !settings.width && !settings.height) settings.scale = 2.0;

@@ -65,6 +65,30 @@ TEST_CASE("batch: several inputs into a folder, a bad one reported at the end") 
     requireImage(out + "/b ü 名前.png", 64, 64);
 }
 
+TEST_CASE("batch: a last argument that is a folder, or ends in /, is the output folder, as with cp") {
+    TempFolder folder;
+    const std::string a = folder / "a.png", b = folder / "b.png";
+    fs::copy_file(kSample, a);
+    fs::copy_file(kSample, b);
+    fs::create_directory(folder / "existing");
+
+    const Run one = runDdtup({a, folder / "existing", "-q", "--backend", "cpu"});
+    INFO("stderr: " << one.err);
+    CHECK(one.exit_code == 0);
+    CHECK(filesUnder(folder / "existing") == std::set<std::string>{"a.png"});
+    requireImage(folder / "existing/a.png", 64, 64);
+
+    const Run both = runDdtup({a, b, folder / "new" + "/", "-q", "--backend", "cpu"});
+    INFO("stderr: " << both.err);
+    CHECK(both.exit_code == 0);
+    CHECK(filesUnder(folder / "new") == std::set<std::string>{"a.png", "b.png"});
+
+    // The input's own folder would mean writing over the input.
+    const Run own = runDdtup({a, folder.path().string(), "-q", "--backend", "cpu"});
+    CHECK(own.exit_code == 1);
+    CHECK_THAT(own.err, Catch::Contains("output is the input file; refusing to overwrite it"));
+}
+
 TEST_CASE("batch: a folder into a folder, -r keeps the sub-folders") {
     TempFolder folder;
     const fs::path in = folder.path() / "in";
@@ -177,7 +201,7 @@ TEST_CASE("batch: the batch forms' usage errors") {
         std::string reason;
     };
     const Case cases[] = {
-        {{a, a, a}, "several inputs need -o DIR"},
+        {{a, a, a}, "several inputs need a folder to write into"},
         {{a}, "no output given"},
         {{"-i", folder.path().string()}, "-i needs -o DIR"},
         {{"-i", folder.path().string(), "-o", folder / "o", a}, "not both"},
