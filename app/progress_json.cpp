@@ -21,12 +21,12 @@ public:
         emit(JsonLine().field("event", "device").field("name", name).field("type", type));
     }
 
-    void stage(const RunCounts&, size_t index, const std::string& input, Stage stage, uint32_t tile,
+    void stage(const RunCounts& counts, size_t index, const std::string& input, Stage stage, uint32_t tile,
                uint32_t tiles) override {
         JsonLine event;
         event.field("event", "stage").field("index", uint64_t(index)).field("input", input).field("stage", stageName(stage));
         if (tiles > 1) event.field("tile", uint64_t(tile)).field("tiles", uint64_t(tiles));
-        emit(event);
+        emit(event.field("elapsed", counts.elapsed_s).field("remaining", counts.remaining_s));
     }
 
     void done(const RunCounts& counts, size_t index, const ImageTask& task, OutputSize size, double seconds) override {
@@ -89,7 +89,7 @@ private:
                  .field("failed", uint64_t(counts.failed))
                  .field("total", uint64_t(counts.total))
                  .field("elapsed", counts.elapsed_s)
-                 .field("remaining", counts.remaining_s >= 0.0 ? counts.remaining_s : -1.0));
+                 .field("remaining", counts.remaining_s));
     }
     void emit(const JsonLine& event) {
         const std::string text = event.text();

@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
+
 #include "checked_file.h"
 #include "exit_codes.h"
 
@@ -46,13 +48,25 @@ Reporter::~Reporter() {
     if (fd_ != STDERR_FILENO) ::close(fd_);
 }
 
-RunCounts Reporter::countsLocked() const {
-    RunCounts counts = counts_;
-    counts.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+double remainingSeconds(const RunCounts& counts, const std::optional<TiledImageProgress>& tiled) {
     // Skipped images take no time; the rest are assumed to take the average so far.
     const size_t finished = counts.done + counts.failed;
     const size_t left = counts.total - finished - counts.skipped;
-    counts.remaining_s = finished ? counts.elapsed_s / double(finished) * double(left) : -1.0;
+    const double average = finished ? counts.elapsed_s / double(finished) : -1.0;
+    if (!tiled || tiled->tiles_done == 0 || left == 0) return average < 0.0 ? -1.0 : average * double(left);
+    const double per_tile = tiled->seconds / tiled->tiles_done;
+    const double current_left = per_tile * std::max(0.0, double(tiled->tiles) - tiled->tiles_done);
+    const double per_image = average >= 0.0 ? average : per_tile * tiled->tiles;
+    return current_left + per_image * double(left - 1);
+}
+
+RunCounts Reporter::countsLocked() const {
+    RunCounts counts = counts_;
+    const auto now = std::chrono::steady_clock::now();
+    counts.elapsed_s = std::chrono::duration<double>(now - start_).count();
+    std::optional<TiledImageProgress> tiled;
+    if (tiled_) tiled = TiledImageProgress{std::chrono::duration<double>(now - tiled_->since).count(), tiled_->tile, tiled_->tiles};
+    counts.remaining_s = remainingSeconds(counts, tiled);
     return counts;
 }
 
@@ -70,6 +84,18 @@ void Reporter::device(const std::string& name, const std::string& type) {
 void Reporter::stage(size_t index, const std::string& input, Stage stage, uint32_t tile, uint32_t tiles) {
     std::lock_guard lock(mutex_);
     last_stage_ = LastStage{index, input, stage, tile, tiles};
+    // Tiles are counted from the first tile's optimisation. The next image's read, on another
+    // thread, leaves the count alone; the write comes after the last tile.
+    if (stage == Stage::Optimize || stage == Stage::Render) {
+        if (tiles <= 1)
+            tiled_.reset();
+        else if (!tiled_ || tiled_->index != index)
+            tiled_ = TiledImage{index, input, std::chrono::steady_clock::now(), tile, tiles};
+        else
+            tiled_->tile = tile, tiled_->tiles = tiles;
+    } else if (stage == Stage::Write && tiled_ && tiled_->index == index) {
+        tiled_->tile = tiled_->tiles;  // every tile is done
+    }
     sink_->stage(countsLocked(), index, input, stage, tile, tiles);
 }
 
@@ -84,6 +110,7 @@ void Reporter::tickWhileRunning() {
 void Reporter::done(size_t index, const ImageTask& task, OutputSize size, double seconds) {
     std::lock_guard lock(mutex_);
     ++counts_.done;
+    if (tiled_ && tiled_->index == index) tiled_.reset();
     sink_->done(countsLocked(), index, task, size, seconds);
 }
 
@@ -101,6 +128,7 @@ void Reporter::notice(const std::string& input, const std::string& message) {
 void Reporter::failed(const std::string& input, const std::string& message, bool internal) {
     std::lock_guard lock(mutex_);
     ++counts_.failed;
+    if (tiled_ && tiled_->input == input) tiled_.reset();
     internal_error_ |= internal;
     failures_.push_back(message);
     sink_->failed(countsLocked(), input, message);

@@ -31,6 +31,18 @@ struct RunCounts {
     double remaining_s = -1.0;  // < 0: not known yet
 };
 
+// How far the image being processed in tiles is: `tiles_done` of `tiles` after `seconds`.
+struct TiledImageProgress {
+    double seconds = 0.0;
+    uint32_t tiles_done = 0;
+    uint32_t tiles = 0;
+};
+
+// The time the run still needs, or -1 when there is nothing yet to go by: the average of the
+// finished images for each image left, and for an image in tiles, its own pace over the
+// tiles it has done (a single large image would otherwise show no estimate until the end).
+double remainingSeconds(const RunCounts& counts, const std::optional<TiledImageProgress>& tiled);
+
 // Where the events go; text and JSON implement it (progress_text.cpp, progress_json.cpp).
 class ProgressSink {
 public:
@@ -81,6 +93,12 @@ private:
         Stage stage = Stage::Read;
         uint32_t tile = 0, tiles = 0;
     };
+    struct TiledImage {
+        size_t index = 0;
+        std::string input;
+        std::chrono::steady_clock::time_point since;
+        uint32_t tile = 0, tiles = 0;
+    };
     RunCounts countsLocked() const;
     // Redraws the live line every second, so that its clock runs during a long stage.
     void tickWhileRunning();
@@ -94,6 +112,7 @@ private:
     int fatal_exit_code_ = 0;
     bool internal_error_ = false;
     std::optional<LastStage> last_stage_;
+    std::optional<TiledImage> tiled_;  // the image being optimised or rendered, when in tiles
     bool finished_ = false;
     std::condition_variable finished_signal_;
     std::thread ticker_;

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <string>
 
 #include "flat_json.h"
 #include "image.h"
@@ -32,7 +33,7 @@ ddt::test::Agreement compareFiles(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the tiles") {
+TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the tiles and the time left") {
     TempFolder folder;
     const std::string input = writePhotoCrop(folder);
     for (const char* backend : {"vulkan", "cpu"}) {
@@ -45,11 +46,17 @@ TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the
         // default overlap of 16: equal, bit for bit; test_tiling.cpp prints the numbers.)
         CHECK(compareFiles(whole, tiled).within_one_level >= 0.999);
         std::set<std::string> tiles_seen;
-        for (const auto& event : parseJsonLines(run.err))
-            if (event.at("event") == "stage" && event.count("tiles")) {
-                CHECK(event.at("tiles") == "20");  // 5 × 4 tiles of 64 over 300 × 200
-                tiles_seen.insert(event.at("tile"));
-            }
+        for (const auto& event : parseJsonLines(run.err)) {
+            if (event.at("event") != "stage") continue;
+            // The time left is known from the first finished tile on, and is 0 once all are.
+            const double remaining = std::stod(event.at("remaining"));
+            if (event.at("stage") == "write") CHECK(remaining == 0.0);
+            if (!event.count("tiles")) continue;
+            CHECK(event.at("tiles") == "20");  // 5 × 4 tiles of 64 over 300 × 200
+            tiles_seen.insert(event.at("tile"));
+            if (event.at("tile") == "0") CHECK(remaining == -1.0);
+            else CHECK(remaining >= 0.0);
+        }
         CHECK(tiles_seen.size() == 20);
     }
 }
