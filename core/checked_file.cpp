@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <limits>
 #include <system_error>
+#include <vector>
 
 namespace ddt {
 
@@ -31,6 +32,17 @@ int writeAll(int fd, const void* data, size_t size) {
         done += size_t(n);
     }
     return 0;
+}
+
+CopyFailure copyAll(int from, const std::function<int(const char* data, size_t size)>& write) {
+    std::vector<char> buffer(size_t(1) << 16);
+    for (;;) {
+        const ssize_t n = ::read(from, buffer.data(), buffer.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return {errno, 0};
+        if (n == 0) return {};
+        if (const int error = write(buffer.data(), size_t(n))) return {0, error};
+    }
 }
 
 CheckedFile::CheckedFile(const std::string& path) : IOProxy(path, Write), limit_(injectedWriteLimit()) {

@@ -8,6 +8,7 @@
 #include <OpenImageIO/filesystem.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace ddt {
@@ -15,6 +16,14 @@ namespace ddt {
 // Writes all `size` bytes to `fd`, retrying short writes and EINTR; 0, or errno of the
 // failure (EIO when the file takes nothing).
 int writeAll(int fd, const void* data, size_t size);
+
+// Reads `from` to its end and hands each piece to `write(data, size)`, which returns 0 or the
+// errno of its failure. Stops at the first failure of either side.
+struct CopyFailure {
+    int read_error = 0;   // errno of a failed read of `from`
+    int write_error = 0;  // what `write` returned
+};
+CopyFailure copyAll(int from, const std::function<int(const char* data, size_t size)>& write);
 
 class CheckedFile final : public OIIO::Filesystem::IOProxy {
 public:

@@ -211,14 +211,11 @@ std::unique_ptr<TempFile> copyStandardInput() {
         throw fail(error.code().value());
     }
     CheckedFile file(copy->path());
-    std::vector<char> buffer(1 << 16);
-    for (;;) {
-        const ssize_t n = ::read(STDIN_FILENO, buffer.data(), buffer.size());
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) throw UserError(std::string("standard input: cannot read it (") + std::strerror(errno) + ")");
-        if (n == 0) break;
-        if (file.write(buffer.data(), size_t(n)) != size_t(n)) break;
-    }
+    const CopyFailure failure = copyAll(STDIN_FILENO, [&](const char* data, size_t size) {
+        return file.write(data, size) == size ? 0 : file.failure();
+    });
+    if (failure.read_error)
+        throw UserError(std::string("standard input: cannot read it (") + std::strerror(failure.read_error) + ")");
     file.close();
     if (file.failure()) throw fail(file.failure());
     return copy;
@@ -475,19 +472,10 @@ void copyToStandardOutput(const std::string& file) {
     auto fail = [](int error) { return UserError(std::string("standard output: ") + std::strerror(error)); };
     const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) throw fail(errno);
-    std::vector<char> buffer(1 << 16);
-    int error = 0;
-    while (!error) {
-        const ssize_t n = ::read(fd, buffer.data(), buffer.size());
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            error = n < 0 ? errno : 0;
-            break;
-        }
-        error = writeAll(STDOUT_FILENO, buffer.data(), size_t(n));
-    }
+    const CopyFailure failure =
+        copyAll(fd, [](const char* data, size_t size) { return writeAll(STDOUT_FILENO, data, size); });
     ::close(fd);
-    if (error) throw fail(error);
+    if (failure.read_error || failure.write_error) throw fail(failure.write_error ? failure.write_error : failure.read_error);
 }
 
 // Refuses outputs that are not a plain replaceable file in an existing folder.

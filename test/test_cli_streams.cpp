@@ -44,6 +44,18 @@ TEST_CASE("streams: a full standard output is one error line") {
     requireExactError(run, 1, "standard output: No space left on device");
 }
 
+TEST_CASE("streams: a standard input that cannot be copied is one error line, and leaves no copy") {
+    // The copy goes to $TMPDIR; a full disk there is injected (DDTUP_TEST_WRITE_LIMIT): the
+    // 100 bytes allowed are fewer than the sample's, so the copy fails before any decoding.
+    TempFolder temp;
+    const Run run = runDdtup({"-", temp / "out.png", "-q"}, {"TMPDIR=" + temp.path().string(), "DDTUP_TEST_WRITE_LIMIT=100"},
+                             kSample);
+    requireExactError(run, 1,
+                      "standard input: cannot copy it to a temporary file in " + temp.path().string() +
+                          " (No space left on device)");
+    CHECK(temp.names().empty());
+}
+
 TEST_CASE("streams: standard output from standard input needs -f") {
     const Run run = runDdtup({"-", "-"}, {}, kSample);
     requireOneLineError(run, 2, "standard output", "-f FORMAT");
