@@ -55,15 +55,16 @@ JsonLine& JsonLine::field(const std::string& name, const std::string& text) {
     return *this;
 }
 
+std::string jsonNumber(double number, int digits) {
+    if (!std::isfinite(number)) return "null";
+    char text[40];
+    std::snprintf(text, sizeof text, "%.*g", digits, number);
+    return text;
+}
+
 JsonLine& JsonLine::field(const std::string& name, double number) {
     this->name(name);
-    if (!std::isfinite(number)) {
-        text_ += "null";
-        return *this;
-    }
-    char digits[32];
-    std::snprintf(digits, sizeof digits, "%.6g", number);
-    text_ += digits;
+    text_ += jsonNumber(number, 6);  // the events' numbers are times in seconds: 6 digits are plenty
     return *this;
 }
 

@@ -24,5 +24,7 @@ private:
 // `text` as a JSON string literal, quotes included. Bytes that are not valid UTF-8 (file names
 // may hold any) become U+FFFD, so every line stays valid JSON.
 std::string jsonString(const std::string& text);
+// `number` with `digits` significant digits; null for NaN and the infinities, which JSON lacks.
+std::string jsonNumber(double number, int digits);
 
 }  // namespace ddt

@@ -1,8 +1,6 @@
 #include "json_writer.h"
 
 #include <cassert>
-#include <cmath>
-#include <cstdio>
 
 #include "json_line.h"
 
@@ -60,14 +58,7 @@ JsonWriter& JsonWriter::value(const std::string& text) {
 
 JsonWriter& JsonWriter::value(double number) {
     startValue();
-    if (!std::isfinite(number)) {
-        text_ += "null";
-        return *this;
-    }
-    // 12 significant digits: far beyond what any measurement here resolves.
-    char text[32];
-    std::snprintf(text, sizeof text, "%.12g", number);
-    text_ += text;
+    text_ += ddt::jsonNumber(number, 12);  // far beyond what any measurement here resolves
     return *this;
 }
 
