@@ -1,6 +1,6 @@
 #include "backend_factory.h"
 
-#include <cctype>
+#include <OpenImageIO/strutil.h>
 
 #include "vulkan_backend.h"
 
@@ -10,10 +10,8 @@ namespace {
 
 // The first word of the device type, lower case: "discrete", "integrated", "cpu", …
 std::string deviceKind(VkPhysicalDeviceType type) {
-    std::string kind = deviceTypeName(type);
-    kind = kind.substr(0, kind.find(' '));
-    for (char& c : kind) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return kind;
+    const std::string name = deviceTypeName(type);
+    return OIIO::Strutil::lower(name.substr(0, name.find(' ')));
 }
 
 }  // namespace

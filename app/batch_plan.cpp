@@ -1,6 +1,7 @@
 #include "batch_plan.h"
 
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,16 +17,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string lowercase(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return text;
-}
-
 // Extensions OpenImageIO can read, lower case without the dot.
 std::set<std::string> readableExtensions() {
     std::set<std::string> extensions;
     for (const auto& [format, format_extensions] : OIIO::get_extension_map())
-        for (const std::string& extension : format_extensions) extensions.insert(lowercase(extension));
+        for (const std::string& extension : format_extensions) extensions.insert(OIIO::Strutil::lower(extension));
     return extensions;
 }
 
@@ -50,7 +46,7 @@ std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs:
             if (folder_entry) it.disable_recursion_pending();
             continue;
         }
-        const std::string extension = lowercase(path.extension().string());
+        const std::string extension = OIIO::Strutil::lower(path.extension().string());
         if (!folder_entry && extension.size() > 1 && extensions.count(extension.substr(1)))
             images.push_back(fs::relative(path, folder));
     }

@@ -1,9 +1,9 @@
 #include "image_sets.h"
 
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 
 #include "user_error.h"
@@ -15,8 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 bool hasImageExtension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = OIIO::Strutil::lower(path.extension().string());
     for (const char* known :
          {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".exr", ".ppm", ".pgm", ".pnm", ".webp", ".tga"})
         if (ext == known) return true;
