@@ -12,17 +12,8 @@
 #include "lawson.h"
 #include "mesh.h"
 #include "render.h"
-#include "user_error.h"
 
 namespace ddt {
-
-// The device (or host) ran out of memory in prepare, optimize or render. The backend stays
-// usable: the next prepare starts afresh. A UserError, so that where nobody retries with
-// smaller tiles it still reaches the user as one line.
-class DeviceOutOfMemory : public UserError {
-public:
-    using UserError::UserError;
-};
 
 class Backend {
 public:

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tiling.h"
+#include "user_error.h"
 
 namespace ddt {
 

@@ -2,8 +2,6 @@
 
 #include <string>
 
-#include "backend.h"
-
 namespace ddt {
 
 const char* vulkanResultName(VkResult result) {

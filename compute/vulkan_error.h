@@ -11,7 +11,7 @@ namespace ddt {
 const char* vulkanResultName(VkResult result);
 
 // Throws UserError("Vulkan: vkCall failed with VK_ERROR_…") unless result is VK_SUCCESS;
-// DeviceOutOfMemory (app/backend.h) for the out-of-memory results, which smaller tiles may avoid.
+// DeviceOutOfMemory (core/user_error.h) for the out-of-memory results, which smaller tiles may avoid.
 void checkVulkan(VkResult result, const char* call);
 
 }  // namespace ddt

@@ -12,4 +12,12 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// The device (or host) ran out of memory in a backend's prepare, optimize or render. The
+// backend stays usable: the next prepare starts afresh. A UserError, so that where nobody
+// retries with smaller tiles (app/tiled_upscale.h) it still reaches the user as one line.
+class DeviceOutOfMemory : public UserError {
+public:
+    using UserError::UserError;
+};
+
 }  // namespace ddt
