@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "image.h"
 #include "user_error.h"
 
 namespace ddt {
@@ -91,10 +92,10 @@ bool sameFile(const std::string& a, const std::string& b) {
 void decideStates(std::vector<ImageTask>& tasks, bool skip_existing) {
     std::map<std::string, const ImageTask*> writers;  // canonical output -> first task writing it
     for (ImageTask& task : tasks) {
-        if (task.output == "-") continue;
+        if (task.output == kStandardStream) continue;
         std::error_code error;
         const std::string key = fs::weakly_canonical(task.output, error).string();
-        if (task.input != "-" && sameFile(task.input, task.output)) {
+        if (task.input != kStandardStream && sameFile(task.input, task.output)) {
             task.state = ImageTask::State::Refused;
             task.reason = task.output + ": output is the input file; refusing to overwrite it";
         } else if (auto [first, inserted] = writers.emplace(key, &task); !inserted) {

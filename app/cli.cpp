@@ -60,7 +60,7 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     } else if (!settings.output_folder.empty()) {
         if (!paths) return "no input images given";
         for (const std::string& input : settings.inputs)
-            if (input == "-") return "standard input (-) works only in the form `ddtup - OUT`";
+            if (input == kStandardStream) return "standard input (-) works only in the form `ddtup - OUT`";
     } else {
         if (settings.output.empty()) {
             if (!paths) return "no input image given (see --help)";
@@ -68,13 +68,13 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
         }
     }
     if (settings.recursive && settings.input_folder.empty()) return "-r needs -i DIR";
-    if (settings.stats && settings.output == "-") return "--stats prints to standard output; it can't be combined with output -";
+    if (settings.stats && settings.output == kStandardStream) return "--stats prints to standard output; it can't be combined with output -";
     // A terminal holds no image: reading it would wait for ever, writing it would spew bytes.
-    if (!settings.inputs.empty() && settings.inputs.front() == "-" && ::isatty(STDIN_FILENO))
+    if (!settings.inputs.empty() && settings.inputs.front() == kStandardStream && ::isatty(STDIN_FILENO))
         return "standard input is a terminal; pipe an image into `ddtup - OUT`";
-    if (settings.output == "-" && ::isatty(STDOUT_FILENO))
+    if (settings.output == kStandardStream && ::isatty(STDOUT_FILENO))
         return "standard output is a terminal; redirect it to a file or a pipe";
-    if (settings.output == "-" && settings.format.empty() && !std::filesystem::path(settings.inputs.front()).has_extension())
+    if (settings.output == kStandardStream && settings.format.empty() && !std::filesystem::path(settings.inputs.front()).has_extension())
         return "writing to standard output needs -f FORMAT (the input has no extension to follow)";
     return "";
 }

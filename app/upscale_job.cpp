@@ -80,7 +80,7 @@ void ImageJob::open() {
     if (std::string problem = checkOutputSize(header.width, header.height, report_.out); !problem.empty())
         throw UserError(inputName(task_.input) + ": " + problem);
     // A batch writes into sub-folders that mirror the input folder's.
-    if (task_.output != "-") {
+    if (task_.output != kStandardStream) {
         std::error_code error;
         const fs::path folder = fs::path(task_.output).parent_path();
         if (!folder.empty() && !fs::exists(folder, error) && !settings_.singleForm())

@@ -15,9 +15,11 @@
 
 namespace ddt {
 
+// What --stats prints. Building the mesh and uploading it count as optimizing here, not as
+// init: tiled images build one mesh per tile, between the optimizations.
 struct StageTimes {
-    double init_s = 0.0;   // read + build the mesh (+ upload)
-    double comp_s = 0.0;   // optimize
+    double init_s = 0.0;   // read the header and decode
+    double comp_s = 0.0;   // build the mesh, upload, optimize (per tile when tiled)
     double final_s = 0.0;  // render + write (the paper's time-final saved the mesh instead)
 };
 
