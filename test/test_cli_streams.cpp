@@ -70,6 +70,8 @@ TEST_CASE("output options: --depth, --quality and -f reach the file") {
 
     REQUIRE(runDdtup({kSample, folder / "low.jpg", "-s", "4", "--quality", "10", "-q"}).exit_code == 0);
     REQUIRE(runDdtup({kSample, folder / "high.jpg", "-s", "4", "--quality", "100", "-q"}).exit_code == 0);
+    // An ignored --quality gives equal sizes; 10 against 100 gives 1360 against 11668 bytes
+    // here, so "half the size" holds with room for other libjpeg versions.
     CHECK(fs::file_size(folder / "low.jpg") * 2 < fs::file_size(folder / "high.jpg"));
 
     const Run batch = runDdtup({kSample, "-o", folder / "out", "-f", "tif", "-q"});

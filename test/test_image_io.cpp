@@ -457,6 +457,8 @@ TEST_CASE("image: WriteOptions::quality sets the JPEG and WebP quality") {
         const std::string high_path = folder / (std::string("high.") + extension);
         ddt::writeImage(low_path, noise, low);
         ddt::writeImage(high_path, noise, high);
+        // An ignored quality gives equal sizes; on noise, 10 against 95 is several times
+        // smaller, so "half the size" holds with room for other codec versions.
         CHECK(std::filesystem::file_size(low_path) * 2 < std::filesystem::file_size(high_path));
     }
 }
