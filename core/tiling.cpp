@@ -47,14 +47,4 @@ std::vector<Tile> planStrip(uint32_t width, uint32_t height, OutputSize out, uin
     return tiles;
 }
 
-std::vector<Tile> planTiles(uint32_t width, uint32_t height, OutputSize out, uint32_t side, uint32_t overlap) {
-    std::vector<Tile> tiles;
-    for (uint32_t y0 = 0; y0 < height;) {
-        const uint32_t y1 = stripEnd(height, y0, side);
-        for (const Tile& tile : planStrip(width, height, out, y0, y1, side, overlap)) tiles.push_back(tile);
-        y0 = y1;
-    }
-    return tiles;
-}
-
 }  // namespace ddt

@@ -47,7 +47,4 @@ uint32_t stripEnd(uint32_t height, uint32_t y0, uint32_t side);
 std::vector<Tile> planStrip(uint32_t width, uint32_t height, OutputSize out, uint32_t y0, uint32_t y1, uint32_t side,
                             uint32_t overlap);
 
-// Every tile of a width × height input, strip by strip.
-std::vector<Tile> planTiles(uint32_t width, uint32_t height, OutputSize out, uint32_t side, uint32_t overlap);
-
 }  // namespace ddt

@@ -31,6 +31,17 @@ std::unique_ptr<Backend> makeBackendNamed(const std::string& name) {
     return std::make_unique<VulkanBackend>(options);
 }
 
+// Every tile of a width × height input, strip by strip, as upscaleRows plans them when no
+// retry shrinks the tiles.
+std::vector<Tile> planTiles(uint32_t width, uint32_t height, OutputSize out, uint32_t side, uint32_t overlap) {
+    std::vector<Tile> tiles;
+    for (uint32_t y0 = 0; y0 < height; y0 = stripEnd(height, y0, side)) {
+        const std::vector<Tile> strip = planStrip(width, height, out, y0, stripEnd(height, y0, side), side, overlap);
+        tiles.insert(tiles.end(), strip.begin(), strip.end());
+    }
+    return tiles;
+}
+
 uint32_t validationMessages(Backend& backend) {
     auto* vulkan = dynamic_cast<VulkanBackend*>(&backend);
     return vulkan ? vulkan->validationMessages() : 0;
