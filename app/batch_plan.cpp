@@ -1,15 +1,15 @@
 #include "batch_plan.h"
 
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/strutil.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <map>
-#include <set>
 
 #include "image.h"
+#include "image_formats.h"
 #include "user_error.h"
 
 namespace ddt {
@@ -17,14 +17,6 @@ namespace ddt {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Extensions OpenImageIO can read, lower case without the dot.
-std::set<std::string> readableExtensions() {
-    std::set<std::string> extensions;
-    for (const auto& [format, format_extensions] : OIIO::get_extension_map())
-        for (const std::string& extension : format_extensions) extensions.insert(OIIO::Strutil::lower(extension));
-    return extensions;
-}
 
 bool isHidden(const fs::path& path) { return path.filename().string().starts_with("."); }
 
@@ -35,7 +27,6 @@ std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs:
     std::error_code error;
     if (!fs::is_directory(folder, error))
         throw UserError(folder.string() + (fs::exists(folder, error) ? ": not a folder" : ": no such folder"));
-    const std::set<std::string> extensions = readableExtensions();
     std::vector<fs::path> images;
     fs::recursive_directory_iterator it(folder, fs::directory_options::none, error), end;
     if (error) throw UserError(folder.string() + ": cannot list the folder: " + error.message());
@@ -47,8 +38,7 @@ std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs:
             if (folder_entry) it.disable_recursion_pending();
             continue;
         }
-        const std::string extension = OIIO::Strutil::lower(path.extension().string());
-        if (!folder_entry && extension.size() > 1 && extensions.count(extension.substr(1)))
+        if (!folder_entry && formatOfExtension(path.extension().string()))
             images.push_back(fs::relative(path, folder));
     }
     std::sort(images.begin(), images.end());

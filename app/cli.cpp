@@ -11,6 +11,7 @@
 #include "exit_codes.h"
 #include "flip_rule.h"
 #include "image.h"
+#include "image_formats.h"
 #include "json_line.h"
 #include "tiled_upscale.h"
 
@@ -103,12 +104,12 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     Settings settings;
     CLI::App app{kDescription, "ddtup"};
     app.set_version_flag("--version", std::string("ddtup ") + DDTUP_VERSION);
-    app.add_option("paths", settings.inputs, "Images to magnify (any format OpenImageIO reads); in the form IN OUT the last is the output");
+    app.add_option("paths", settings.inputs, "Images to magnify (" + imageFormatTitles() + "); in the form IN OUT the last is the output");
     app.add_option("-o,--output", settings.output_folder, "Folder to write into (created if missing); each output keeps its input's name")
         ->default_str("none: the form IN OUT");
     app.add_option("-i,--input-dir", settings.input_folder, "Folder whose images to magnify (needs -o)")->default_str("none");
     app.add_flag("-r,--recursive", settings.recursive, "With -i: also the sub-folders, keeping their structure (default: off)");
-    app.add_option("-f,--format", settings.format, "Output format by extension: png, jpg, tif, exr, webp, bmp, …")
+    app.add_option("-f,--format", settings.format, "Output format by extension: png, jpg, tif, exr, webp, bmp, gif, tga, ppm, pgm, hdr")
         ->default_str("each input's own format");
     app.add_option("--quality", settings.quality, "Quality of lossy formats (jpg, webp), 1 to 100")
         ->check(CLI::Range(1, 100))

@@ -20,6 +20,7 @@
 #include <system_error>
 
 #include "checked_file.h"
+#include "image_formats.h"
 #include "temp_files.h"
 
 namespace ddt {
@@ -117,24 +118,23 @@ OIIO::TypeDesc typeDescOf(SampleType type) {
 }
 
 // ---- Alpha: what OIIO 2.4 actually does, measured per format (see test_image_io.cpp).
-// Asked with "oiio:UnassociatedAlpha", the PNG, Targa, TIFF (unassociated) and HEIF readers
-// return straight colour and say so in that attribute. BMP and ICO readers return their
-// straight colour as stored without saying so. OpenEXR and associated TIFF come back as
+// Asked with "oiio:UnassociatedAlpha", the PNG, Targa and TIFF (unassociated) readers return
+// straight colour and say so in that attribute. The BMP reader returns its straight colour as
+// stored without saying so. OpenEXR and associated TIFF come back as
 // stored, premultiplied, which is also OIIO's convention for every other reader.
 AlphaStorage inputAlphaStorage(const OIIO::ImageSpec& spec, const std::string& format) {
     if (spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0) return AlphaStorage::Straight;
-    if (format == "bmp" || format == "ico") return AlphaStorage::Straight;
+    if (format == "bmp") return AlphaStorage::Straight;
     return AlphaStorage::Premultiplied;
 }
 
-// Formats whose files hold straight colour: the PNG, Targa, WebP, HEIF and JPEG 2000 writers
-// store straight colour given with "oiio:UnassociatedAlpha" as is (without it they divide by
-// alpha after rounding to the file's depth, which loses precision); BMP and ICO writers store
-// whatever they get. TIFF can hold either and keeps the input's choice, so -s 1 reproduces
+// Formats whose files hold straight colour: the PNG, Targa and WebP writers store straight
+// colour given with "oiio:UnassociatedAlpha" as is (without it they divide by alpha after
+// rounding to the file's depth, which loses precision); the BMP writer stores whatever it gets. TIFF can hold either and keeps the input's choice, so -s 1 reproduces
 // it. Every other format gets premultiplied colour: OpenEXR requires it, and it is OIIO's
 // convention for formats that do not say.
 AlphaStorage outputAlphaStorage(const std::string& format, const Image& like) {
-    static const std::set<std::string> straight = {"png", "targa", "webp", "heif", "jpeg2000", "bmp", "ico"};
+    static const std::set<std::string> straight = {"png", "targa", "webp", "bmp"};
     if (format == "tiff") return like.metadata ? like.metadata->alpha_storage : AlphaStorage::Straight;
     return straight.count(format) ? AlphaStorage::Straight : AlphaStorage::Premultiplied;
 }
@@ -299,20 +299,25 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     std::error_code ec;
     if (fs::file_size(file, ec) == 0 && !ec) throw UserError(s.name + ": empty file (0 bytes)");
 
+    // Only the reader of the file's own format, one of ours, sees it: OIIO's open() would try
+    // every reader it has (image_formats.h). The content decides, so a mis-named file or the
+    // extension-less copy of standard input is recognised.
+    const ImageFormat* format = formatOfContent(file, s.stdin_copy ? std::string() : path);
+    if (!format)
+        throw UserError(s.name + ": not an image in a format ddtup reads (" + imageFormatTitles() + ")");
     // Ask readers for straight alpha as stored; premultiplying in float loses nothing.
-    // OIIO picks the reader by extension and, when that one fails, tries every reader, so a
-    // mis-named file or the extension-less copy of standard input is recognised by content.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     {
         QuietStderr quiet;
-        s.input = OIIO::ImageInput::open(file, &config);
+        s.input = OIIO::ImageInput::create(format->oiio_name);
+        OIIO::ImageSpec opened;
+        if (s.input && !s.input->open(file, opened, config)) {
+            const std::string reason = firstLine(codecError(*s.input));
+            throw UserError(s.name + ": not a readable " + format->title + " image (" + reason + ")");
+        }
     }
-    if (!s.input) {
-        std::string reason = firstLine(globalError());
-        if (s.stdin_copy) reason = "not recognised as any image format";  // OIIO's text names the copy
-        throw UserError(s.name + ": not a readable image (" + reason + ")");
-    }
+    if (!s.input) throw std::runtime_error(std::string("OpenImageIO has no ") + format->title + " reader");
 
     bool several;
     {
@@ -494,21 +499,23 @@ void checkOutputPath(const std::string& path) {
     throw UserError(path + ": folder " + folder.string() + " does not exist");
 }
 
-// What OIIO's create() is given: an extension it maps to a format, or the path.
-std::string formatRequest(const std::string& path, const std::string& format) {
-    return format.empty() ? path : "x." + format;
+// The extension that names the output format: `format` if given, else the path's.
+std::string outputExtension(const std::string& path, const std::string& format) {
+    return format.empty() ? fs::path(path).extension().string() : format;
 }
 
 }  // namespace
 
 std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height, const std::string& format) {
     if (path == kStandardStream && format.empty()) return "the output format must be given (such as png)";
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(formatRequest(path, format));
-    if (!output) {
-        globalError();  // clear it: the message names no reason the user can act on
-        return format.empty() ? "no image format is known for this file extension"
-                              : "no image format is known for the extension " + format;
-    }
+    const std::string extension = outputExtension(path, format);
+    const ImageFormat* ours = formatOfExtension(extension);
+    if (!ours)
+        return (extension.empty() || extension == "." ? std::string("the output has no file extension")
+                                                      : "the extension " + extension + " is not a format ddtup writes") +
+               " (" + imageFormatTitles() + "; see --format)";
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(ours->oiio_name);
+    if (!output) return std::string("OpenImageIO has no ") + ours->title + " writer";
     if (width < 1 || height < 1) return "an image needs at least 1×1 pixels";
     uint32_t max_side = kMaxSide;
     for (const SideLimit& limit : kSideLimits)
@@ -612,7 +619,7 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
     if (path != kStandardStream) checkOutputPath(path);
     if (std::string problem = checkOutputFormat(path, width, height, options.format); !problem.empty())
         throw UserError(s.name + ": " + problem);
-    s.output = OIIO::ImageOutput::create(formatRequest(path, options.format));
+    s.output = OIIO::ImageOutput::create(formatOfExtension(outputExtension(path, options.format))->oiio_name);
     const std::string format = s.output->format_name();
 
     OutputLayout& layout = s.layout;
@@ -627,8 +634,6 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         notes_.push_back(s.name + ": " + format + " has no alpha channel; transparent areas are flattened onto white");
     }
     layout.straight = layout.out_alpha && outputAlphaStorage(format, like) == AlphaStorage::Straight;
-    // OIIO 2.4's DPX writer aborts the process on grey+alpha.
-    if (format == "dpx" && layout.out_channels == 2) expandGreyToRgb(layout);
 
     s.temp = createTempFile(path);
     // OIIO 2.4's TIFF writer loses the main directory when it writes EXIF data through a
@@ -658,7 +663,7 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
     const SampleType wanted_type = options.depth.value_or(like.sample_type);
     const OIIO::TypeDesc wanted = typeDescOf(wanted_type);
     if (!openAs(wanted)) {
-        // Some formats hold no grey (WebP, GIF, IFF, HDR) or no grey+alpha (BMP): try RGB(A).
+        // Some formats hold no grey (WebP, GIF, HDR) or no grey+alpha (BMP): try RGB(A).
         if (layout.out_channels > 2 || layout.grey_to_rgb) throw s.failure();
         UserError first_failure = s.failure();
         expandGreyToRgb(layout);

@@ -30,6 +30,9 @@ namespace fs = std::filesystem;
 
 void writeBytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
+// The formats ddtup reads and writes, as its messages list them (core/image_formats.h).
+const std::string kFormats = "PNG, JPEG, TIFF, OpenEXR, WebP, BMP, GIF, Targa, PNM, Radiance HDR";
+
 // An input folder and an output folder: the output folder must stay empty after a failure.
 struct Workspace {
     TempFolder inputs;
@@ -130,7 +133,7 @@ TEST_CASE("bad input: 0×0 and 1×N images") {
     // libpng refuses a 0×0 header itself ("Invalid IHDR data").
     writeBytes(work.inputs / "zero.png", ddt::test::pngClaiming(0, 0));
     requireExactError(work.upscale(work.inputs / "zero.png"), 1,
-                      work.inputs / "zero.png" + ": not a readable image (PNG read error: Invalid IHDR data)");
+                      work.inputs / "zero.png" + ": not a readable PNG image (PNG read error: Invalid IHDR data)");
     ddt::writeImage(work.inputs / "column.png", noiseImage(1, 7));
     requireExactError(work.upscale(work.inputs / "column.png"), 1, work.inputs / "column.png" + ": DDT needs at least 2×2 pixels (got 1×7)");
     CHECK(work.outputs.names().empty());
@@ -222,7 +225,7 @@ TEST_CASE("bad input: standard input that is not an image") {
     Workspace work;
     writeBytes(work.inputs / "text", "not an image\n");
     requireExactError(runDdtup({"-", "-s", "2", work.out}, {}, work.inputs / "text"), 1,
-                      "standard input: not a readable image (not recognised as any image format)");
+                      "standard input: not an image in a format ddtup reads (" + kFormats + ")");
     requireExactError(runDdtup({"-", "-s", "2", work.out}, {}, "/dev/null"), 1, "standard input: empty file (0 bytes)");
     CHECK(work.outputs.names().empty());
 }
@@ -316,4 +319,51 @@ TEST_CASE("bad input: in a batch every bad file fails alone, with its own line, 
     CHECK_THAT(batch.err, Catch::Contains("ddtup: summary: 2 done, 0 skipped, 10 failed"));
     CHECK(work.outputs.names() == std::set<std::string>{"good1.png", "good2.png"});
     CHECK(ddt::ImageReader(work.outputs / "good2.png").header().width == 18);
+}
+
+TEST_CASE("bad input: a format OpenImageIO reads but ddtup does not is refused by its content") {
+    Workspace work;
+    // SGI and FITS: Debian's OIIO reads and writes both; ddtup hands them to no reader.
+    writeChannels(work.inputs / "a.sgi", 3, OIIO::TypeDesc::UINT8);
+    writeChannels(work.inputs / "b.fits", 1, OIIO::TypeDesc::FLOAT);
+    fs::copy_file(work.inputs / "a.sgi", work.inputs / "sgi-named.png");
+    for (const char* name : {"a.sgi", "b.fits", "sgi-named.png"})
+        requireExactError(work.upscale(work.inputs / name), 1,
+                          work.inputs / name + ": not an image in a format ddtup reads (" + kFormats + ")");
+    CHECK(work.outputs.names().empty());
+}
+
+TEST_CASE("bad input: a PNG named .tga or .sgi is read as the PNG it is") {
+    Workspace work;
+    const ddt::Image image = noiseImage(6, 5);
+    ddt::writeImage(work.inputs / "real.png", image);
+    for (const char* name : {"png-named.tga", "png-named.sgi"}) {
+        fs::copy_file(work.inputs / "real.png", work.inputs / name);
+        const Run run = work.upscale(work.inputs / name, {"--backend", "cpu"});
+        INFO(name << ": " << run.err);
+        CHECK(run.exit_code == 0);
+        CHECK(ddt::readImage(work.out).width == 12);
+        fs::remove(work.out);
+    }
+}
+
+TEST_CASE("bad input: an output format ddtup does not write is refused before any work") {
+    Workspace work;
+    ddt::writeImage(work.inputs / "a.png", noiseImage(6, 5));
+    requireExactError(runDdtup({work.inputs / "a.png", "-s", "2", work.outputs / "a.sgi"}), 1,
+                      work.outputs / "a.sgi" + ": the extension .sgi is not a format ddtup writes (" + kFormats + "; see --format)");
+    requireExactError(runDdtup({work.inputs / "a.png", "-s", "2", "-f", "dpx", "-o", work.outputs / ""}), 1,
+                      work.outputs / "a.dpx" + ": the extension dpx is not a format ddtup writes (" + kFormats + "; see --format)");
+    CHECK(work.outputs.names().empty());
+}
+
+TEST_CASE("bad input: a folder walk takes the files with the extensions of ddtup's formats only") {
+    Workspace work;
+    ddt::writeImage(work.inputs / "a.png", noiseImage(6, 5));
+    ddt::writeImage(work.inputs / "b.ppm", noiseImage(5, 4));
+    writeChannels(work.inputs / "c.sgi", 3, OIIO::TypeDesc::UINT8);
+    const Run run = runDdtup({"-i", work.inputs / "", "-o", work.outputs / "", "-s", "2", "--backend", "cpu"});
+    INFO(run.err);
+    CHECK(run.exit_code == 0);
+    CHECK(work.outputs.names() == std::set<std::string>{"a.png", "b.ppm"});
 }

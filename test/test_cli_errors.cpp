@@ -64,7 +64,7 @@ TEST_CASE("cli: a text file named .png is refused with one line") {
     std::ofstream(work.folder / "text.png") << "not an image\n";
     const auto before = work.folder.names();
     const Run run = runDdtup({work.folder / "text.png", work.folder / "out.png"});
-    requireOneLineError(run, 1, "text.png", "not a readable image");
+    requireOneLineError(run, 1, "text.png", "not an image in a format ddtup reads");
     CHECK(work.folder.names() == before);
 }
 

@@ -493,7 +493,7 @@ TEST_CASE("image: \"-\" reads standard input, recognised by content, and leaves 
 
     writeBytes(folder / "text", "not an image\n");
     RedirectedStream input(STDIN_FILENO, folder / "text", O_RDONLY);
-    CHECK_THROWS_WITH(ddt::ImageReader(ddt::kStandardStream), "standard input: not a readable image (not recognised as any image format)");
+    CHECK_THROWS_WITH(ddt::ImageReader(ddt::kStandardStream), "standard input: not an image in a format ddtup reads (PNG, JPEG, TIFF, OpenEXR, WebP, BMP, GIF, Targa, PNM, Radiance HDR)");
     CHECK(temp.names().empty());
 }
 
