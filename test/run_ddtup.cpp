@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -20,6 +21,18 @@ void fillResult(int status, Run& run) {
     run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     run.end_signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
 }
+
+// What the tests run as ddtup. With DDTUP_TEST_BACKEND set (`scripts/test --sanitize` sets cpu
+// for ThreadSanitizer, which must not watch lavapipe's uninstrumented threads), a script that
+// adds --backend DDTUP_TEST_BACKEND to every run that chooses no backend; it finds ddtup in
+// DDTUP_TEST_EXECUTABLE.
+const char* ddtupCommand() {
+    static const std::string script =
+        (std::filesystem::path(DDTUP_TEST_DATA).parent_path() / "sanitizers" / "ddtup-with-backend").string();
+    return std::getenv("DDTUP_TEST_BACKEND") ? script.c_str() : DDTUP_EXECUTABLE;
+}
+
+const std::string kExecutableAssignment = std::string("DDTUP_TEST_EXECUTABLE=") + DDTUP_EXECUTABLE;
 
 }  // namespace
 
@@ -40,8 +53,9 @@ std::string readFile(const std::string& path) {
 // ddtup writes.
 Run runShell(const std::string& command_line) {
     TempFolder logs;
-    const std::string command = "DDTUP=" + shellQuoted(DDTUP_EXECUTABLE) + "; { " + command_line + "; } >" +
-                                shellQuoted(logs / "out") + " 2>" + shellQuoted(logs / "err");
+    const std::string command = "export " + shellQuoted(kExecutableAssignment) + "; DDTUP=" + shellQuoted(ddtupCommand()) +
+                                "; { " + command_line + "; } >" + shellQuoted(logs / "out") + " 2>" +
+                                shellQuoted(logs / "err");
     const int status = std::system(command.c_str());
     Run run;
     fillResult(status, run);
@@ -78,9 +92,10 @@ void requireExactError(const Run& run, int code, const std::string& line) {
 
 BackgroundDdtup::BackgroundDdtup(const std::vector<std::string>& args, const std::vector<std::string>& environment,
                                  const std::string& input_file) {
-    std::vector<std::string> argv_strings = {DDTUP_EXECUTABLE};
+    std::vector<std::string> argv_strings = {ddtupCommand()};
     argv_strings.insert(argv_strings.end(), args.begin(), args.end());
     std::vector<std::string> env_strings(environment);
+    env_strings.push_back(kExecutableAssignment);
     for (char** entry = environ; *entry; ++entry) env_strings.emplace_back(*entry);  // earlier ones win
     std::vector<char*> argv, envp;
     for (std::string& arg : argv_strings) argv.push_back(arg.data());
@@ -94,7 +109,7 @@ BackgroundDdtup::BackgroundDdtup(const std::vector<std::string>& args, const std
     const std::string out = logs_ / "out", err = logs_ / "err";
     posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int result = posix_spawn(&pid_, DDTUP_EXECUTABLE, &actions, nullptr, argv.data(), envp.data());
+    const int result = posix_spawn(&pid_, ddtupCommand(), &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     REQUIRE(result == 0);
 }
