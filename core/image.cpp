@@ -237,6 +237,10 @@ std::string checkInputFile(const std::string& path) {
 // one seek: counting them all decodes every frame of an animated GIF (0.85 s for 300 frames
 // of 512², measured), for a note.
 bool hasSeveralImages(OIIO::ImageInput& input) {
+    // OIIO 2.4's WebP reader loses its frame when a seek fails (libwebp clears the iterator,
+    // and the seek back to 0 finds the reader already there), and a still image then fails
+    // to decode. Only animations hold more than one image, and its spec says which are.
+    if (input.format_name() == std::string("webp")) return input.spec().get_int_attribute("oiio:Movie") != 0;
     const bool several = input.seek_subimage(1, 0);
     input.seek_subimage(0, 0);
     globalError();  // a failed seek past the last image leaves a message
