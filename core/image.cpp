@@ -20,6 +20,7 @@
 #include <system_error>
 
 #include "checked_file.h"
+#include "input_check.h"
 #include "temp_files.h"
 
 namespace ddt {
@@ -329,6 +330,8 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     }
     std::error_code ec;
     if (fs::file_size(file, ec) == 0 && !ec) throw UserError(s.name + ": empty file (0 bytes)");
+    // FUZZ BRANCH: until the reader knows the format by its signature and passes its name.
+    if (std::string problem = checkBeforeDecoding(file, ""); !problem.empty()) throw UserError(s.name + ": " + problem);
 
     // Ask readers for straight alpha as stored; premultiplying in float loses nothing.
     // OIIO picks the reader by extension and, when that one fails, tries every reader, so a

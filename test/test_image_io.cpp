@@ -386,15 +386,13 @@ TEST_CASE("image: metadata is copied, attributes of the old pixels are not") {
     }
 }
 
-TEST_CASE("image: a truncated PNG is refused when its pixels are read") {
+// Before OIIO sees it: its PNG reader leaks on reading past the end (core/input_check.h).
+TEST_CASE("image: a truncated PNG is refused when it is opened") {
     TempFolder folder;
     ddt::writeImage(folder / "whole.png", makeImage(64, 64, 3, SampleType::UInt8));
     std::filesystem::copy_file(folder / "whole.png", folder / "cut.png");
     std::filesystem::resize_file(folder / "cut.png", std::filesystem::file_size(folder / "whole.png") / 2);
-
-    ddt::ImageReader reader(folder / "cut.png");  // the header is intact
-    CHECK(reader.header().width == 64);
-    CHECK_THROWS_WITH(reader.read(), Catch::Contains("cut.png"));
+    CHECK_THROWS_WITH(ddt::ImageReader(folder / "cut.png"), Catch::Contains("cut.png") && Catch::Contains("truncated PNG"));
 }
 
 namespace {
