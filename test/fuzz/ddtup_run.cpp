@@ -67,4 +67,14 @@ BatchResult runDdtup(const RunSettings& settings, const std::vector<std::string>
     return result;
 }
 
+BatchResult runAlone(const RunSettings& settings, const std::string& input, const std::string& folder) {
+    BatchResult alone = runDdtup(settings, {input}, folder);
+    if (alone.outcomes.front() != Outcome::Hang || !passedDecoding(alone.events, input)) return alone;
+    RunSettings patient = settings;
+    patient.seconds_per_input *= 30;
+    alone = runDdtup(patient, {input}, (fs::path(folder) / "longer").string());
+    alone.given_longer = true;
+    return alone;
+}
+
 }  // namespace fuzz
