@@ -44,7 +44,9 @@ uint32_t bigEndian32(const std::string& bytes, size_t at) {
     return value;
 }
 
-uint32_t littleEndian16(const std::string& bytes, size_t at) { return uint8_t(bytes[at]) | uint32_t(uint8_t(bytes[at + 1])) << 8; }
+uint32_t littleEndian16(const std::string& bytes, size_t at) {
+    return uint8_t(bytes[at]) | uint32_t(uint8_t(bytes[at + 1])) << 8;
+}
 
 // PNG: OIIO's read callback, at the end of the file, hands libpng an error message in a
 // temporary string and libpng's longjmp skips its destructor: every truncated PNG leaked
@@ -89,7 +91,8 @@ std::string checkTarga(FileBytes& file) {
     if (index_bytes == 0 || index_bytes > 4) return "";  // OIIO refuses these depths
     const uint64_t pixels = uint64_t(littleEndian16(header, 12)) * littleEndian16(header, 14);
     const uint64_t map_bytes = uint64_t(length) * (entry_bits == 15 ? 2 : uint64_t(entry_bits) / 8);
-    const std::string data = file.read(18 + uint8_t(header[0]) + map_bytes, size_t(std::min<uint64_t>(file.size(), pixels * (index_bytes + 1))));
+    const std::string data = file.read(18 + uint8_t(header[0]) + map_bytes,
+                                       size_t(std::min<uint64_t>(file.size(), pixels * (index_bytes + 1))));
     auto indexAt = [&](size_t at) {
         uint32_t index = 0;
         for (size_t i = 0; i < index_bytes; ++i) index |= uint32_t(uint8_t(data[at + i])) << (8 * i);
@@ -106,8 +109,8 @@ std::string checkTarga(FileBytes& file) {
         }
         for (uint64_t i = 0; i < indices && at + index_bytes <= data.size(); ++i, at += index_bytes)
             if (uint64_t(first) + indexAt(at) >= length)
-                return "colour index " + std::to_string(indexAt(at)) + " lies outside the colour map of " + std::to_string(length) +
-                       " entries";
+                return "colour index " + std::to_string(indexAt(at)) + " lies outside the colour map of " +
+                       std::to_string(length) + " entries";
         done += count;
     }
     return "";
@@ -121,7 +124,8 @@ std::string checkBeforeDecoding(const std::string& path, const std::string& form
     FileBytes file(path);
     const bool any = format_name.empty();
     if (format_name == "png" || (any && startsWith(file, "\x89PNG\r\n\x1a\n"))) return checkPng(file);
-    if (format_name == "gif" || (any && (startsWith(file, "GIF87a") || startsWith(file, "GIF89a")))) return checkGif(file);
+    if (format_name == "gif" || (any && (startsWith(file, "GIF87a") || startsWith(file, "GIF89a"))))
+        return checkGif(file);
     const bool tga_name = OIIO::Strutil::iends_with(path, ".tga");
     if (format_name == "targa" || (any && tga_name)) return checkTarga(file);
     return "";

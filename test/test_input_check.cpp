@@ -17,7 +17,8 @@ void writeBytes(const std::string& path, const std::string& bytes) { std::ofstre
 
 // A GIF of one 1×1 frame on a `width` × `height` logical screen, two colours.
 std::string gifWithScreen(uint32_t width, uint32_t height) {
-    const std::string screen = le16(width) + le16(height) + std::string("\x80\0\0", 3) + std::string("\0\0\0\xFF\xFF\xFF", 6);
+    const std::string screen =
+        le16(width) + le16(height) + std::string("\x80\0\0", 3) + std::string("\0\0\0\xFF\xFF\xFF", 6);
     const std::string frame = std::string("\x2C\0\0\0\0", 5) + le16(1) + le16(1) + std::string(1, '\0');
     // LZW, minimum code size 2: clear (4), index 0, end (5), in 3-bit codes.
     const std::string data("\x02\x02\x44\x01\x00", 5);
@@ -26,8 +27,8 @@ std::string gifWithScreen(uint32_t width, uint32_t height) {
 
 // A 2×2 colour-mapped Targa (type 1, or 9 with RLE) with a map of `entries` 24-bit colours.
 std::string colourMappedTarga(bool rle, uint32_t entries, const std::string& pixels) {
-    std::string header = std::string{'\0', '\1', char(rle ? 9 : 1)} + le16(0) + le16(entries) + char(24) + le16(0) + le16(0) +
-                         le16(2) + le16(2) + char(8) + char(0x20);
+    std::string header = std::string{'\0', '\1', char(rle ? 9 : 1)} + le16(0) + le16(entries) + char(24) + le16(0) +
+                         le16(0) + le16(2) + le16(2) + char(8) + char(0x20);
     return header + std::string(3 * entries, '\x7F') + pixels;
 }
 
@@ -67,12 +68,14 @@ TEST_CASE("input check: a colour-mapped Targa with an index beyond its map is re
     writeBytes(folder / "good.tga", colourMappedTarga(false, 4, std::string("\0\1\2\3", 4)));
     CHECK(ddt::checkBeforeDecoding(folder / "good.tga", "targa").empty());
     writeBytes(folder / "raw.tga", colourMappedTarga(false, 4, std::string("\0\1\xC8\3", 4)));
-    CHECK(ddt::checkBeforeDecoding(folder / "raw.tga", "targa") == "colour index 200 lies outside the colour map of 4 entries");
+    CHECK(ddt::checkBeforeDecoding(folder / "raw.tga", "targa") ==
+          "colour index 200 lies outside the colour map of 4 entries");
     // RLE: a raw packet of two, then a run of two of index 4.
     writeBytes(folder / "good-rle.tga", colourMappedTarga(true, 5, std::string("\x01\0\1\x81\4", 5)));
     CHECK(ddt::checkBeforeDecoding(folder / "good-rle.tga", "").empty());
     writeBytes(folder / "rle.tga", colourMappedTarga(true, 4, std::string("\x01\0\1\x81\4", 5)));
-    CHECK(ddt::checkBeforeDecoding(folder / "rle.tga", "") == "colour index 4 lies outside the colour map of 4 entries");
+    CHECK(ddt::checkBeforeDecoding(folder / "rle.tga", "") ==
+          "colour index 4 lies outside the colour map of 4 entries");
 
     const Run run = runDdtup({folder / "raw.tga", folder / "out.png"});
     requireOneLineError(run, 1, "raw.tga", "colour index 200");

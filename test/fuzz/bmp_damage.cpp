@@ -43,7 +43,8 @@ std::string damagePixelFormat(std::string& file, Random& random) {
         }
         case 1: {
             const uint64_t compressions[] = {0, 1, 2, 3, 4, 5, 6, 11, 12, 13, 255, 0xFFFFFFFF};
-            return setField(file, kCompression, 4, "biCompression", int64_t(compressions[random.below(std::size(compressions))]));
+            return setField(file, kCompression, 4, "biCompression",
+                            int64_t(compressions[random.below(std::size(compressions))]));
         }
         case 2: return setField(file, kPlanes, 2, "biPlanes", random.percent(50) ? 0 : random.between(2, 11));
         default: {
@@ -63,7 +64,9 @@ std::string damageStructure(std::string& file, Random& random) {
             return setField(file, kHeaderSize, 4, "biSize", int64_t(sizes[random.below(std::size(sizes))]));
         }
         case 1: {
-            const uint64_t offsets[] = {0, 1, 14, 54, 14 + header - 1, offbits - 1, offbits + 1, file.size() - 1, file.size(), 0x7FFFFFFF, 0xFFFFFFFF};
+            const uint64_t offsets[] = {
+                0,           1,          14,        54, 14 + header - 1, offbits - 1, offbits + 1, file.size() - 1,
+                file.size(), 0x7FFFFFFF, 0xFFFFFFFF};
             return setField(file, kOffBits, 4, "bfOffBits", int64_t(offsets[random.below(std::size(offsets))]));
         }
         case 2: {
@@ -81,8 +84,10 @@ std::string damageStructure(std::string& file, Random& random) {
             const size_t palette = 14 + header;
             if (palette >= offbits || offbits > file.size()) return "no palette";
             const size_t count = random.between(1, 64);
-            if (random.percent(50)) file.erase(palette + random.below(offbits - palette), std::min<size_t>(count, offbits - palette));
-            else file.insert(palette, random.bytes(count));
+            if (random.percent(50))
+                file.erase(palette + random.below(offbits - palette), std::min<size_t>(count, offbits - palette));
+            else
+                file.insert(palette, random.bytes(count));
             return "palette length changed by " + std::to_string(count) + " bytes";
         }
     }
@@ -102,7 +107,9 @@ std::string damageStream(std::string& file, Random& random) {
             case 1: codes = std::string("\0", 1) + char(random.between(3, 255)) + random.bytes(random.below(64)); break;
             case 2: codes = std::string("\xFF", 1) + char(random.byte()); break;
             case 3: codes = std::string("\0\0", 2); break;
-            default: file.resize(file.size() - std::min<size_t>(file.size() - pixels, 2)); return "RLE end of bitmap removed";
+            default:
+                file.resize(file.size() - std::min<size_t>(file.size() - pixels, 2));
+                return "RLE end of bitmap removed";
         }
         // On a code boundary half the time: RLE codes are byte pairs from the start.
         const size_t where = random.percent(50) ? pixels + (at - pixels) / 2 * 2 : at;

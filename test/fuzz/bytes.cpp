@@ -30,8 +30,6 @@ uint64_t getLE64(const std::string& bytes, size_t at) {
     return uint64_t(getLE(bytes, at, 4)) | uint64_t(getLE(bytes, at + 4, 4)) << 32;
 }
 
-void putLE64(std::string& bytes, size_t at, uint64_t value) { putLE(bytes, at, 8, value); }
-
 std::string be(int size, uint64_t value) {
     std::string out(size_t(size), '\0');
     putBE(out, 0, size, value);
@@ -51,7 +49,8 @@ uint32_t crc32Of(const std::string& bytes) {
 std::string zlibCompress(const std::string& data) {
     uLongf size = compressBound(uLong(data.size()));
     std::string out(size, '\0');
-    compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(data.data()), uLong(data.size()), 6);
+    compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(data.data()),
+              uLong(data.size()), 6);
     out.resize(size);
     return out;
 }

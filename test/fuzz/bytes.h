@@ -15,7 +15,6 @@ uint32_t getLE(const std::string& bytes, size_t at, int size);
 void putBE(std::string& bytes, size_t at, int size, uint64_t value);
 void putLE(std::string& bytes, size_t at, int size, uint64_t value);
 uint64_t getLE64(const std::string& bytes, size_t at);
-void putLE64(std::string& bytes, size_t at, uint64_t value);
 
 // `value` as `size` bytes, to build files with.
 std::string be(int size, uint64_t value);

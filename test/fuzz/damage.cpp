@@ -31,7 +31,7 @@ std::string flipBits(const Format& format, std::string& file, Random& random) {
         const size_t at = format.signature_size + random.below(span);
         const int bit = int(random.below(8));
         file[at] = char(uint8_t(file[at]) ^ (1u << bit));
-        what += " " + std::to_string(at) + "." + std::to_string(bit);
+        what += ' ' + std::to_string(at) + '.' + std::to_string(bit);
     }
     return what;
 }
@@ -39,7 +39,8 @@ std::string flipBits(const Format& format, std::string& file, Random& random) {
 std::string randomBody(const Format& format, std::string& file, Random& random) {
     const size_t length = random.below(file.size() * 2 + 1);
     file = file.substr(0, format.signature_size) + random.bytes(length);
-    return std::to_string(length) + " random bytes after the " + std::to_string(format.signature_size) + "-byte signature";
+    return std::to_string(length) + " random bytes after the " + std::to_string(format.signature_size) +
+           "-byte signature";
 }
 
 }  // namespace
@@ -59,11 +60,11 @@ const char* damageKindName(DamageKind kind) {
 
 std::string damageFile(const Format& format, DamageKind kind, std::string& file, Random& random) {
     switch (kind) {
-        case DamageKind::Truncate:
-            return truncate(file, random);
+        case DamageKind::Truncate: return truncate(file, random);
         case DamageKind::BitFlip:
         case DamageKind::RandomBody: {
-            std::string what = kind == DamageKind::BitFlip ? flipBits(format, file, random) : randomBody(format, file, random);
+            std::string what =
+                kind == DamageKind::BitFlip ? flipBits(format, file, random) : randomBody(format, file, random);
             if (format.repair) format.repair(file);
             return what;
         }

@@ -17,8 +17,9 @@ enum class DamageKind {
     Structure,    // chunk / marker / entry lengths, offsets, counts, tables, palettes
     Stream,       // the compressed or coded pixel data, its own checksums recomputed
 };
-constexpr DamageKind kDamageKinds[] = {DamageKind::Truncate,    DamageKind::BitFlip,   DamageKind::RandomBody, DamageKind::Size,
-                                       DamageKind::PixelFormat, DamageKind::Structure, DamageKind::Stream};
+constexpr DamageKind kDamageKinds[] = {DamageKind::Truncate, DamageKind::BitFlip,     DamageKind::RandomBody,
+                                       DamageKind::Size,     DamageKind::PixelFormat, DamageKind::Structure,
+                                       DamageKind::Stream};
 
 const char* damageKindName(DamageKind kind);  // "truncate", "bit-flip", …
 

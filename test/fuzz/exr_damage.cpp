@@ -42,7 +42,8 @@ std::optional<Exr> parseExr(const std::string& file) {
         if (type_end == std::string::npos || type_end + 5 > file.size()) return std::nullopt;
         const uint32_t size = getLE(file, type_end + 1, 4);
         if (size > file.size() - type_end - 5) return std::nullopt;
-        exr.attributes.push_back({file.substr(at, name_end - at), file.substr(name_end + 1, type_end - name_end - 1), file.substr(type_end + 5, size)});
+        exr.attributes.push_back({file.substr(at, name_end - at), file.substr(name_end + 1, type_end - name_end - 1),
+                                  file.substr(type_end + 5, size)});
         at = type_end + 5 + size;
     }
     const size_t table = at + 1;
@@ -197,7 +198,8 @@ std::string damageAttributes(Exr& exr, Random& random) {
             return "lineOrder -> " + std::to_string(uint8_t(order->value[0]));
         }
         case 1: {
-            const std::string types[] = {"box2f", "int", "string", "chlist", "v2f", "compression", "", std::string(300, 't')};
+            const std::string types[] = {"box2f", "int",         "string", "chlist",
+                                         "v2f",   "compression", "",       std::string(300, 't')};
             const std::string old = attribute.type;
             attribute.type = types[random.below(std::size(types))];
             return attribute.name + " type " + old + " -> " + attribute.type.substr(0, 20);
@@ -211,7 +213,8 @@ std::string damageAttributes(Exr& exr, Random& random) {
             Attribute* tiles = exr.find("tiles");
             if (!tiles || tiles->value.size() < 9) {
                 // chunkCount, which OIIO and OpenEXR check against the table.
-                exr.attributes.push_back({"chunkCount", "int", le(4, interestingValue(random, exr.offsets.size(), 32))});
+                exr.attributes.push_back(
+                    {"chunkCount", "int", le(4, interestingValue(random, exr.offsets.size(), 32))});
                 return "added chunkCount " + std::to_string(getLE(exr.attributes.back().value, 0, 4));
             }
             const uint32_t old_x = getLE(tiles->value, 0, 4);
@@ -235,13 +238,16 @@ std::string damageAttributes(Exr& exr, Random& random) {
         case 5: {
             const Attribute copy = attribute;
             exr.attributes.push_back(copy);
-            if (copy.type == "box2i" && copy.value.size() == 16) putLE(exr.attributes.back().value, 8, 4, interestingValue(random, 10, 31));
+            if (copy.type == "box2i" && copy.value.size() == 16)
+                putLE(exr.attributes.back().value, 8, 4, interestingValue(random, 10, 31));
             return copy.name + " twice";
         }
         default: {
             const std::string names[] = {std::string(32, 'a'), std::string(255, 'b'), "comments", "owner"};
-            exr.attributes.push_back({names[random.below(std::size(names))], random.percent(50) ? "string" : "fuzzType", random.bytes(random.below(64))});
-            return "added attribute " + exr.attributes.back().name.substr(0, 10) + " of type " + exr.attributes.back().type;
+            exr.attributes.push_back({names[random.below(std::size(names))], random.percent(50) ? "string" : "fuzzType",
+                                      random.bytes(random.below(64))});
+            return "added attribute " + exr.attributes.back().name.substr(0, 10) + " of type " +
+                   exr.attributes.back().type;
         }
     }
 }
@@ -260,9 +266,18 @@ std::string damageOffsets(Exr& exr, Random& random) {
     const size_t index = random.below(exr.offsets.size());
     const uint64_t old = exr.offsets[index];
     const uint64_t end = exr.original_chunks_at + exr.chunks.size();
-    const uint64_t values[] = {0, 8, old + 1, old - 1, end, end + 1000, exr.offsets[random.below(exr.offsets.size())], uint64_t(-1), uint64_t(1) << 63};
+    const uint64_t values[] = {0,
+                               8,
+                               old + 1,
+                               old - 1,
+                               end,
+                               end + 1000,
+                               exr.offsets[random.below(exr.offsets.size())],
+                               uint64_t(-1),
+                               uint64_t(1) << 63};
     exr.offsets[index] = values[random.below(std::size(values))];
-    return "offset table entry " + std::to_string(index) + " " + std::to_string(old) + " -> " + std::to_string(exr.offsets[index]);
+    return "offset table entry " + std::to_string(index) + " " + std::to_string(old) + " -> " +
+           std::to_string(exr.offsets[index]);
 }
 
 std::string damageStream(Exr& exr, Random& random) {
@@ -283,13 +298,15 @@ std::string damageStream(Exr& exr, Random& random) {
             const int32_t old = int32_t(getLE(exr.chunks, start + field * 4, 4));
             const int64_t value = interestingSigned(random, old, 32);
             putLE(exr.chunks, start + field * 4, 4, uint64_t(value));
-            return std::string(tiled ? "tile coordinate " : "chunk y ") + std::to_string(old) + " -> " + std::to_string(value);
+            return std::string(tiled ? "tile coordinate " : "chunk y ") + std::to_string(old) + " -> " +
+                   std::to_string(value);
         }
         default: {
             const size_t data = size_at + 4;
             if (data >= exr.chunks.size()) return "chunk without data";
             const size_t length = std::min<size_t>(getLE(exr.chunks, size_at, 4), exr.chunks.size() - data);
-            const size_t at = data + random.below(std::max<size_t>(1, length)), count = std::min<size_t>(exr.chunks.size() - at, random.between(1, 16));
+            const size_t at = data + random.below(std::max<size_t>(1, length)),
+                         count = std::min<size_t>(exr.chunks.size() - at, random.between(1, 16));
             exr.chunks.replace(at, count, random.bytes(count));
             return std::to_string(count) + " random bytes in chunk data";
         }

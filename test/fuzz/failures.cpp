@@ -26,10 +26,12 @@ void clearFailures(const std::string& folder) {
         if (isKeptByUs(entry.path().filename().string())) fs::remove_all(entry.path(), error);
 }
 
-void saveBatchFailure(const std::string& folder, size_t number, const std::vector<std::string>& inputs, const std::string& record) {
+void saveBatchFailure(const std::string& folder, size_t number, const std::vector<std::string>& inputs,
+                      const std::string& record) {
     const fs::path batch = fs::path(folder) / ("batch-" + std::to_string(number));
     fs::create_directories(batch);
-    for (const std::string& input : inputs) fs::copy_file(input, batch / fs::path(input).filename(), fs::copy_options::overwrite_existing);
+    for (const std::string& input : inputs)
+        fs::copy_file(input, batch / fs::path(input).filename(), fs::copy_options::overwrite_existing);
     std::ofstream(batch.string() + ".txt") << record;
 }
 
@@ -55,7 +57,8 @@ CaseName parseCaseName(const std::string& path) {
     return {stem.substr(first + 1, second - first - 1), stem.substr(second + 1)};
 }
 
-std::string caseFileName(size_t index, const std::string& format, const std::string& kind, const std::string& extension) {
+std::string caseFileName(size_t index, const std::string& format, const std::string& kind,
+                         const std::string& extension) {
     char number[16];
     std::snprintf(number, sizeof number, "%06zu", index);
     return std::string(number) + "-" + format + "-" + kind + extension;

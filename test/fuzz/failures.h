@@ -15,7 +15,8 @@ void saveFailure(const std::string& folder, const std::string& input, const std:
 
 // For a batch that failed only as a whole: its inputs into `folder`/batch-N/, the record as
 // `folder`/batch-N.txt.
-void saveBatchFailure(const std::string& folder, size_t number, const std::vector<std::string>& inputs, const std::string& record);
+void saveBatchFailure(const std::string& folder, size_t number, const std::vector<std::string>& inputs,
+                      const std::string& record);
 
 // The inputs kept in `folder`, sorted (the records are passed over).
 std::vector<std::string> savedInputs(const std::string& folder);
@@ -25,6 +26,7 @@ struct CaseName {
     std::string format, kind;
 };
 CaseName parseCaseName(const std::string& path);
-std::string caseFileName(size_t index, const std::string& format, const std::string& kind, const std::string& extension);
+std::string caseFileName(size_t index, const std::string& format, const std::string& kind,
+                         const std::string& extension);
 
 }  // namespace fuzz

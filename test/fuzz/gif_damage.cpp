@@ -95,12 +95,14 @@ std::string damagePixelFormat(std::string& file, const Gif& gif, Random& random)
             if (!image) return "no image";
             const uint8_t packed = uint8_t(file[image + 9]);
             const uint8_t masks[] = {0x80, 0x40, 0x07, 0x87, 0x3F};
-            return setByte(file, image + 9, "frame flags (local table, interlace)", packed ^ masks[random.below(std::size(masks))]);
+            return setByte(file, image + 9, "frame flags (local table, interlace)",
+                           packed ^ masks[random.below(std::size(masks))]);
         }
         case 2: {
             if (gif.images.empty()) return "no image";
             const uint8_t sizes[] = {0, 1, 2, 7, 9, 11, 12, 13, 255};
-            return setByte(file, random.pick(gif.images).code_size, "LZW minimum code size", sizes[random.below(std::size(sizes))]);
+            return setByte(file, random.pick(gif.images).code_size, "LZW minimum code size",
+                           sizes[random.below(std::size(sizes))]);
         }
         case 3: {
             // A graphic control extension: transparency flag and an index beyond the palette.
@@ -122,7 +124,8 @@ std::string damageStructure(std::string& file, const Gif& gif, Random& random) {
             if (gif.sub_blocks.empty()) return "no sub-blocks";
             const SubBlocks blocks = random.pick(gif.sub_blocks);
             std::vector<size_t> lengths;
-            for (size_t at = blocks.begin; at < blocks.end && at < file.size(); at += 1 + uint8_t(file[at])) lengths.push_back(at);
+            for (size_t at = blocks.begin; at < blocks.end && at < file.size(); at += 1 + uint8_t(file[at]))
+                lengths.push_back(at);
             const size_t at = random.pick(lengths);
             const uint8_t old = uint8_t(file[at]);
             const uint8_t values[] = {0, 1, 255, uint8_t(old + 1), uint8_t(old - 1)};
@@ -141,7 +144,8 @@ std::string damageStructure(std::string& file, const Gif& gif, Random& random) {
         case 3: {
             const size_t blocks = 13 + tableSize(uint8_t(file[10]));
             const uint8_t labels[] = {0x2D, 0x00, 0xFF, 0x21, 0x2C};
-            return setByte(file, std::min(blocks, file.size() - 1), "first block type", labels[random.below(std::size(labels))]);
+            return setByte(file, std::min(blocks, file.size() - 1), "first block type",
+                           labels[random.below(std::size(labels))]);
         }
         case 4: {
             // The global table cut short while the flag still announces it.
@@ -161,7 +165,8 @@ std::string damageStructure(std::string& file, const Gif& gif, Random& random) {
                 block = file.substr(image.descriptor, image.data.end - image.descriptor);
                 putLE(block, 1 + 2 * random.below(4), 2, interestingValue(random, 10, 16));
             } else {
-                block = std::string("\x21\xFF\x0BNETSCAPE2.0", 14) + char(random.below(6)) + "\x01" + random.bytes(random.below(4)) + '\0';
+                block = std::string("\x21\xFF\x0BNETSCAPE2.0", 14) + char(random.below(6)) + "\x01" +
+                        random.bytes(random.below(4)) + '\0';
             }
             file.insert(gif.trailer, block);
             return "added a block of " + std::to_string(block.size()) + " bytes";

@@ -16,7 +16,9 @@ uint32_t level(int x, int y, int channel, int channels, uint32_t max) {
 }
 
 // A palette index: stripes and the diagonal edge, so runs and changes both occur.
-uint32_t paletteIndex(int x, int y, uint32_t colours) { return (uint32_t(x * 2 > y * 3) * colours / 2 + uint32_t(x / 3 + y)) % colours; }
+uint32_t paletteIndex(int x, int y, uint32_t colours) {
+    return (uint32_t(x * 2 > y * 3) * colours / 2 + uint32_t(x / 3 + y)) % colours;
+}
 
 // ---- PNG
 
@@ -50,7 +52,11 @@ std::string filterRow(const std::string& row, const std::string& prior, int type
     for (size_t i = 0; i < row.size(); ++i) {
         const int raw = uint8_t(row[i]), left = i >= bpp ? uint8_t(row[i - bpp]) : 0, up = uint8_t(prior[i]);
         const int upleft = i >= bpp ? uint8_t(prior[i - bpp]) : 0;
-        const int predictor = type == 1 ? left : type == 2 ? up : type == 3 ? (left + up) / 2 : type == 4 ? paeth(left, up, upleft) : 0;
+        const int predictor = type == 1   ? left
+                              : type == 2 ? up
+                              : type == 3 ? (left + up) / 2
+                              : type == 4 ? paeth(left, up, upleft)
+                                          : 0;
         out += char(uint8_t(raw - predictor));
     }
     return out;
@@ -58,15 +64,19 @@ std::string filterRow(const std::string& row, const std::string& prior, int type
 
 // The filtered scanlines of the image (of each Adam7 pass when interlaced), every filter type used.
 std::string pngScanlines(const PngLayout& png) {
-    struct Pass { int x0, y0, dx, dy; };
-    const Pass adam7[] = {{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4}, {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}};
+    struct Pass {
+        int x0, y0, dx, dy;
+    };
+    const Pass adam7[] = {{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4},
+                          {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}};
     const Pass whole[] = {{0, 0, 1, 1}};
     const int channels = pngChannels(png.colour_type);
     const size_t bits_per_pixel = size_t(png.depth) * channels;
     const size_t bpp = std::max<size_t>(1, bits_per_pixel / 8);
     std::string out;
     int filter = 0;
-    for (const Pass& pass : png.interlaced ? std::vector<Pass>(std::begin(adam7), std::end(adam7)) : std::vector<Pass>(std::begin(whole), std::end(whole))) {
+    for (const Pass& pass : png.interlaced ? std::vector<Pass>(std::begin(adam7), std::end(adam7))
+                                           : std::vector<Pass>(std::begin(whole), std::end(whole))) {
         const int pass_width = (png.width - pass.x0 + pass.dx - 1) / pass.dx;
         if (pass_width <= 0 || pass.y0 >= png.height) continue;
         const size_t row_bytes = (size_t(pass_width) * bits_per_pixel + 7) / 8;
@@ -90,8 +100,8 @@ std::string pngScanlines(const PngLayout& png) {
 }
 
 std::string pngFile(const PngLayout& png, const std::string& palette_chunks) {
-    const std::string header = be(4, png.width) + be(4, png.height) + char(png.depth) + char(png.colour_type) + '\0' + '\0' +
-                               char(png.interlaced ? 1 : 0);
+    const std::string header = be(4, png.width) + be(4, png.height) + char(png.depth) + char(png.colour_type) + '\0' +
+                               '\0' + char(png.interlaced ? 1 : 0);
     return std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", header) + palette_chunks +
            pngChunk("IDAT", zlibCompress(pngScanlines(png))) + pngChunk("IEND", "");
 }
@@ -165,10 +175,12 @@ std::string bmpFile(const BmpLayout& bmp) {
     std::string palette;
     for (uint32_t i = 0; i < colours; ++i) palette += std::string{char(i * 37), char(i * 91), char(i * 13), '\0'};
     const std::string masks = bmp.compression == 3 ? le(4, 0xF800) + le(4, 0x07E0) + le(4, 0x001F) : "";
-    const std::string pixels = bmp.compression == 1 || bmp.compression == 2 ? bmpRle(bmp, colours) : bmpPixelRows(bmp, colours);
-    std::string header = le(4, bmp.header_size) + le(4, bmp.width) + le(4, uint32_t(bmp.top_down ? -bmp.height : bmp.height)) +
-                         le(2, 1) + le(2, bmp.bits) + le(4, bmp.compression) + le(4, pixels.size()) + le(4, 2835) +
-                         le(4, 2835) + le(4, colours) + le(4, 0);
+    const std::string pixels =
+        bmp.compression == 1 || bmp.compression == 2 ? bmpRle(bmp, colours) : bmpPixelRows(bmp, colours);
+    std::string header = le(4, bmp.header_size) + le(4, bmp.width) +
+                         le(4, uint32_t(bmp.top_down ? -bmp.height : bmp.height)) + le(2, 1) + le(2, bmp.bits) +
+                         le(4, bmp.compression) + le(4, pixels.size()) + le(4, 2835) + le(4, 2835) + le(4, colours) +
+                         le(4, 0);
     if (bmp.header_size > 40) {
         // V4/V5: the masks inside the header, "sRGB" colour space, the rest zero.
         header += bmp.compression == 3 ? masks : le(4, 0) + le(4, 0) + le(4, 0);
@@ -209,13 +221,14 @@ std::string targaRle(int width, int height, const std::function<std::string(int 
 // Colour-mapped (type 1, or 9 with RLE): 8-bit indices into 24-bit entries, top-left origin.
 std::string targaColourMapped(int width, int height, bool rle) {
     const uint32_t colours = 32;
-    std::string header = std::string{'\0', '\1', char(rle ? 9 : 1)} + le(2, 0) + le(2, colours) + char(24) + le(2, 0) + le(2, 0) +
-                         le(2, width) + le(2, height) + char(8) + char(0x20);
+    std::string header = std::string{'\0', '\1', char(rle ? 9 : 1)} + le(2, 0) + le(2, colours) + char(24) + le(2, 0) +
+                         le(2, 0) + le(2, width) + le(2, height) + char(8) + char(0x20);
     std::string map;
     for (uint32_t i = 0; i < colours; ++i) map += std::string{char(i * 7), char(i * 5), char(255 - i * 3)};
     auto pixel = [&](int x, int y) { return std::string(1, char(paletteIndex(x, y, colours))); };
     std::string pixels;
-    if (rle) pixels = targaRle(width, height, pixel);
+    if (rle)
+        pixels = targaRle(width, height, pixel);
     else
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) pixels += pixel(x, y);
@@ -224,8 +237,8 @@ std::string targaColourMapped(int width, int height, bool rle) {
 
 // True colour in 16 bits (5-5-5 and an attribute bit), bottom-left origin.
 std::string targaRgb15(int width, int height) {
-    std::string header = std::string{'\0', '\0', '\2'} + le(2, 0) + le(2, 0) + char(0) + le(2, 0) + le(2, 0) + le(2, width) +
-                         le(2, height) + char(16) + char(0x01);
+    std::string header = std::string{'\0', '\0', '\2'} + le(2, 0) + le(2, 0) + char(0) + le(2, 0) + le(2, 0) +
+                         le(2, width) + le(2, height) + char(16) + char(0x01);
     std::string pixels;
     for (int y = height - 1; y >= 0; --y)
         for (int x = 0; x < width; ++x)
@@ -236,8 +249,8 @@ std::string targaRgb15(int width, int height) {
 // ---- PFM
 
 std::string pfmFile(int width, int height, int channels, bool big_endian) {
-    std::string out = std::string(channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(width) + " " + std::to_string(height) + "\n" +
-                      (big_endian ? "1.0" : "-1.0") + "\n";
+    std::string out = std::string(channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(width) + " " +
+                      std::to_string(height) + "\n" + (big_endian ? "1.0" : "-1.0") + "\n";
     for (int y = height - 1; y >= 0; --y)  // bottom row first
         for (int x = 0; x < width; ++x)
             for (int c = 0; c < channels; ++c) {
@@ -252,7 +265,9 @@ std::string pfmFile(int width, int height, int channels, bool big_endian) {
 }  // namespace
 
 std::vector<Seed> handmadePngSeeds() {
-    auto indexed = [](int colours) { return [colours](int x, int y, int) { return paletteIndex(x, y, uint32_t(colours)); }; };
+    auto indexed = [](int colours) {
+        return [colours](int x, int y, int) { return paletteIndex(x, y, uint32_t(colours)); };
+    };
     auto levels = [](int depth, int channels) {
         return [depth, channels](int x, int y, int c) { return level(x, y, c, channels, (1u << depth) - 1); };
     };
@@ -269,12 +284,9 @@ std::vector<Seed> handmadeBmpSeeds() {
     BmpLayout top_down{11, 7, 24};
     top_down.top_down = true;
     top_down.header_size = 124;
-    return {{"palette1", ".bmp", bmpFile({21, 9, 1})},
-            {"palette4", ".bmp", bmpFile({13, 11, 4})},
-            {"rle8", ".bmp", bmpFile({17, 12, 8, 1})},
-            {"rle4", ".bmp", bmpFile({15, 10, 4, 2})},
-            {"rgb565-bitfields", ".bmp", bmpFile(rgb565)},
-            {"rgb24-top-down-v5", ".bmp", bmpFile(top_down)}};
+    return {{"palette1", ".bmp", bmpFile({21, 9, 1})},     {"palette4", ".bmp", bmpFile({13, 11, 4})},
+            {"rle8", ".bmp", bmpFile({17, 12, 8, 1})},     {"rle4", ".bmp", bmpFile({15, 10, 4, 2})},
+            {"rgb565-bitfields", ".bmp", bmpFile(rgb565)}, {"rgb24-top-down-v5", ".bmp", bmpFile(top_down)}};
 }
 
 std::vector<Seed> handmadeTargaSeeds() {

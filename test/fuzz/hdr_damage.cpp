@@ -11,9 +11,9 @@ namespace fuzz {
 namespace {
 
 struct Layout {
-    size_t header_end = std::string::npos;      // the blank line ending the header
-    size_t resolution = std::string::npos;      // the resolution line
-    size_t data = std::string::npos;            // the first scanline
+    size_t header_end = std::string::npos;  // the blank line ending the header
+    size_t resolution = std::string::npos;  // the resolution line
+    size_t data = std::string::npos;        // the first scanline
 };
 
 Layout layoutOf(const std::string& file) {
@@ -54,14 +54,24 @@ std::string damagePixelFormat(std::string& file, Random& random) {
     const Layout layout = layoutOf(file);
     if (layout.data == std::string::npos) return "no resolution line";
     if (random.percent(40)) {
-        const char* lines[] = {"-Y 8 -X 8", "+Y 8 +X 8", "+X 8 -Y 8", "-X 8 +Y 8", "-Y 8 +Y 8", "Y 8 X 8", "-Y8+X8", "-Y 8", ""};
+        const char* lines[] = {"-Y 8 -X 8", "+Y 8 +X 8", "+X 8 -Y 8", "-X 8 +Y 8", "-Y 8 +Y 8",
+                               "Y 8 X 8",   "-Y8+X8",    "-Y 8",      ""};
         const std::string line = lines[random.below(std::size(lines))];
         file.replace(layout.resolution, layout.data - 1 - layout.resolution, line);
         return "resolution line -> '" + line + "'";
     }
     // Header lines: another format, exposure and gamma values that divide or overflow.
-    const char* lines[] = {"FORMAT=32-bit_rle_xyze", "FORMAT=", "FORMAT=16-bit_rle_rgbe", "EXPOSURE=0", "EXPOSURE=-1",
-                           "EXPOSURE=nan", "EXPOSURE=1e40", "GAMMA=0", "GAMMA=-2.2", "PRIMARIES=0 0 0 0 0 0 0 0", "FORMAT=32-bit_rle_rgbe"};
+    const char* lines[] = {"FORMAT=32-bit_rle_xyze",
+                           "FORMAT=",
+                           "FORMAT=16-bit_rle_rgbe",
+                           "EXPOSURE=0",
+                           "EXPOSURE=-1",
+                           "EXPOSURE=nan",
+                           "EXPOSURE=1e40",
+                           "GAMMA=0",
+                           "GAMMA=-2.2",
+                           "PRIMARIES=0 0 0 0 0 0 0 0",
+                           "FORMAT=32-bit_rle_rgbe"};
     const std::string line = lines[random.below(std::size(lines))];
     const size_t format = file.find("FORMAT=");
     if (format != std::string::npos && format < layout.header_end && random.percent(50)) {
@@ -111,8 +121,10 @@ std::string damageStream(std::string& file, Random& random) {
         case 0: {
             // A scanline header: 2 2 and the width, which may disagree with the resolution.
             const size_t header = layout.data + (random.percent(50) ? 0 : (at - layout.data) / 4 * 4);
-            const std::string headers[] = {std::string("\2\2\0\0", 4), std::string("\2\2\xFF\xFF", 4), std::string("\2\2\x80\0", 4),
-                                           std::string("\2\2\0\x07", 4), std::string("\1\1\1\xFF", 4), std::string("\2\2\0", 3) + char(random.byte())};
+            const std::string headers[] = {
+                std::string("\2\2\0\0", 4),   std::string("\2\2\xFF\xFF", 4),
+                std::string("\2\2\x80\0", 4), std::string("\2\2\0\x07", 4),
+                std::string("\1\1\1\xFF", 4), std::string("\2\2\0", 3) + char(random.byte())};
             file.replace(header, 4, headers[random.below(std::size(headers))]);
             return "scanline header at " + std::to_string(header) + " replaced";
         }
@@ -122,9 +134,7 @@ std::string damageStream(std::string& file, Random& random) {
             file[at] = char(counts[random.below(std::size(counts))]);
             return "run count at " + std::to_string(at) + " -> " + std::to_string(uint8_t(file[at]));
         }
-        case 2:
-            file.resize(at);
-            return "scanlines cut at " + std::to_string(at);
+        case 2: file.resize(at); return "scanlines cut at " + std::to_string(at);
         default: {
             const size_t count = std::min<size_t>(file.size() - at, random.between(1, 16));
             file.replace(at, count, random.bytes(count));

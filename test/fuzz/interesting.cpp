@@ -36,8 +36,9 @@ int64_t interestingSigned(Random& random, int64_t current, int bits) {
 }
 
 std::string badNumberText(Random& random, uint64_t current) {
-    const std::string texts[] = {"0", "1", "-1", "65536", "2147483647", "2147483648", "4294967296", "99999999999999999999",
-                                 "+5", "1.5", "0x10", "a", "1e3", "00000000000000000000019", "-0", "", std::string(5000, '9')};
+    const std::string texts[] = {"0",    "1",   "-1",   "65536", "2147483647", "2147483648", "4294967296",
+                                 "99999999999999999999", "+5", "1.5", "0x10", "a", "1e3", "00000000000000000000019",
+                                 "-0",   "",    std::string(5000, '9')};
     if (random.percent(30)) return std::to_string(interestingValue(random, current, 32));
     return texts[random.below(std::size(texts))];
 }

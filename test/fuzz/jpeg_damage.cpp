@@ -12,7 +12,8 @@ namespace fuzz {
 
 namespace {
 
-constexpr uint8_t kSOI = 0xD8, kEOI = 0xD9, kSOS = 0xDA, kDQT = 0xDB, kDHT = 0xC4, kDRI = 0xDD, kAPP1 = 0xE1, kAPP2 = 0xE2;
+constexpr uint8_t kSOI = 0xD8, kEOI = 0xD9, kSOS = 0xDA, kDQT = 0xDB, kDHT = 0xC4, kDRI = 0xDD, kAPP1 = 0xE1,
+                  kAPP2 = 0xE2;
 
 struct Segment {
     uint8_t marker;
@@ -20,8 +21,12 @@ struct Segment {
     std::string scan;     // the entropy-coded data after an SOS, restart markers included
 };
 
-bool hasLength(uint8_t marker) { return !(marker == kSOI || marker == kEOI || (marker >= 0xD0 && marker <= 0xD7) || marker == 0x01); }
-bool isFrame(uint8_t marker) { return marker >= 0xC0 && marker <= 0xCF && marker != kDHT && marker != 0xC8 && marker != 0xCC; }
+bool hasLength(uint8_t marker) {
+    return !(marker == kSOI || marker == kEOI || (marker >= 0xD0 && marker <= 0xD7) || marker == 0x01);
+}
+bool isFrame(uint8_t marker) {
+    return marker >= 0xC0 && marker <= 0xCF && marker != kDHT && marker != 0xC8 && marker != 0xCC;
+}
 
 std::vector<Segment> segmentsOf(const std::string& file) {
     std::vector<Segment> segments;
@@ -42,7 +47,8 @@ std::vector<Segment> segmentsOf(const std::string& file) {
         }
         if (marker == kSOS) {
             size_t end = at;
-            while (end + 1 < file.size() && !(uint8_t(file[end]) == 0xFF && file[end + 1] != 0 && (uint8_t(file[end + 1]) < 0xD0 || uint8_t(file[end + 1]) > 0xD7)))
+            while (end + 1 < file.size() && !(uint8_t(file[end]) == 0xFF && file[end + 1] != 0 &&
+                                              (uint8_t(file[end + 1]) < 0xD0 || uint8_t(file[end + 1]) > 0xD7)))
                 ++end;
             segment.scan = file.substr(at, end - at);
             at = end;
@@ -131,7 +137,8 @@ std::string damagePixelFormat(std::vector<Segment>& segments, Random& random) {
             return "SOF component count " + std::to_string(components) + " -> " + std::to_string(count);
         }
         case 2: {
-            const uint8_t factors[] = {0x00, 0x01, 0x10, 0x12, 0x21, 0x22, 0x14, 0x41, 0x44, 0x33, 0x1F, 0xF1, 0xFF, 0x24, 0x42};
+            const uint8_t factors[] = {0x00, 0x01, 0x10, 0x12, 0x21, 0x22, 0x14, 0x41,
+                                       0x44, 0x33, 0x1F, 0xF1, 0xFF, 0x24, 0x42};
             const uint8_t value = factors[random.below(std::size(factors))];
             putBE(sof, component + 1, 1, value);
             return "SOF component " + std::to_string((component - 6) / 3) + " sampling -> " + hex(value);
@@ -140,7 +147,8 @@ std::string damagePixelFormat(std::vector<Segment>& segments, Random& random) {
             const int tables[] = {1, 2, 3, 4, 15, 255};
             const int value = tables[random.below(std::size(tables))];
             putBE(sof, component + 2, 1, uint64_t(value));
-            return "SOF component " + std::to_string((component - 6) / 3) + " quantisation table -> " + std::to_string(value);
+            return "SOF component " + std::to_string((component - 6) / 3) + " quantisation table -> " +
+                   std::to_string(value);
         }
         case 4: {
             const int value = random.percent(50) ? 1 : int(random.below(256));
@@ -172,13 +180,12 @@ std::string damageTables(std::vector<Segment>& segments, Random& random) {
             case 1: {
                 // More codes of a length than the length allows, or codes that add up wrong.
                 const size_t length = 1 + random.below(16);
-                const uint64_t count = random.percent(50) ? random.between(3, 255) : interestingValue(random, uint8_t(dht[length]), 8);
+                const uint64_t count =
+                    random.percent(50) ? random.between(3, 255) : interestingValue(random, uint8_t(dht[length]), 8);
                 dht[length] = char(count);
                 return "DHT count of " + std::to_string(length) + "-bit codes -> " + std::to_string(count);
             }
-            case 2:
-                std::fill(dht.begin() + 1, dht.begin() + 17, '\0');
-                return "DHT with no codes";
+            case 2: std::fill(dht.begin() + 1, dht.begin() + 17, '\0'); return "DHT with no codes";
             default: {
                 const size_t at = 17 + random.below(std::max<size_t>(1, dht.size() - 17));
                 if (at < dht.size()) dht[at] = char(random.percent(50) ? 0xFF : random.byte());
@@ -196,9 +203,7 @@ std::string damageTables(std::vector<Segment>& segments, Random& random) {
             dqt[0] = char(values[random.below(std::size(values))]);
             return "DQT precision/id -> " + hex(uint8_t(dqt[0]));
         }
-        case 1:
-            std::fill(dqt.begin() + 1, dqt.end(), '\0');
-            return "DQT of zeros";
+        case 1: std::fill(dqt.begin() + 1, dqt.end(), '\0'); return "DQT of zeros";
         default: {
             const size_t size = random.below(dqt.size());
             dqt.resize(size);
@@ -292,7 +297,10 @@ std::string damageStructure(std::vector<Segment>& segments, Random& random) {
         default: {
             // ICC profile pieces numbered wrongly.
             const uint8_t sequence = uint8_t(random.below(4)), count = uint8_t(random.below(3));
-            segments.insert(segments.begin(), Segment{kAPP2, std::string("ICC_PROFILE\0", 12) + char(sequence) + char(count) + random.bytes(random.below(200)), ""});
+            segments.insert(segments.begin(), Segment{kAPP2,
+                                                      std::string("ICC_PROFILE\0", 12) + char(sequence) + char(count) +
+                                                          random.bytes(random.below(200)),
+                                                      ""});
             return "ICC piece " + std::to_string(sequence) + " of " + std::to_string(count);
         }
     }
@@ -323,9 +331,7 @@ std::string damageStream(std::vector<Segment>& segments, Random& random) {
             data.replace(at, count, codedBytes(random, count));
             return std::to_string(count) + " random bytes in scan data at " + std::to_string(at);
         }
-        case 1:
-            data.resize(at);
-            return "scan data cut to " + std::to_string(at) + " bytes";
+        case 1: data.resize(at); return "scan data cut to " + std::to_string(at) + " bytes";
         case 2: {
             const uint8_t marker = uint8_t(0xD0 + random.below(8));
             data.insert(at, std::string{'\xFF', char(marker)});

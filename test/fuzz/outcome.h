@@ -13,7 +13,7 @@ enum class Outcome {
     LeftFile,       // failed but left its output or a .NAME.ddtup* temporary file
     InternalError,  // failed with "internal error" (exit code 4): a bug in ddtup
 };
-constexpr Outcome kOutcomes[] = {Outcome::Accepted, Outcome::Refused,       Outcome::Crash,    Outcome::Hang,
+constexpr Outcome kOutcomes[] = {Outcome::Accepted,  Outcome::Refused,       Outcome::Crash,    Outcome::Hang,
                                  Outcome::Sanitizer, Outcome::SilentRefusal, Outcome::LeftFile, Outcome::InternalError};
 constexpr int kOutcomeCount = 8;
 

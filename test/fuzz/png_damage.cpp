@@ -31,7 +31,8 @@ std::vector<Chunk> chunksOf(const std::string& file) {
 
 std::string fileOf(const std::vector<Chunk>& chunks) {
     std::string file = kSignature;
-    for (const Chunk& chunk : chunks) file += be(4, chunk.data.size()) + chunk.type + chunk.data + be(4, crc32Of(chunk.type + chunk.data));
+    for (const Chunk& chunk : chunks)
+        file += be(4, chunk.data.size()) + chunk.type + chunk.data + be(4, crc32Of(chunk.type + chunk.data));
     return file;
 }
 
@@ -56,7 +57,8 @@ void replaceIdat(std::vector<Chunk>& chunks, const std::string& stream, size_t p
     at = std::min(at, chunks.size());
     const size_t step = std::max<size_t>(1, (stream.size() + pieces - 1) / std::max<size_t>(1, pieces));
     std::vector<Chunk> idat;
-    for (size_t offset = 0; offset < stream.size() || idat.empty(); offset += step) idat.push_back({"IDAT", stream.substr(std::min(offset, stream.size()), step)});
+    for (size_t offset = 0; offset < stream.size() || idat.empty(); offset += step)
+        idat.push_back({"IDAT", stream.substr(std::min(offset, stream.size()), step)});
     chunks.insert(chunks.begin() + long(at), idat.begin(), idat.end());
 }
 
@@ -103,8 +105,8 @@ std::string damagePixelFormat(std::vector<Chunk>& chunks, Random& random) {
                                        {"interlace method", 12, {0, 1, 2, 255}}};
     if (random.percent(30)) {
         // A legal depth and colour type, which the palette and the data no longer match.
-        const int legal[][2] = {{1, 0}, {2, 0}, {4, 0}, {8, 0}, {16, 0}, {8, 2}, {16, 2}, {1, 3}, {2, 3},
-                                {4, 3}, {8, 3}, {8, 4}, {16, 4}, {8, 6}, {16, 6}};
+        const int legal[][2] = {{1, 0}, {2, 0}, {4, 0}, {8, 0}, {16, 0}, {8, 2}, {16, 2}, {1, 3},
+                                {2, 3}, {4, 3}, {8, 3}, {8, 4}, {16, 4}, {8, 6}, {16, 6}};
         const auto& pair = legal[random.below(std::size(legal))];
         ihdr->data[8] = char(pair[0]);
         ihdr->data[9] = char(pair[1]);
@@ -137,13 +139,16 @@ Chunk damagedAncillary(Random& random) {
             return {"eXIf", exif};
         }
         case 1: {
-            std::string profile = random.percent(50) ? zlibCompress(random.bytes(random.below(300))) : random.bytes(random.below(64));
+            std::string profile =
+                random.percent(50) ? zlibCompress(random.bytes(random.below(300))) : random.bytes(random.below(64));
             if (!profile.empty() && random.percent(50)) profile.resize(random.below(profile.size()));
             return {"iCCP", std::string("icc\0\0", 5) + profile};
         }
         case 2: return {"zTXt", std::string("Comment\0\0", 9) + random.bytes(random.below(40))};
         case 3: return {"iTXt", std::string("XML:com.adobe.xmp\0\1\0\0\0", 22) + random.bytes(random.below(40))};
-        case 4: return {"pHYs", be(4, interestingValue(random, 2835, 32)) + be(4, interestingValue(random, 2835, 32)) + char(random.below(3))};
+        case 4:
+            return {"pHYs", be(4, interestingValue(random, 2835, 32)) + be(4, interestingValue(random, 2835, 32)) +
+                                char(random.below(3))};
         case 5: return {"gAMA", be(4, interestingValue(random, 45455, 32))};
         default: return {"tEXt", random.bytes(random.below(90))};  // the keyword's NUL may be missing
     }
@@ -159,7 +164,8 @@ std::string lieAboutLength(const std::vector<Chunk>& chunks, std::string& file, 
     const uint64_t length = interestingValue(random, chunks[index].data.size(), 32);
     putBE(file, at, 4, length);
     if (at + 12 + length <= file.size()) putBE(file, at + 8 + length, 4, crc32Of(file.substr(at + 4, 4 + length)));
-    return chunks[index].type + " length " + std::to_string(chunks[index].data.size()) + " -> " + std::to_string(length);
+    return chunks[index].type + " length " + std::to_string(chunks[index].data.size()) + " -> " +
+           std::to_string(length);
 }
 
 std::string damageStructure(std::vector<Chunk>& chunks, Random& random) {
@@ -173,7 +179,8 @@ std::string damageStructure(std::vector<Chunk>& chunks, Random& random) {
             Chunk* target = find(chunks, sized[random.below(std::size(sized))]);
             if (!target) target = &chunk;
             const size_t old = target->data.size();
-            const size_t sizes[] = {0, 1, 2, 3, 12, 14, old ? old - 1 : 0, old + 1, old + 3, 768, 771, 1024, size_t(random.below(2000))};
+            const size_t sizes[] = {
+                0, 1, 2, 3, 12, 14, old ? old - 1 : 0, old + 1, old + 3, 768, 771, 1024, size_t(random.below(2000))};
             const size_t size = sizes[random.below(std::size(sizes))];
             target->data.resize(size, char(random.byte()));
             return target->type + " data " + std::to_string(old) + " -> " + std::to_string(size) + " bytes";
@@ -195,20 +202,24 @@ std::string damageStructure(std::vector<Chunk>& chunks, Random& random) {
         }
         case 4: {
             Chunk added = damagedAncillary(random);
-            if (random.percent(15)) added = {"PLTE", random.bytes(3 * random.between(0, 300))};
-            else if (random.percent(15)) added = {"tRNS", random.bytes(random.below(300))};
+            if (random.percent(15))
+                added = {"PLTE", random.bytes(3 * random.between(0, 300))};
+            else if (random.percent(15))
+                added = {"tRNS", random.bytes(random.below(300))};
             chunks.insert(chunks.begin() + long(1 + random.below(chunks.size())), added);
             return "inserted " + added.type + " of " + std::to_string(added.data.size()) + " bytes";
         }
         case 5: {
             const size_t pieces = size_t(random.between(2, 64));
             replaceIdat(chunks, joinedIdat(chunks), pieces);
-            if (random.percent(50)) chunks.insert(chunks.begin() + long(1 + random.below(chunks.size())), Chunk{"IDAT", ""});
+            if (random.percent(50))
+                chunks.insert(chunks.begin() + long(1 + random.below(chunks.size())), Chunk{"IDAT", ""});
             return "image data split into " + std::to_string(pieces) + " IDAT chunks";
         }
         default: {
             // An unknown critical chunk (upper-case first letter): readers must stop at it.
-            chunks.insert(chunks.begin() + long(1 + random.below(chunks.size())), Chunk{"FUZz", random.bytes(random.below(20))});
+            chunks.insert(chunks.begin() + long(1 + random.below(chunks.size())),
+                          Chunk{"FUZz", random.bytes(random.below(20))});
             return "inserted unknown critical chunk";
         }
     }
@@ -242,7 +253,8 @@ std::string damageStream(std::vector<Chunk>& chunks, Random& random) {
                 break;
             }
             default: {
-                const size_t at = random.below(scanlines->size()), count = std::min<size_t>(scanlines->size() - at, random.between(1, 64));
+                const size_t at = random.below(scanlines->size()),
+                             count = std::min<size_t>(scanlines->size() - at, random.between(1, 64));
                 scanlines->replace(at, count, random.bytes(count));
                 what = std::to_string(count) + " random scanline bytes at " + std::to_string(at);
             }
@@ -270,7 +282,8 @@ std::string damageStream(std::vector<Chunk>& chunks, Random& random) {
             break;
         }
         default: {
-            const size_t at = 2 + random.below(damaged.size() - 2), count = std::min<size_t>(damaged.size() - at, random.between(1, 16));
+            const size_t at = 2 + random.below(damaged.size() - 2),
+                         count = std::min<size_t>(damaged.size() - at, random.between(1, 16));
             damaged.replace(at, count, random.bytes(count));
             what = std::to_string(count) + " random bytes in the deflate stream";
         }

@@ -78,7 +78,8 @@ std::string damageStructure(std::string& file, Random& random) {
     const Token& token = random.pick(tokens);
     switch (random.below(6)) {
         case 0: {
-            const std::string comments[] = {"#\n", "# comment\n", "#" + std::string(10000, 'c') + "\n", "#no newline to the end"};
+            const std::string comments[] = {"#\n", "# comment\n", "#" + std::string(10000, 'c') + "\n",
+                                            "#no newline to the end"};
             const std::string comment = comments[random.below(std::size(comments))];
             const size_t at = random.percent(50) ? token.end : token.begin + random.below(token.end - token.begin + 1);
             file.insert(at, comment);
@@ -93,15 +94,14 @@ std::string damageStructure(std::string& file, Random& random) {
             file.replace(token.end, end - token.end, space);
             return "whitespace after a header number -> " + std::to_string(space.size()) + " characters";
         }
-        case 2:
-            file.erase(token.begin, token.end - token.begin);
-            return "a header number removed";
+        case 2: file.erase(token.begin, token.end - token.begin); return "a header number removed";
         case 3:
-            file.insert(token.end, " " + file.substr(token.begin, token.end - token.begin));
+            file.insert(token.end, ' ' + file.substr(token.begin, token.end - token.begin));
             return "a header number repeated";
         case 4: {
             // A PAM-style header (P7), which the reader does not take.
-            file = "P7\nWIDTH 4\nHEIGHT " + badNumberText(random, 4) + "\nDEPTH 3\nMAXVAL 255\nTUPLTYPE RGB\nENDHDR\n" + file.substr(tokens.back().end);
+            file = "P7\nWIDTH 4\nHEIGHT " + badNumberText(random, 4) + "\nDEPTH 3\nMAXVAL 255\nTUPLTYPE RGB\nENDHDR\n" +
+                   file.substr(tokens.back().end);
             return "PAM header";
         }
         default:
@@ -138,8 +138,10 @@ std::string damageStream(std::string& file, Random& random) {
         }
         default: {
             // In PFM: NaN and infinities (ddtup refuses them); elsewhere, values above maxval.
-            const size_t at = data + random.below(file.size() - data), count = std::min<size_t>(file.size() - at, 4 * random.between(1, 4));
-            const std::string values[] = {le(4, 0x7FC00000), le(4, 0x7F800000), le(4, 0xFF800000), std::string(4, '\xFF')};
+            const size_t at = data + random.below(file.size() - data),
+                         count = std::min<size_t>(file.size() - at, 4 * random.between(1, 4));
+            const std::string values[] = {le(4, 0x7FC00000), le(4, 0x7F800000), le(4, 0xFF800000),
+                                          std::string(4, '\xFF')};
             std::string bytes;
             while (bytes.size() < count) bytes += values[random.below(std::size(values))];
             file.replace(at, count, bytes.substr(0, count));

@@ -46,7 +46,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::vector
 
     const auto start = std::chrono::steady_clock::now();
     pid_t pid = -1;
-    const int error = posix_spawn(&pid, arg_pointers[0], &actions, &attributes, arg_pointers.data(), env_pointers.data());
+    const int error =
+        posix_spawn(&pid, arg_pointers[0], &actions, &attributes, arg_pointers.data(), env_pointers.data());
     posix_spawn_file_actions_destroy(&actions);
     posix_spawnattr_destroy(&attributes);
     if (error) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(error));

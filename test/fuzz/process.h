@@ -7,8 +7,8 @@
 namespace fuzz {
 
 struct ProcessResult {
-    int exit_code = -1;     // -1 when a signal ended it or it timed out
-    int end_signal = 0;     // the signal that ended it (not counting our SIGKILL on a timeout)
+    int exit_code = -1;  // -1 when a signal ended it or it timed out
+    int end_signal = 0;  // the signal that ended it (not counting our SIGKILL on a timeout)
     bool timed_out = false;
     double seconds = 0.0;
 };

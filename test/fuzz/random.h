@@ -18,7 +18,6 @@ public:
     // The generator of input `index` of a run seeded with `seed`.
     static Random forInput(uint64_t seed, uint64_t index) { return Random(mix(mix(seed) ^ index)); }
 
-    uint64_t next() { return engine_(); }
     // 0 … n − 1 (0 when n is 0).
     uint64_t below(uint64_t n) { return n ? engine_() % n : 0; }
     // lo … hi, both included.

@@ -34,9 +34,11 @@ int Report::inputs() const {
 
 void Report::print(std::FILE* out) const {
     // Each column as wide as its heading.
-    auto line = [&](const std::string& format, const std::string& kind, int count, const std::array<int, kOutcomeCount>& counts) {
+    auto line = [&](const std::string& format, const std::string& kind, int count,
+                    const std::array<int, kOutcomeCount>& counts) {
         std::fprintf(out, "%-8s %-13s %6d", format.c_str(), kind.c_str(), count);
-        for (Outcome outcome : kOutcomes) std::fprintf(out, "  %*d", int(std::strlen(outcomeName(outcome))), counts[size_t(outcome)]);
+        for (Outcome outcome : kOutcomes)
+            std::fprintf(out, "  %*d", int(std::strlen(outcomeName(outcome))), counts[size_t(outcome)]);
         std::fprintf(out, "\n");
     };
     std::fprintf(out, "%-8s %-13s %6s", "format", "damage", "count");

@@ -97,7 +97,9 @@ std::vector<Variant> variantsOf(const std::string& format) {
                 {"rgb-lossless", ".webp", 16, 16, 3, kU8, compression("lossless")},
                 {"rgba-lossless", ".webp", 13, 21, 4, kU8, compression("lossless")}};
     if (format == "bmp")
-        return {{"rgb24", ".bmp", 19, 13, 3, kU8}, {"rgba32", ".bmp", 12, 10, 4, kU8}, {"grey8-palette", ".bmp", 17, 9, 1, kU8}};
+        return {{"rgb24", ".bmp", 19, 13, 3, kU8},
+                {"rgba32", ".bmp", 12, 10, 4, kU8},
+                {"grey8-palette", ".bmp", 17, 9, 1, kU8}};
     if (format == "gif")
         return {{"rgb", ".gif", 19, 13, 3, kU8},
                 {"rgba", ".gif", 16, 16, 4, kU8},
@@ -121,7 +123,9 @@ std::vector<Variant> variantsOf(const std::string& format) {
                  [](auto& s) { s.attribute("oiio:BitsPerSample", 1), s.attribute("pnm:binary", 0); }}};
     if (format == "hdr")
         // The writer run-length encodes scanlines 8 to 32767 wide and writes narrower ones flat.
-        return {{"rgb-rle", ".hdr", 19, 13, 3, kFloat}, {"rgb-flat", ".hdr", 6, 11, 3, kFloat}, {"rgb-rle-wide", ".hdr", 40, 8, 3, kFloat}};
+        return {{"rgb-rle", ".hdr", 19, 13, 3, kFloat},
+                {"rgb-flat", ".hdr", 6, 11, 3, kFloat},
+                {"rgb-rle-wide", ".hdr", 40, 8, 3, kFloat}};
     throw std::logic_error("no seeds for format " + format);
 }
 
@@ -158,7 +162,8 @@ std::string writeWithOiio(const Variant& v, const std::string& folder) {
         for (int y = 0; y < v.height; ++y)
             for (int x = 0; x < v.width; ++x)
                 for (int c = 0; c < v.channels; ++c)
-                    pixels[(size_t(y) * v.width + x) * v.channels + c] = patternSample(x + s * 3, y, c, v.channels, is_float ? 4.0f : 1.0f);
+                    pixels[(size_t(y) * v.width + x) * v.channels + c] =
+                        patternSample(x + s * 3, y, c, v.channels, is_float ? 4.0f : 1.0f);
         if (!output->write_image(TypeDesc::FLOAT, pixels.data())) throw fail(output->geterror());
     }
     if (!output->close()) throw fail(output->geterror());
@@ -178,7 +183,8 @@ float patternSample(int x, int y, int channel, int channels, float range) {
 
 std::vector<Seed> makeSeeds(const std::string& format, const std::string& folder) {
     std::vector<Seed> seeds;
-    for (const Variant& variant : variantsOf(format)) seeds.push_back({variant.name, variant.extension, writeWithOiio(variant, folder)});
+    for (const Variant& variant : variantsOf(format))
+        seeds.push_back({variant.name, variant.extension, writeWithOiio(variant, folder)});
     std::vector<Seed> handmade = format == "png"     ? handmadePngSeeds()
                                  : format == "bmp"   ? handmadeBmpSeeds()
                                  : format == "targa" ? handmadeTargaSeeds()

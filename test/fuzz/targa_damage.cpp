@@ -18,7 +18,9 @@ size_t pixelDataStart(const std::string& file) {
     return 18 + uint8_t(file[0]) + (file[1] ? map_bytes : 0);
 }
 
-bool hasFooter(const std::string& file) { return file.size() >= 44 && file.compare(file.size() - 18, 18, kFooterSignature) == 0; }
+bool hasFooter(const std::string& file) {
+    return file.size() >= 44 && file.compare(file.size() - 18, 18, kFooterSignature) == 0;
+}
 
 // Where the pixels end: at the extension area or the footer of a TGA 2.0 file.
 size_t pixelDataEnd(const std::string& file) {
@@ -75,7 +77,8 @@ std::string damagePixelFormat(std::string& file, Random& random) {
 std::string damageFooter(std::string& file, Random& random) {
     if (!hasFooter(file)) {
         // Add one pointing anywhere: OIIO reads the extension area it names.
-        const uint64_t offset = random.percent(50) ? random.below(file.size() + 600) : interestingValue(random, file.size(), 32);
+        const uint64_t offset =
+            random.percent(50) ? random.below(file.size() + 600) : interestingValue(random, file.size(), 32);
         file += le(4, offset) + le(4, 0) + kFooterSignature;
         return "TGA 2.0 footer added, extension area at " + std::to_string(offset);
     }
@@ -83,13 +86,12 @@ std::string damageFooter(std::string& file, Random& random) {
     const size_t extension = getLE(file, footer, 4);
     switch (random.below(4)) {
         case 0: {
-            const uint64_t offset = random.percent(50) ? random.below(file.size() + 600) : interestingValue(random, extension, 32);
+            const uint64_t offset =
+                random.percent(50) ? random.below(file.size() + 600) : interestingValue(random, extension, 32);
             putLE(file, footer + (random.percent(80) ? 0 : 4), 4, offset);
             return "footer extension/developer offset -> " + std::to_string(offset);
         }
-        case 1:
-            file[file.size() - 2 - random.below(16)] = char(random.byte());
-            return "footer signature damaged";
+        case 1: file[file.size() - 2 - random.below(16)] = char(random.byte()); return "footer signature damaged";
         default: {
             // Inside the extension area: its size, the gamma and aspect ratios (a zero
             // denominator), and the offsets of the thumbnail and the tables.
@@ -97,7 +99,8 @@ std::string damageFooter(std::string& file, Random& random) {
             const size_t fields[] = {0, 474, 476, 478, 480, 482, 486, 490, 494};
             const size_t at = extension + fields[random.below(std::size(fields))];
             const bool wide = at >= extension + 482 && at < extension + 494;
-            const uint64_t value = random.percent(40) ? 0 : interestingValue(random, getLE(file, at, wide ? 4 : 2), wide ? 32 : 16);
+            const uint64_t value =
+                random.percent(40) ? 0 : interestingValue(random, getLE(file, at, wide ? 4 : 2), wide ? 32 : 16);
             putLE(file, at, wide ? 4 : 2, value);
             return "extension area field at +" + std::to_string(at - extension) + " -> " + std::to_string(value);
         }

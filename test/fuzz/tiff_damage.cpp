@@ -19,7 +19,8 @@ enum Tag : uint16_t {
 
 // Sets every value of `tag` to one of `choices` (or an interesting value); a missing tag is
 // made by re-tagging an entry nobody needs, which keeps the directory's layout.
-std::string setTag(std::string& file, const TiffLayout& layout, uint16_t tag, const char* name, const std::vector<uint64_t>& choices, Random& random) {
+std::string setTag(std::string& file, const TiffLayout& layout, uint16_t tag, const char* name,
+                   const std::vector<uint64_t>& choices, Random& random) {
     const TiffEntry* entry = layout.find(tag);
     if (!entry) {
         for (uint16_t spare : {uint16_t(296), uint16_t(282), uint16_t(283), uint16_t(305), uint16_t(kPredictor)})
@@ -54,24 +55,35 @@ std::string damageSize(std::string& file, const TiffLayout& layout, Random& rand
         layout.put(file, entry->at + 2, 2, 4);
         const uint64_t value = interestingValue(random, old, 32);
         layout.put(file, entry->at + 8, 4, value);
-        return std::string(tag == kImageWidth ? "ImageWidth" : "ImageLength") + " " + std::to_string(old) + " -> LONG " + std::to_string(value);
+        return std::string(tag == kImageWidth ? "ImageWidth" : "ImageLength") + " " + std::to_string(old) +
+               " -> LONG " + std::to_string(value);
     }
     const uint64_t value = interestingValue(random, old, entry->type == 3 ? 16 : 32);
     layout.setValue(file, *entry, 0, value);
-    return std::string(tag == kImageWidth ? "ImageWidth" : "ImageLength") + " " + std::to_string(old) + " -> " + std::to_string(value);
+    return std::string(tag == kImageWidth ? "ImageWidth" : "ImageLength") + " " + std::to_string(old) + " -> " +
+           std::to_string(value);
 }
 
 std::string damagePixelFormat(std::string& file, const TiffLayout& layout, Random& random) {
     switch (random.below(9)) {
-        case 0: return setTag(file, layout, kBitsPerSample, "BitsPerSample", {0, 1, 2, 4, 7, 8, 12, 16, 24, 32, 64, 255}, random);
-        case 1: return setTag(file, layout, kSamplesPerPixel, "SamplesPerPixel", {0, 1, 2, 3, 4, 5, 8, 255, 65535}, random);
-        case 2: return setTag(file, layout, kCompression, "Compression", {0, 1, 2, 3, 4, 5, 6, 7, 8, 32773, 32946, 34676, 34712, 50000}, random);
-        case 3: return setTag(file, layout, kPhotometric, "Photometric", {0, 1, 2, 3, 4, 5, 6, 8, 9, 10, 32844, 32845, 34892, 99}, random);
+        case 0:
+            return setTag(file, layout, kBitsPerSample, "BitsPerSample", {0, 1, 2, 4, 7, 8, 12, 16, 24, 32, 64, 255},
+                          random);
+        case 1:
+            return setTag(file, layout, kSamplesPerPixel, "SamplesPerPixel", {0, 1, 2, 3, 4, 5, 8, 255, 65535}, random);
+        case 2:
+            return setTag(file, layout, kCompression, "Compression",
+                          {0, 1, 2, 3, 4, 5, 6, 7, 8, 32773, 32946, 34676, 34712, 50000}, random);
+        case 3:
+            return setTag(file, layout, kPhotometric, "Photometric",
+                          {0, 1, 2, 3, 4, 5, 6, 8, 9, 10, 32844, 32845, 34892, 99}, random);
         case 4: return setTag(file, layout, kPlanarConfig, "PlanarConfig", {0, 1, 2, 3}, random);
         case 5: return setTag(file, layout, kSampleFormat, "SampleFormat", {0, 1, 2, 3, 4, 5, 6}, random);
         case 6: return setTag(file, layout, kExtraSamples, "ExtraSamples", {0, 1, 2, 3}, random);
         case 7: return setTag(file, layout, kPredictor, "Predictor", {0, 1, 2, 3, 4}, random);
-        default: return setTag(file, layout, random.percent(50) ? kFillOrder : kOrientation, "FillOrder/Orientation", {0, 1, 2, 5, 8, 9, 255}, random);
+        default:
+            return setTag(file, layout, random.percent(50) ? kFillOrder : kOrientation, "FillOrder/Orientation",
+                          {0, 1, 2, 5, 8, 9, 255}, random);
     }
 }
 
@@ -79,17 +91,26 @@ std::string damageStructure(std::string& file, const TiffLayout& layout, Random&
     const uint64_t size = file.size();
     switch (random.below(9)) {
         case 0: return setTag(file, layout, kRowsPerStrip, "RowsPerStrip", {0, 1, 2, 3, 7, 0xFFFF, 0xFFFFFFFF}, random);
-        case 1: return setTag(file, layout, random.percent(50) ? kStripOffsets : kTileOffsets, "Strip/TileOffsets", {0, 1, 7, 8, size - 1, size, size + 100, 0xFFFFFFFF}, random);
-        case 2: return setTag(file, layout, random.percent(50) ? kStripByteCounts : kTileByteCounts, "Strip/TileByteCounts", {0, 1, 2, size, 0x7FFFFFFF, 0xFFFFFFFF}, random);
-        case 3: return setTag(file, layout, random.percent(50) ? kTileWidth : kTileLength, "TileWidth/Length", {0, 1, 8, 15, 16, 17, 32, 65535, 0xFFFFFFFF}, random);
+        case 1:
+            return setTag(file, layout, random.percent(50) ? kStripOffsets : kTileOffsets, "Strip/TileOffsets",
+                          {0, 1, 7, 8, size - 1, size, size + 100, 0xFFFFFFFF}, random);
+        case 2:
+            return setTag(file, layout, random.percent(50) ? kStripByteCounts : kTileByteCounts, "Strip/TileByteCounts",
+                          {0, 1, 2, size, 0x7FFFFFFF, 0xFFFFFFFF}, random);
+        case 3:
+            return setTag(file, layout, random.percent(50) ? kTileWidth : kTileLength, "TileWidth/Length",
+                          {0, 1, 8, 15, 16, 17, 32, 65535, 0xFFFFFFFF}, random);
         case 4: {
             // The strip or tile arrays of another length than the image needs.
-            const uint16_t tags[] = {kStripOffsets, kStripByteCounts, kTileOffsets, kTileByteCounts, kBitsPerSample, kColorMap};
+            const uint16_t tags[] = {kStripOffsets,   kStripByteCounts, kTileOffsets,
+                                     kTileByteCounts, kBitsPerSample,   kColorMap};
             const TiffEntry* entry = layout.find(tags[random.below(std::size(tags))]);
             if (!entry) entry = &random.pick(layout.entries);
-            const uint64_t count = random.percent(50) ? entry->count + random.between(-2, 2) : interestingValue(random, entry->count, 32);
+            const uint64_t count =
+                random.percent(50) ? entry->count + random.between(-2, 2) : interestingValue(random, entry->count, 32);
             layout.put(file, entry->at + 4, 4, count);
-            return "tag " + std::to_string(entry->tag) + " count " + std::to_string(entry->count) + " -> " + std::to_string(count);
+            return "tag " + std::to_string(entry->tag) + " count " + std::to_string(entry->count) + " -> " +
+                   std::to_string(count);
         }
         case 5: {
             const uint16_t tags[] = {kColorMap, kJpegTables, kExifIfd, kIccProfile};
@@ -104,7 +125,8 @@ std::string damageStructure(std::string& file, const TiffLayout& layout, Random&
 // The strips or tiles: where the coded pixels are.
 std::vector<std::pair<size_t, size_t>> dataRanges(const std::string& file, const TiffLayout& layout) {
     std::vector<std::pair<size_t, size_t>> ranges;
-    for (auto [offsets_tag, counts_tag] : {std::pair{kStripOffsets, kStripByteCounts}, std::pair{kTileOffsets, kTileByteCounts}}) {
+    for (auto [offsets_tag, counts_tag] :
+         {std::pair{kStripOffsets, kStripByteCounts}, std::pair{kTileOffsets, kTileByteCounts}}) {
         const TiffEntry* offsets = layout.find(offsets_tag);
         const TiffEntry* counts = layout.find(counts_tag);
         if (!offsets || !counts) continue;
@@ -121,7 +143,8 @@ std::string damageStream(std::string& file, const TiffLayout& layout, Random& ra
     const auto [begin, size] = random.pick(ranges);
     switch (random.below(3)) {
         case 0: {
-            const size_t at = begin + random.below(size), count = std::min<size_t>(begin + size - at, random.between(1, 16));
+            const size_t at = begin + random.below(size),
+                         count = std::min<size_t>(begin + size - at, random.between(1, 16));
             file.replace(at, count, random.bytes(count));
             return std::to_string(count) + " random bytes in the strip/tile at " + std::to_string(begin);
         }

@@ -32,8 +32,8 @@ void readDirectory(const std::string& bytes, TiffLayout& layout, size_t offset, 
 }
 
 const char* typeName(uint16_t type) {
-    static const char* names[] = {"0", "BYTE", "ASCII", "SHORT", "LONG", "RATIONAL", "SBYTE", "UNDEFINED",
-                                  "SSHORT", "SLONG", "SRATIONAL", "FLOAT", "DOUBLE", "IFD"};
+    static const char* names[] = {"0",         "BYTE",   "ASCII", "SHORT",     "LONG",  "RATIONAL", "SBYTE",
+                                  "UNDEFINED", "SSHORT", "SLONG", "SRATIONAL", "FLOAT", "DOUBLE",   "IFD"};
     return type < std::size(names) ? names[type] : "unknown";
 }
 
@@ -59,9 +59,15 @@ const TiffEntry* TiffLayout::find(uint16_t tag) const {
 
 int TiffLayout::typeSize(uint16_t type) {
     switch (type) {
-        case 3: case 8: return 2;
-        case 4: case 9: case 11: case 13: return 4;
-        case 5: case 10: case 12: return 8;
+        case 3:
+        case 8: return 2;
+        case 4:
+        case 9:
+        case 11:
+        case 13: return 4;
+        case 5:
+        case 10:
+        case 12: return 8;
         default: return 1;
     }
 }
@@ -87,9 +93,12 @@ void TiffLayout::setValue(std::string& bytes, const TiffEntry& entry, size_t ind
 std::optional<TiffLayout> parseTiff(const std::string& bytes) {
     if (bytes.size() < 8) return std::nullopt;
     TiffLayout layout;
-    if (bytes.compare(0, 4, std::string("II*\0", 4)) == 0) layout.little_endian = true;
-    else if (bytes.compare(0, 4, std::string("MM\0*", 4)) == 0) layout.little_endian = false;
-    else return std::nullopt;
+    if (bytes.compare(0, 4, std::string("II*\0", 4)) == 0)
+        layout.little_endian = true;
+    else if (bytes.compare(0, 4, std::string("MM\0*", 4)) == 0)
+        layout.little_endian = false;
+    else
+        return std::nullopt;
     readDirectory(bytes, layout, layout.get(bytes, 4, 4), 0);
     return layout;
 }
@@ -108,7 +117,8 @@ std::string damageTiffEntry(std::string& bytes, const TiffLayout& layout, const 
             return describe(entry) + ": count -> " + std::to_string(count);
         }
         case 2: {
-            const uint64_t value = random.percent(50) ? interestingValue(random, entry.value, 32) : random.below(bytes.size() + 16);
+            const uint64_t value =
+                random.percent(50) ? interestingValue(random, entry.value, 32) : random.below(bytes.size() + 16);
             layout.put(bytes, entry.at + 8, 4, value);
             return describe(entry) + ": value/offset field -> " + std::to_string(value);
         }
@@ -116,9 +126,11 @@ std::string damageTiffEntry(std::string& bytes, const TiffLayout& layout, const 
             const std::vector<uint32_t> values = layout.values(bytes, entry);
             if (values.empty()) return describe(entry) + ": no values to change";
             const size_t index = random.below(values.size());
-            const uint64_t value = interestingValue(random, values[index], 8 * std::min(4, TiffLayout::typeSize(entry.type)));
+            const uint64_t value =
+                interestingValue(random, values[index], 8 * std::min(4, TiffLayout::typeSize(entry.type)));
             layout.setValue(bytes, entry, index, value);
-            return describe(entry) + ": value " + std::to_string(index) + " " + std::to_string(values[index]) + " -> " + std::to_string(value);
+            return describe(entry) + ": value " + std::to_string(index) + " " + std::to_string(values[index]) + " -> " +
+                   std::to_string(value);
         }
     }
 }
@@ -147,12 +159,12 @@ std::string damageTiffStructure(std::string& bytes, Random& random) {
             return "IFD at " + std::to_string(ifd) + ": next IFD -> " + std::to_string(target);
         }
         case 2: {
-            const uint64_t first = random.percent(30) ? interestingValue(random, layout->get(bytes, 4, 4), 32) : random.below(bytes.size() + 16);
+            const uint64_t first = random.percent(30) ? interestingValue(random, layout->get(bytes, 4, 4), 32)
+                                                      : random.below(bytes.size() + 16);
             layout->put(bytes, 4, 4, first);
             return "first IFD offset -> " + std::to_string(first);
         }
-        default:
-            return damageTiffEntry(bytes, *layout, random.pick(layout->entries), random);
+        default: return damageTiffEntry(bytes, *layout, random.pick(layout->entries), random);
     }
 }
 
@@ -166,7 +178,8 @@ std::string makeExifBlock(Random& random) {
         return out;
     };
     auto entry = [&](uint16_t tag, uint16_t type, uint32_t count, uint32_t value) {
-        return num(2, tag) + num(2, type) + num(4, count) + num(4, type == 3 && count == 1 && !little ? value << 16 : value);
+        return num(2, tag) + num(2, type) + num(4, count) +
+               num(4, type == 3 && count == 1 && !little ? value << 16 : value);
     };
     // Layout: header (8), IFD0 at 8 with 4 entries (2 + 48 + 4 = 54), EXIF IFD at 62 with
     // 3 entries (2 + 36 + 4 = 42), then the out-of-line values from 104.
@@ -174,7 +187,8 @@ std::string makeExifBlock(Random& random) {
     std::string block = std::string(little ? "II*\0" : "MM\0*", 4) + num(4, 8);
     block += num(2, 4) + entry(0x010F, 2, 12, values) + entry(0x0112, 3, 1, uint32_t(random.between(1, 8))) +
              entry(0x011A, 5, 1, values + 12) + entry(0x8769, 4, 1, 62) + num(4, 0);
-    block += num(2, 3) + entry(0x829A, 5, 1, values + 20) + entry(0x9003, 2, 20, values + 28) + entry(0x927C, 7, 16, values + 48) + num(4, 0);
+    block += num(2, 3) + entry(0x829A, 5, 1, values + 20) + entry(0x9003, 2, 20, values + 28) +
+             entry(0x927C, 7, 16, values + 48) + num(4, 0);
     block += std::string("fuzz camera\0", 12) + num(4, 72) + num(4, 1) + num(4, 1) + num(4, 100) +
              std::string("2024:01:02 03:04:05\0", 20) + random.bytes(16);
     return block;

@@ -62,9 +62,11 @@ std::string damageSize(std::vector<Chunk>& chunks, Random& random) {
         // After the 3-byte frame tag and the start code: 14 bits of size, 2 of scaling.
         const size_t at = height ? 8 : 6;
         const uint32_t old = getLE(chunk.data, at, 2);
-        const uint64_t value = random.percent(20) ? (old & 0x3FFF) | uint64_t(random.below(4)) << 14 : interestingValue(random, old & 0x3FFF, 14);
+        const uint64_t value = random.percent(20) ? (old & 0x3FFF) | uint64_t(random.below(4)) << 14
+                                                  : interestingValue(random, old & 0x3FFF, 14);
         putLE(chunk.data, at, 2, value);
-        return std::string("VP8 ") + (height ? "height" : "width") + " field " + std::to_string(old) + " -> " + std::to_string(value);
+        return std::string("VP8 ") + (height ? "height" : "width") + " field " + std::to_string(old) + " -> " +
+               std::to_string(value);
     }
     if (fourcc == "VP8L") {
         // After the signature byte: width − 1 and height − 1 in 14 bits each.
@@ -74,13 +76,15 @@ std::string damageSize(std::vector<Chunk>& chunks, Random& random) {
         const uint64_t value = interestingValue(random, old, 14);
         bits = (bits & ~(0x3FFFu << shift)) | uint32_t(value) << shift;
         putLE(chunk.data, 1, 4, bits);
-        return std::string("VP8L ") + (height ? "height" : "width") + " − 1 " + std::to_string(old) + " -> " + std::to_string(value);
+        return std::string("VP8L ") + (height ? "height" : "width") + " − 1 " + std::to_string(old) + " -> " +
+               std::to_string(value);
     }
     const size_t at = height ? 7 : 4;
     const uint32_t old = getLE(chunk.data, at, 3);
     const uint64_t value = interestingValue(random, old, 24);
     putLE(chunk.data, at, 3, value);
-    return std::string("VP8X canvas ") + (height ? "height" : "width") + " − 1 " + std::to_string(old) + " -> " + std::to_string(value);
+    return std::string("VP8X canvas ") + (height ? "height" : "width") + " − 1 " + std::to_string(old) + " -> " +
+           std::to_string(value);
 }
 
 std::string damagePixelFormat(std::vector<Chunk>& chunks, Random& random) {
@@ -128,13 +132,16 @@ void makeAnimated(std::vector<Chunk>& chunks, Random& random) {
     std::string frames;
     for (Chunk& chunk : chunks)
         if (chunk.fourcc == "VP8 " || chunk.fourcc == "VP8L" || chunk.fourcc == "ALPH") frames += chunkBytes(chunk);
-    std::erase_if(chunks, [](const Chunk& c) { return c.fourcc == "VP8 " || c.fourcc == "VP8L" || c.fourcc == "ALPH"; });
+    std::erase_if(chunks,
+                  [](const Chunk& c) { return c.fourcc == "VP8 " || c.fourcc == "VP8L" || c.fourcc == "ALPH"; });
     const uint32_t width = getLE(find(chunks, "VP8X")->data, 4, 3), height = getLE(find(chunks, "VP8X")->data, 7, 3);
     chunks.push_back({"ANIM", le(4, 0) + le(2, 0)});
     for (int frame = 0, count = int(random.between(1, 3)); frame < count; ++frame) {
-        const std::string placement = le(3, random.percent(60) ? 0 : interestingValue(random, 0, 24)) + le(3, random.percent(60) ? 0 : interestingValue(random, 0, 24)) +
+        const std::string placement = le(3, random.percent(60) ? 0 : interestingValue(random, 0, 24)) +
+                                      le(3, random.percent(60) ? 0 : interestingValue(random, 0, 24)) +
                                       le(3, random.percent(60) ? width : interestingValue(random, width, 24)) +
-                                      le(3, random.percent(60) ? height : interestingValue(random, height, 24)) + le(3, 100) + char(random.below(4));
+                                      le(3, random.percent(60) ? height : interestingValue(random, height, 24)) +
+                                      le(3, 100) + char(random.below(4));
         chunks.push_back({"ANMF", placement + frames});
     }
 }
@@ -170,9 +177,7 @@ std::string damageStructure(std::vector<Chunk>& chunks, Random& random) {
             std::swap(chunks[a], chunks[b]);
             return "swapped " + chunks[a].fourcc + " and " + chunks[b].fourcc;
         }
-        case 2:
-            makeAnimated(chunks, random);
-            return "made an animation with damaged frame placement";
+        case 2: makeAnimated(chunks, random); return "made an animation with damaged frame placement";
         case 3: {
             // EXIF, which OIIO hands to its own parser past a 6-byte "Exif\0\0" prefix.
             Chunk* vp8x = ensureVp8x(chunks);
@@ -191,7 +196,8 @@ std::string damageStructure(std::vector<Chunk>& chunks, Random& random) {
         default: {
             const std::string fourccs[] = {"ICCP", "XMP ", "ALPH", "VP8 ", "VP8L", "VP8X"};
             const std::string fourcc = fourccs[random.below(std::size(fourccs))];
-            chunks.insert(chunks.begin() + long(random.below(chunks.size() + 1)), Chunk{fourcc, random.bytes(random.below(64))});
+            chunks.insert(chunks.begin() + long(random.below(chunks.size() + 1)),
+                          Chunk{fourcc, random.bytes(random.below(64))});
             return "inserted " + fourcc + " of random bytes";
         }
     }
@@ -212,7 +218,8 @@ std::string damageStream(std::vector<Chunk>& chunks, Random& random) {
     }
     const size_t header = chunk.fourcc == "VP8 " ? 10 : chunk.fourcc == "VP8L" ? 5 : 1;
     if (chunk.data.size() <= header) return "coded data too short";
-    const size_t at = header + random.below(chunk.data.size() - header), count = std::min<size_t>(chunk.data.size() - at, random.between(1, 16));
+    const size_t at = header + random.below(chunk.data.size() - header),
+                 count = std::min<size_t>(chunk.data.size() - at, random.between(1, 16));
     if (random.percent(30)) {
         chunk.data.resize(at);
         return chunk.fourcc + " data cut to " + std::to_string(at) + " bytes";
