@@ -88,12 +88,6 @@ Outcome inputOutcome(const std::string& events_text, const std::string& input, c
     return leftSomething(output_folder, output_name) ? Outcome::LeftFile : Outcome::Refused;
 }
 
-bool passedDecoding(const std::string& events_text, const std::string& input) {
-    for (const Event& event : eventsOf(events_text))
-        if (field(event, "input") == input && field(event, "event") == "stage" && field(event, "stage") != "read") return true;
-    return false;
-}
-
 std::vector<std::string> strayLines(const std::string& events_text) {
     std::vector<std::string> stray;
     std::istringstream lines(events_text);

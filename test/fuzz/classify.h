@@ -22,9 +22,6 @@ std::optional<Outcome> processFault(const ProcessResult& process, const std::str
 Outcome inputOutcome(const std::string& events, const std::string& input, const std::string& output_folder,
                      const std::string& output_name);
 
-// Whether `input` got past decoding (a stage after "read") in the run whose events these are.
-bool passedDecoding(const std::string& events, const std::string& input);
-
 // Lines of stderr that are not JSON events: --progress=json promises there are none.
 std::vector<std::string> strayLines(const std::string& events);
 

@@ -39,9 +39,10 @@ std::string sanitizerReport(const fs::path& folder, const std::string& stderr_te
     return report;
 }
 
-}  // namespace
-
+// The name ddtup gives the output of `input` (with -f tif).
 std::string outputNameOf(const std::string& input) { return fs::path(input).stem().string() + ".tif"; }
+
+}  // namespace
 
 BatchResult runDdtup(const RunSettings& settings, const std::vector<std::string>& inputs, const std::string& folder) {
     const fs::path out = fs::path(folder) / "out";
@@ -62,14 +63,15 @@ BatchResult runDdtup(const RunSettings& settings, const std::vector<std::string>
     result.sanitizer_report = sanitizerReport(folder, result.events);
     result.process_fault = processFault(result.process, result.sanitizer_report);
     for (const std::string& input : inputs)
-        result.outcomes.push_back(result.process_fault ? *result.process_fault
-                                                       : inputOutcome(result.events, input, out.string(), outputNameOf(input)));
+        result.outcomes.push_back(result.process_fault
+                                      ? *result.process_fault
+                                      : inputOutcome(result.events, input, out.string(), outputNameOf(input)));
     return result;
 }
 
 BatchResult runAlone(const RunSettings& settings, const std::string& input, const std::string& folder) {
     BatchResult alone = runDdtup(settings, {input}, folder);
-    if (alone.outcomes.front() != Outcome::Hang || !passedDecoding(alone.events, input)) return alone;
+    if (alone.outcomes.front() != Outcome::Hang) return alone;
     RunSettings patient = settings;
     patient.seconds_per_input *= 30;
     alone = runDdtup(patient, {input}, (fs::path(folder) / "longer").string());

@@ -103,16 +103,17 @@ std::string commandLine(const std::vector<std::string>& command) {
 
 // What a kept failure's .txt file says.
 std::string failureRecord(const std::string& heading, Outcome outcome, const BatchResult& run) {
-    return heading + "outcome of the command below: " + outcomeName(outcome) + "\ncommand: " + commandLine(run.command) +
-           "\nprocess: " + describeProcess(run.process) +
-           (run.given_longer ? " (given 30 times the limit: it ran out of time once after it was decoded)" : "") +
-           "\n--- stderr (ddtup's JSON events) ---\n" + run.events +
-           "--- sanitizer report ---\n" + (run.sanitizer_report.empty() ? "(none)\n" : run.sanitizer_report);
+    return heading + "outcome of the command below: " + outcomeName(outcome) +
+           "\ncommand: " + commandLine(run.command) + "\nprocess: " + describeProcess(run.process) +
+           (run.given_longer ? " (a second run, given 30 times the limit)" : "") +
+           "\n--- stderr (ddtup's JSON events) ---\n" + run.events + "--- sanitizer report ---\n" +
+           (run.sanitizer_report.empty() ? "(none)\n" : run.sanitizer_report);
 }
 
 // Every seed must go through whole: one that does not is a fault of its own (in ddtup, or in
 // the fuzzer), and would weaken the damage made from it.
-int checkSeeds(const RunSettings& settings, const std::vector<std::pair<const Format*, Seed>>& seeds, const WorkFolder& work) {
+int checkSeeds(const RunSettings& settings, const std::vector<std::pair<const Format*, Seed>>& seeds,
+               const WorkFolder& work) {
     fs::create_directories(work / "seeds");
     std::vector<std::string> paths;
     for (const auto& [format, seed] : seeds) {
@@ -124,13 +125,17 @@ int checkSeeds(const RunSettings& settings, const std::vector<std::pair<const Fo
     for (size_t i = 0; i < paths.size(); ++i)
         if (run.outcomes[i] != Outcome::Accepted) {
             ++refused;
-            std::fprintf(stderr, "fuzz: seed %s: %s\n", fs::path(paths[i]).filename().c_str(), outcomeName(run.outcomes[i]));
+            std::fprintf(stderr, "fuzz: seed %s: %s\n", fs::path(paths[i]).filename().c_str(),
+                         outcomeName(run.outcomes[i]));
         }
-    if (refused) std::fprintf(stderr, "fuzz: %d of %zu seed images were not accepted; ddtup's stderr:\n%s", refused, paths.size(), run.events.c_str());
+    if (refused)
+        std::fprintf(stderr, "fuzz: %d of %zu seed images were not accepted; ddtup's stderr:\n%s", refused,
+                     paths.size(), run.events.c_str());
     return refused;
 }
 
-std::vector<Case> makeCases(const Options& options, const std::vector<std::vector<Seed>>& seeds, const WorkFolder& work) {
+std::vector<Case> makeCases(const Options& options, const std::vector<std::vector<Seed>>& seeds,
+                            const WorkFolder& work) {
     const std::vector<Format>& formats = allFormats();
     fs::create_directories(work / "inputs");
     std::vector<Case> cases;
@@ -167,8 +172,8 @@ public:
         for (unsigned j = 0; j < std::max(1u, options_.jobs); ++j)
             threads.emplace_back([&] {
                 for (size_t b; (b = next_batch++) < batches;) {
-                    const size_t begin = b * options_.batch;
-                    runBatch(b, std::vector<Case>(cases.begin() + long(begin), cases.begin() + long(std::min(cases.size(), begin + options_.batch))));
+                    const size_t begin = b * options_.batch, end = std::min(cases.size(), begin + options_.batch);
+                    runBatch(b, std::vector<Case>(cases.begin() + long(begin), cases.begin() + long(end)));
                 }
             });
         for (std::thread& thread : threads) thread.join();
@@ -186,7 +191,8 @@ private:
             Outcome outcome = run.outcomes[i];
             if (isFault(outcome)) {
                 // Alone, for the record, and to find which inputs a failed process died of.
-                const BatchResult alone = runAlone(settings_, c.path, (folder / ("alone-" + std::to_string(i))).string());
+                const BatchResult alone =
+                    runAlone(settings_, c.path, (folder / ("alone-" + std::to_string(i))).string());
                 if (alone.given_longer) {
                     std::lock_guard lock(mutex_);
                     ++slow_inputs_;
@@ -204,13 +210,15 @@ private:
         if (run.process_fault && culprits == 0) {
             report_.countBatchFault();
             saveBatchFailure(options_.out, number, paths,
-                             failureRecord("batch " + std::to_string(number) + ": its process failed, none of its inputs alone did\n",
+                             failureRecord("batch " + std::to_string(number) +
+                                               ": its process failed, none of its inputs alone did\n",
                                            *run.process_fault, run));
         }
         stray_lines_ += fuzz::strayLines(run.events).size();
         // A line now and then, for logs: roughly every tenth of the run.
         const size_t step = std::max<size_t>(options_.batch, options_.count / 10);
-        if ((done_ + batch.size()) / step > done_ / step) std::fprintf(stderr, "fuzz: %zu of %zu inputs\n", done_ + batch.size(), options_.count);
+        if ((done_ + batch.size()) / step > done_ / step)
+            std::fprintf(stderr, "fuzz: %zu of %zu inputs\n", done_ + batch.size(), options_.count);
         done_ += batch.size();
         std::error_code ignored;
         fs::remove_all(folder, ignored);
@@ -218,12 +226,14 @@ private:
 
     void keepFailure(const Case& c, Outcome in_batch, const BatchResult& alone) {
         const Outcome outcome = alone.outcomes.front();
-        const std::string heading = "input " + std::to_string(c.index) + " of ddtup_fuzz --seed " + std::to_string(options_.seed) +
-                                    "\nformat: " + c.format->name + " (seed image " + c.variant + ")\ndamage: " + c.what +
-                                    "\nin the batch: " + outcomeName(in_batch) + "\n";
+        const std::string heading = "input " + std::to_string(c.index) + " of ddtup_fuzz --seed " +
+                                    std::to_string(options_.seed) + "\nformat: " + c.format->name + " (seed image " +
+                                    c.variant + ")\ndamage: " + c.what + "\nin the batch: " + outcomeName(in_batch) +
+                                    "\n";
         std::lock_guard lock(mutex_);
         saveFailure(options_.out, c.path, failureRecord(heading, outcome, alone));
-        std::fprintf(stderr, "fuzz: %s: %s (%s)\n", fs::path(c.path).filename().c_str(), outcomeName(outcome), c.what.c_str());
+        std::fprintf(stderr, "fuzz: %s: %s (%s)\n", fs::path(c.path).filename().c_str(), outcomeName(outcome),
+                     c.what.c_str());
     }
 
     const Options& options_;
@@ -244,7 +254,8 @@ int replay(const Options& options, const RunSettings& settings) {
         const BatchResult run = runAlone(settings, input, (work / fs::path(input).filename().string()).string());
         const Outcome outcome = run.outcomes.front();
         report.count(name.format, name.kind, outcome);
-        std::printf("%s: %s (%s)\n", fs::path(input).filename().c_str(), outcomeName(outcome), describeProcess(run.process).c_str());
+        std::printf("%s: %s (%s)\n", fs::path(input).filename().c_str(), outcomeName(outcome),
+                    describeProcess(run.process).c_str());
         if (isFault(outcome)) std::printf("%s%s", run.events.c_str(), run.sanitizer_report.c_str());
     }
     report.print(stdout);
@@ -256,16 +267,24 @@ int replay(const Options& options, const RunSettings& settings) {
 int main(int argc, char** argv) {
     Options options;
     CLI::App app("Damaged images through the real ddtup executable; exits 1 when any fault was counted");
-    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // scripts/fuzz's defaults, then yours
+    app.option_defaults()->multi_option_policy(
+        CLI::MultiOptionPolicy::TakeLast);  // scripts/fuzz's defaults, then yours
     app.add_option("--count", options.count, "How many damaged inputs")->capture_default_str();
-    app.add_option("--seed", options.seed, "Seed of the run: the same seed makes the same inputs")->capture_default_str();
+    app.add_option("--seed", options.seed, "Seed of the run: the same seed makes the same inputs")
+        ->capture_default_str();
     app.add_option("--ddtup", options.ddtup, "The ddtup executable (built with the sanitizers)")->capture_default_str();
     app.add_option("--out", options.out, "Folder for the faulty inputs and their records")->capture_default_str();
     app.add_option("--work", options.work, "Scratch folder, kept (default: a temporary one, removed)");
     app.add_option("--replay", options.replay, "Run the inputs kept in this folder again, one by one, instead");
-    app.add_option("--batch", options.batch, "Inputs per ddtup process")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--jobs", options.jobs, "ddtup processes at once")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--timeout", options.timeout, "Seconds one input may take before it counts as a hang")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--batch", options.batch, "Inputs per ddtup process")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--jobs", options.jobs, "ddtup processes at once")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--timeout", options.timeout, "Seconds one input may take before it counts as a hang")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     RunSettings settings;
@@ -297,13 +316,16 @@ int main(int argc, char** argv) {
         fuzzer.run(cases);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-        std::printf("ddtup_fuzz --seed %llu --count %zu: %s\n", static_cast<unsigned long long>(options.seed), options.count, settings.ddtup.c_str());
+        std::printf("ddtup_fuzz --seed %llu --count %zu: %s\n", static_cast<unsigned long long>(options.seed),
+                    options.count, settings.ddtup.c_str());
         fuzzer.report().print(stdout);
         std::printf("seed images: %zu, %d not accepted\n", all_seeds.size(), refused_seeds);
         if (fuzzer.strayLines()) std::printf("stderr lines that were not JSON events: %zu\n", fuzzer.strayLines());
         if (fuzzer.slowInputs())
-            std::printf("inputs that ran out of time after decoding and were given %.0f s alone: %zu\n", 30 * options.timeout, fuzzer.slowInputs());
-        std::printf("time: %.1f s (%.0f inputs/s, %u jobs, %zu inputs per process)\n", seconds, double(options.count) / seconds, options.jobs, options.batch);
+            std::printf("inputs that ran out of time and were given %.0f s alone: %zu\n",
+                        30 * options.timeout, fuzzer.slowInputs());
+        std::printf("time: %.1f s (%.0f inputs/s, %u jobs, %zu inputs per process)\n", seconds,
+                    double(options.count) / seconds, options.jobs, options.batch);
         const int faults = fuzzer.report().faults() + refused_seeds;
         if (faults) std::printf("faults: %d; the inputs and their records are in %s\n", faults, options.out.c_str());
         return faults ? 1 : 0;
