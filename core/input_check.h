@@ -1,0 +1,16 @@
+// Checks made before a file reaches its decoder, for damage that OpenImageIO 2.4's readers
+// (and the libraries under them) do not catch and fail on badly: a crash, an overflow, a
+// leak. Each was found by the fuzzer (test/fuzz, scripts/fuzz); input_check.cpp says which.
+#pragma once
+
+#include <string>
+
+namespace ddt {
+
+// "" when `path` may go to the decoder of `format_name` (OIIO's name: "png", "gif",
+// "targa", …), else the reason, to be reported as "PATH: reason". With an empty
+// `format_name` the checks of every format whose signature the file carries are made
+// (Targa's by the .tga extension, as it has no signature).
+std::string checkBeforeDecoding(const std::string& path, const std::string& format_name);
+
+}  // namespace ddt
