@@ -48,6 +48,10 @@ uint32_t littleEndian16(const std::string& bytes, size_t at) {
     return uint8_t(bytes[at]) | uint32_t(uint8_t(bytes[at + 1])) << 8;
 }
 
+uint32_t littleEndian32(const std::string& bytes, size_t at) {
+    return littleEndian16(bytes, at) | littleEndian16(bytes, at + 2) << 16;
+}
+
 // PNG: OIIO's read callback, at the end of the file, hands libpng an error message in a
 // temporary string and libpng's longjmp skips its destructor: every truncated PNG leaked
 // it (LeakSanitizer). libpng reads chunk by chunk, so a file whose chunks are all whole up
@@ -116,6 +120,19 @@ std::string checkTarga(FileBytes& file) {
     return "";
 }
 
+// BMP: OIIO reads the colour table only for 1, 4 and 8 bits per pixel, but expands run-length
+// compressed pixels through it whatever the depth, so RLE at 16, 24 or 32 bits per pixel
+// indexed an empty table (a crash). The format allows RLE8 only at 8 bits, RLE4 only at 4.
+std::string checkBmp(FileBytes& file) {
+    const std::string header = file.read(14, 20);
+    if (header.size() < 20 || littleEndian32(header, 0) == 12) return "";  // OS/2's header: no compression
+    const uint32_t bits = littleEndian16(header, 14), compression = littleEndian32(header, 16);
+    if ((compression == 1 && bits != 8) || (compression == 2 && bits != 4))
+        return std::string("BMP compressed with ") + (compression == 1 ? "RLE8" : "RLE4") + " at " +
+               std::to_string(bits) + " bits per pixel (RLE8 needs 8, RLE4 needs 4)";
+    return "";
+}
+
 bool startsWith(FileBytes& file, const std::string& signature) { return file.read(0, signature.size()) == signature; }
 
 }  // namespace
@@ -126,6 +143,7 @@ std::string checkBeforeDecoding(const std::string& path, const std::string& form
     if (format_name == "png" || (any && startsWith(file, "\x89PNG\r\n\x1a\n"))) return checkPng(file);
     if (format_name == "gif" || (any && (startsWith(file, "GIF87a") || startsWith(file, "GIF89a"))))
         return checkGif(file);
+    if (format_name == "bmp" || (any && startsWith(file, "BM"))) return checkBmp(file);
     const bool tga_name = OIIO::Strutil::iends_with(path, ".tga");
     if (format_name == "targa" || (any && tga_name)) return checkTarga(file);
     return "";

@@ -32,6 +32,14 @@ std::string colourMappedTarga(bool rle, uint32_t entries, const std::string& pix
     return header + std::string(3 * entries, '\x7F') + pixels;
 }
 
+// A 2×2 BMP (BITMAPINFOHEADER) of `bits` per pixel and `compression`, with `data` after it.
+std::string bmp(uint32_t bits, uint32_t compression, const std::string& data) {
+    auto le32 = [](uint32_t v) { return le16(v & 0xFFFF) + le16(v >> 16); };
+    const std::string info = le32(40) + le32(2) + le32(2) + le16(1) + le16(bits) + le32(compression) +
+                             le32(uint32_t(data.size())) + le32(2835) + le32(2835) + le32(0) + le32(0);
+    return "BM" + le32(uint32_t(54 + data.size())) + le32(0) + le32(54) + info + data;
+}
+
 }  // namespace
 
 TEST_CASE("input check: a PNG whose chunks are not all whole up to IEND is refused") {
@@ -79,4 +87,19 @@ TEST_CASE("input check: a colour-mapped Targa with an index beyond its map is re
 
     const Run run = runDdtup({folder / "raw.tga", folder / "out.png"});
     requireOneLineError(run, 1, "raw.tga", "colour index 200");
+}
+
+// OIIO 2.4 reads no colour table at 16 bits per pixel but looked RLE-coded pixels up in it:
+// an empty table, read at index -1 (a crash, under AddressSanitizer a SEGV report).
+TEST_CASE("input check: a BMP run-length coded at a depth RLE does not allow is refused") {
+    TempFolder folder;
+    const std::string rle("\x02\x11\0\0\x02\x11\0\1", 8);  // two rows of 2 pixels, end of bitmap
+    writeBytes(folder / "rle4.bmp", bmp(4, 2, rle));
+    CHECK(ddt::checkBeforeDecoding(folder / "rle4.bmp", "bmp").empty());
+    writeBytes(folder / "deep.bmp", bmp(16, 2, rle));
+    CHECK(ddt::checkBeforeDecoding(folder / "deep.bmp", "") ==
+          "BMP compressed with RLE4 at 16 bits per pixel (RLE8 needs 8, RLE4 needs 4)");
+
+    const Run run = runDdtup({folder / "deep.bmp", folder / "out.png"});
+    requireOneLineError(run, 1, "deep.bmp", "RLE4 at 16 bits");
 }
