@@ -1,5 +1,6 @@
 #include "ddtup_run.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -21,12 +22,17 @@ std::string readAll(const fs::path& path) {
 // stderr at /dev/null while a codec runs (to silence libpng), and a report made inside a
 // decoder would vanish. allocator_may_return_null: a header claiming a huge image gets
 // ddtup's refusal rather than the sanitizer's out-of-memory abort. The exit code tells a
-// sanitizer's end from ddtup's own codes.
+// sanitizer's end from ddtup's own codes. The options the fuzzer was given come first and
+// ours after them, where they win: the suite's run keeps its suppressions and preload.
 std::vector<std::string> sanitizerEnvironment(const fs::path& folder) {
     const std::string log = (folder / "sanitizer").string();
-    return {"ASAN_OPTIONS=allocator_may_return_null=1:detect_leaks=1:exitcode=86:log_path=" + log,
-            "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=86:log_path=" + log,
-            "LSAN_OPTIONS=exitcode=86:log_path=" + log};
+    auto options = [](const char* name, const std::string& ours) {
+        const char* inherited = std::getenv(name);
+        return std::string(name) + "=" + (inherited && *inherited ? std::string(inherited) + ":" : "") + ours;
+    };
+    return {options("ASAN_OPTIONS", "allocator_may_return_null=1:detect_leaks=1:exitcode=86:log_path=" + log),
+            options("UBSAN_OPTIONS", "print_stacktrace=1:halt_on_error=1:exitcode=86:log_path=" + log),
+            options("LSAN_OPTIONS", "exitcode=86:log_path=" + log)};
 }
 
 // The sanitizer logs of the run, and sanitizer lines that reached stderr anyway.
