@@ -1,7 +1,5 @@
 #include "input_check.h"
 
-#include <OpenImageIO/strutil.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -133,19 +131,14 @@ std::string checkBmp(FileBytes& file) {
     return "";
 }
 
-bool startsWith(FileBytes& file, const std::string& signature) { return file.read(0, signature.size()) == signature; }
-
 }  // namespace
 
 std::string checkBeforeDecoding(const std::string& path, const std::string& format_name) {
     FileBytes file(path);
-    const bool any = format_name.empty();
-    if (format_name == "png" || (any && startsWith(file, "\x89PNG\r\n\x1a\n"))) return checkPng(file);
-    if (format_name == "gif" || (any && (startsWith(file, "GIF87a") || startsWith(file, "GIF89a"))))
-        return checkGif(file);
-    if (format_name == "bmp" || (any && startsWith(file, "BM"))) return checkBmp(file);
-    const bool tga_name = OIIO::Strutil::iends_with(path, ".tga");
-    if (format_name == "targa" || (any && tga_name)) return checkTarga(file);
+    if (format_name == "png") return checkPng(file);
+    if (format_name == "gif") return checkGif(file);
+    if (format_name == "bmp") return checkBmp(file);
+    if (format_name == "targa") return checkTarga(file);
     return "";
 }
 

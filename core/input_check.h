@@ -7,10 +7,8 @@
 
 namespace ddt {
 
-// "" when `path` may go to the decoder of `format_name` (OIIO's name: "png", "gif",
-// "targa", …), else the reason, to be reported as "PATH: reason". With an empty
-// `format_name` the checks of every format whose signature the file carries are made
-// (Targa's by the .tga extension, as it has no signature).
+// "" when `path` may go to the decoder of `format_name` (OIIO's name, as image_formats.h
+// tells it: "png", "gif", "targa", …), else the reason, to be reported as "PATH: reason".
 std::string checkBeforeDecoding(const std::string& path, const std::string& format_name);
 
 }  // namespace ddt

@@ -47,13 +47,12 @@ TEST_CASE("input check: a PNG whose chunks are not all whole up to IEND is refus
     const std::string png = ddt::test::pngClaiming(4, 4);
     writeBytes(folder / "whole.png", png);
     CHECK(ddt::checkBeforeDecoding(folder / "whole.png", "png").empty());
-    CHECK(ddt::checkBeforeDecoding(folder / "whole.png", "").empty());
 
     // IHDR 8-33, IDAT 33-53, IEND 53-65.
     writeBytes(folder / "cut.png", png.substr(0, 45));
     CHECK(ddt::checkBeforeDecoding(folder / "cut.png", "png") == "truncated PNG (it ends inside its IDAT chunk)");
     writeBytes(folder / "no-end.png", png.substr(0, 53));
-    CHECK(ddt::checkBeforeDecoding(folder / "no-end.png", "") == "truncated PNG (it ends before its IEND chunk)");
+    CHECK(ddt::checkBeforeDecoding(folder / "no-end.png", "png") == "truncated PNG (it ends before its IEND chunk)");
 }
 
 // OIIO 2.4 sized its canvas in an int: 65535 × 65535 × 4 overflowed into a negative size,
@@ -63,7 +62,7 @@ TEST_CASE("input check: a GIF's logical screen over 2^28 pixels is refused befor
     writeBytes(folder / "small.gif", gifWithScreen(8, 8));
     CHECK(ddt::checkBeforeDecoding(folder / "small.gif", "gif").empty());
     writeBytes(folder / "huge.gif", gifWithScreen(65535, 65535));
-    CHECK_THAT(ddt::checkBeforeDecoding(folder / "huge.gif", ""), Catch::StartsWith("image is 65535×65535 pixels"));
+    CHECK_THAT(ddt::checkBeforeDecoding(folder / "huge.gif", "gif"), Catch::StartsWith("image is 65535×65535 pixels"));
 
     const Run run = runDdtup({folder / "huge.gif", folder / "out.png"});
     requireOneLineError(run, 1, "huge.gif", "65535×65535");
@@ -80,9 +79,9 @@ TEST_CASE("input check: a colour-mapped Targa with an index beyond its map is re
           "colour index 200 lies outside the colour map of 4 entries");
     // RLE: a raw packet of two, then a run of two of index 4.
     writeBytes(folder / "good-rle.tga", colourMappedTarga(true, 5, std::string("\x01\0\1\x81\4", 5)));
-    CHECK(ddt::checkBeforeDecoding(folder / "good-rle.tga", "").empty());
+    CHECK(ddt::checkBeforeDecoding(folder / "good-rle.tga", "targa").empty());
     writeBytes(folder / "rle.tga", colourMappedTarga(true, 4, std::string("\x01\0\1\x81\4", 5)));
-    CHECK(ddt::checkBeforeDecoding(folder / "rle.tga", "") ==
+    CHECK(ddt::checkBeforeDecoding(folder / "rle.tga", "targa") ==
           "colour index 4 lies outside the colour map of 4 entries");
 
     const Run run = runDdtup({folder / "raw.tga", folder / "out.png"});
@@ -97,7 +96,7 @@ TEST_CASE("input check: a BMP run-length coded at a depth RLE does not allow is 
     writeBytes(folder / "rle4.bmp", bmp(4, 2, rle));
     CHECK(ddt::checkBeforeDecoding(folder / "rle4.bmp", "bmp").empty());
     writeBytes(folder / "deep.bmp", bmp(16, 2, rle));
-    CHECK(ddt::checkBeforeDecoding(folder / "deep.bmp", "") ==
+    CHECK(ddt::checkBeforeDecoding(folder / "deep.bmp", "bmp") ==
           "BMP compressed with RLE4 at 16 bits per pixel (RLE8 needs 8, RLE4 needs 4)");
 
     const Run run = runDdtup({folder / "deep.bmp", folder / "out.png"});
