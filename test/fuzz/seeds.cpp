@@ -79,7 +79,9 @@ std::vector<Variant> variantsOf(const std::string& format) {
                  [](auto& s) { s.attribute("compression", "lzw"), s.attribute("tiff:planarconfig", "separate"); }},
                 {"rgb8-jpeg", ".tif", 24, 16, 3, kU8, compression("jpeg")},
                 {"rgb8-metadata", ".tif", 10, 10, 3, kU8, metadata},
-                {"rgb8-two-pages", ".tif", 10, 8, 3, kU8, compression("lzw"), 0, 2}};
+                {"rgb8-two-pages", ".tif", 10, 8, 3, kU8, compression("lzw"), 0, 2},
+                {"rgb8-bigtiff-lzw", ".tif", 14, 12, 3, kU8,
+                 [](auto& s) { s.attribute("compression", "lzw"), s.attribute("tiff:bigtiff", 1); }}};
     if (format == "openexr")
         return {{"rgb-half-none", ".exr", 13, 11, 3, kHalf, compression("none")},
                 {"rgb-half-zip", ".exr", 24, 40, 3, kHalf, compression("zip")},

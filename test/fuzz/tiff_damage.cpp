@@ -27,10 +27,10 @@ std::string setTag(std::string& file, const TiffLayout& layout, uint16_t tag, co
             if (const TiffEntry* other = layout.find(spare); other && spare != tag) {
                 layout.put(file, other->at, 2, tag);
                 layout.put(file, other->at + 2, 2, 3);  // SHORT
-                layout.put(file, other->at + 4, 4, 1);
+                layout.put(file, layout.countAt(*other), layout.offsetSize(), 1);
                 const uint64_t value = random.pick(choices);
-                layout.put(file, other->at + 8, 2, value);
-                layout.put(file, other->at + 10, 2, 0);
+                layout.put(file, layout.valueAt(*other), layout.offsetSize(), 0);
+                layout.put(file, layout.valueAt(*other), 2, value);
                 return std::string("added ") + name + " = " + std::to_string(value);
             }
         return std::string("no ") + name + " and no spare entry";
@@ -54,7 +54,8 @@ std::string damageSize(std::string& file, const TiffLayout& layout, Random& rand
     if (random.percent(50)) {
         layout.put(file, entry->at + 2, 2, 4);
         const uint64_t value = interestingValue(random, old, 32);
-        layout.put(file, entry->at + 8, 4, value);
+        layout.put(file, layout.valueAt(*entry), layout.offsetSize(), 0);
+        layout.put(file, layout.valueAt(*entry), 4, value);
         return std::string(tag == kImageWidth ? "ImageWidth" : "ImageLength") + " " + std::to_string(old) +
                " -> LONG " + std::to_string(value);
     }
@@ -108,7 +109,7 @@ std::string damageStructure(std::string& file, const TiffLayout& layout, Random&
             if (!entry) entry = &random.pick(layout.entries);
             const uint64_t count =
                 random.percent(50) ? entry->count + random.between(-2, 2) : interestingValue(random, entry->count, 32);
-            layout.put(file, entry->at + 4, 4, count);
+            layout.put(file, layout.countAt(*entry), layout.offsetSize(), count);
             return "tag " + std::to_string(entry->tag) + " count " + std::to_string(entry->count) + " -> " +
                    std::to_string(count);
         }

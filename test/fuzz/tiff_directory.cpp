@@ -12,28 +12,32 @@ namespace {
 // Tags whose value is the offset of another IFD: EXIF, GPS, interoperability, SubIFDs.
 bool pointsToDirectory(uint16_t tag) { return tag == 0x8769 || tag == 0x8825 || tag == 0xA005 || tag == 330; }
 
-void readDirectory(const std::string& bytes, TiffLayout& layout, size_t offset, int depth) {
+void readDirectory(const std::string& bytes, TiffLayout& layout, uint64_t offset, int depth) {
     // A directory twice (a loop) or too many of them: stop, the reader has to cope with it.
-    for (int chain = 0; chain < 8 && offset >= 8 && offset + 2 <= bytes.size(); ++chain) {
+    for (int chain = 0; chain < 8 && offset >= 8 && offset < bytes.size() && bytes.size() - offset >= 8; ++chain) {
         if (std::find(layout.directories.begin(), layout.directories.end(), offset) != layout.directories.end()) return;
         layout.directories.push_back(offset);
-        const uint32_t count = layout.get(bytes, offset, 2);
-        std::vector<uint32_t> children;
-        for (uint32_t i = 0; i < count && offset + 2 + (i + 1) * 12 <= bytes.size(); ++i) {
-            const size_t at = offset + 2 + i * 12;
-            const TiffEntry entry{at, uint16_t(layout.get(bytes, at, 2)), uint16_t(layout.get(bytes, at + 2, 2)),
-                                  layout.get(bytes, at + 4, 4), layout.get(bytes, at + 8, 4)};
+        const uint64_t count = layout.get(bytes, offset, layout.entryCountSize());
+        std::vector<uint64_t> children;
+        for (uint64_t i = 0;
+             i < count && offset + layout.entryCountSize() + (i + 1) * layout.entrySize() <= bytes.size(); ++i) {
+            TiffEntry entry{offset + layout.entryCountSize() + i * layout.entrySize(), 0, 0, 0, 0};
+            entry.tag = uint16_t(layout.get(bytes, entry.at, 2));
+            entry.type = uint16_t(layout.get(bytes, entry.at + 2, 2));
+            entry.count = layout.get(bytes, layout.countAt(entry), layout.offsetSize());
+            entry.value = layout.get(bytes, layout.valueAt(entry), layout.offsetSize());
             layout.entries.push_back(entry);
             if (pointsToDirectory(entry.tag) && depth == 0) children.push_back(entry.value);
         }
-        for (uint32_t child : children) readDirectory(bytes, layout, child, depth + 1);
-        offset = layout.get(bytes, offset + 2 + size_t(count) * 12, 4);
+        for (uint64_t child : children) readDirectory(bytes, layout, child, depth + 1);
+        offset = layout.get(bytes, layout.nextLinkAt(bytes, offset), layout.offsetSize());
     }
 }
 
 const char* typeName(uint16_t type) {
     static const char* names[] = {"0",         "BYTE",   "ASCII", "SHORT",     "LONG",  "RATIONAL", "SBYTE",
-                                  "UNDEFINED", "SSHORT", "SLONG", "SRATIONAL", "FLOAT", "DOUBLE",   "IFD"};
+                                  "UNDEFINED", "SSHORT", "SLONG", "SRATIONAL", "FLOAT", "DOUBLE",   "IFD",
+                                  "14",        "15",     "LONG8", "SLONG8",    "IFD8"};
     return type < std::size(names) ? names[type] : "unknown";
 }
 
@@ -43,8 +47,16 @@ std::string describe(const TiffEntry& entry) {
 
 }  // namespace
 
-uint32_t TiffLayout::get(const std::string& bytes, size_t at, int size) const {
+uint64_t TiffLayout::get(const std::string& bytes, size_t at, int size) const {
+    if (size == 8) {
+        const uint64_t first = get(bytes, at, 4), second = get(bytes, at + 4, 4);
+        return little_endian ? first | second << 32 : first << 32 | second;
+    }
     return little_endian ? getLE(bytes, at, size) : getBE(bytes, at, size);
+}
+
+size_t TiffLayout::nextLinkAt(const std::string& bytes, size_t directory) const {
+    return directory + entryCountSize() + get(bytes, directory, entryCountSize()) * entrySize();
 }
 
 void TiffLayout::put(std::string& bytes, size_t at, int size, uint64_t value) const {
@@ -67,13 +79,16 @@ int TiffLayout::typeSize(uint16_t type) {
         case 13: return 4;
         case 5:
         case 10:
-        case 12: return 8;
+        case 12:
+        case 16:
+        case 17:
+        case 18: return 8;
         default: return 1;
     }
 }
 
 size_t TiffLayout::valuesAt(const TiffEntry& entry) const {
-    return uint64_t(entry.count) * typeSize(entry.type) <= 4 ? entry.at + 8 : entry.value;
+    return entry.count * typeSize(entry.type) <= uint64_t(offsetSize()) ? valueAt(entry) : entry.value;
 }
 
 std::vector<uint32_t> TiffLayout::values(const std::string& bytes, const TiffEntry& entry) const {
@@ -81,7 +96,7 @@ std::vector<uint32_t> TiffLayout::values(const std::string& bytes, const TiffEnt
     const int size = std::min(4, typeSize(entry.type));
     const size_t at = valuesAt(entry);
     for (uint32_t i = 0; i < entry.count && at + (i + 1) * size_t(size) <= bytes.size() && i < 4096; ++i)
-        out.push_back(get(bytes, at + i * size_t(size), size));
+        out.push_back(uint32_t(get(bytes, at + i * size_t(size), size)));
     return out;
 }
 
@@ -93,13 +108,11 @@ void TiffLayout::setValue(std::string& bytes, const TiffEntry& entry, size_t ind
 std::optional<TiffLayout> parseTiff(const std::string& bytes) {
     if (bytes.size() < 8) return std::nullopt;
     TiffLayout layout;
-    if (bytes.compare(0, 4, std::string("II*\0", 4)) == 0)
-        layout.little_endian = true;
-    else if (bytes.compare(0, 4, std::string("MM\0*", 4)) == 0)
-        layout.little_endian = false;
-    else
-        return std::nullopt;
-    readDirectory(bytes, layout, layout.get(bytes, 4, 4), 0);
+    const std::string header = bytes.substr(0, 4);
+    layout.little_endian = header[0] == 'I';
+    layout.big = header == std::string("II+\0", 4) || header == std::string("MM\0+", 4);
+    if (!layout.big && header != std::string("II*\0", 4) && header != std::string("MM\0*", 4)) return std::nullopt;
+    readDirectory(bytes, layout, layout.get(bytes, layout.firstLinkAt(), layout.offsetSize()), 0);
     return layout;
 }
 
@@ -112,14 +125,14 @@ std::string damageTiffEntry(std::string& bytes, const TiffLayout& layout, const 
             return describe(entry) + ": type -> " + std::to_string(type);
         }
         case 1: {
-            const uint64_t count = interestingValue(random, entry.count, 32);
-            layout.put(bytes, entry.at + 4, 4, count);
+            const uint64_t count = interestingValue(random, entry.count, 8 * layout.offsetSize());
+            layout.put(bytes, layout.countAt(entry), layout.offsetSize(), count);
             return describe(entry) + ": count -> " + std::to_string(count);
         }
         case 2: {
-            const uint64_t value =
-                random.percent(50) ? interestingValue(random, entry.value, 32) : random.below(bytes.size() + 16);
-            layout.put(bytes, entry.at + 8, 4, value);
+            const uint64_t value = random.percent(50) ? interestingValue(random, entry.value, 8 * layout.offsetSize())
+                                                      : random.below(bytes.size() + 16);
+            layout.put(bytes, layout.valueAt(entry), layout.offsetSize(), value);
             return describe(entry) + ": value/offset field -> " + std::to_string(value);
         }
         default: {
@@ -146,22 +159,24 @@ std::string damageTiffStructure(std::string& bytes, Random& random) {
     switch (random.below(6)) {
         case 0: {
             const size_t ifd = random.pick(layout->directories);
-            const uint64_t count = interestingValue(random, layout->get(bytes, ifd, 2), 16);
-            layout->put(bytes, ifd, 2, count);
+            const int size = layout->entryCountSize();
+            const uint64_t count = interestingValue(random, layout->get(bytes, ifd, size), 8 * size);
+            layout->put(bytes, ifd, size, count);
             return "IFD at " + std::to_string(ifd) + ": entry count -> " + std::to_string(count);
         }
         case 1: {
             // The next-IFD link: to itself (a loop), into the middle of something, past the end.
             const size_t ifd = random.pick(layout->directories);
-            const size_t link = ifd + 2 + size_t(layout->get(bytes, ifd, 2)) * 12;
             const uint64_t target = random.percent(40) ? ifd : random.below(bytes.size() + 64);
-            layout->put(bytes, link, 4, target);
+            layout->put(bytes, layout->nextLinkAt(bytes, ifd), layout->offsetSize(), target);
             return "IFD at " + std::to_string(ifd) + ": next IFD -> " + std::to_string(target);
         }
         case 2: {
-            const uint64_t first = random.percent(30) ? interestingValue(random, layout->get(bytes, 4, 4), 32)
-                                                      : random.below(bytes.size() + 16);
-            layout->put(bytes, 4, 4, first);
+            const int size = layout->offsetSize();
+            const uint64_t first =
+                random.percent(30) ? interestingValue(random, layout->get(bytes, layout->firstLinkAt(), size), 8 * size)
+                                   : random.below(bytes.size() + 16);
+            layout->put(bytes, layout->firstLinkAt(), size, first);
             return "first IFD offset -> " + std::to_string(first);
         }
         default: return damageTiffEntry(bytes, *layout, random.pick(layout->entries), random);
