@@ -121,8 +121,8 @@ OIIO::TypeDesc typeDescOf(SampleType type) {
 // ---- Alpha: what OIIO 2.4 actually does, measured per format (see test_image_io.cpp).
 // Asked with "oiio:UnassociatedAlpha", the PNG, Targa and TIFF (unassociated) readers return
 // straight colour and say so in that attribute. The BMP reader returns its straight colour as
-// stored without saying so. OpenEXR and associated TIFF come back as
-// stored, premultiplied, which is also OIIO's convention for every other reader.
+// stored without saying so. OpenEXR and associated TIFF come back as stored, premultiplied,
+// which is also OIIO's convention for every other reader.
 AlphaStorage inputAlphaStorage(const OIIO::ImageSpec& spec, const std::string& format) {
     if (spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0) return AlphaStorage::Straight;
     if (format == "bmp") return AlphaStorage::Straight;
@@ -131,9 +131,10 @@ AlphaStorage inputAlphaStorage(const OIIO::ImageSpec& spec, const std::string& f
 
 // Formats whose files hold straight colour: the PNG, Targa and WebP writers store straight
 // colour given with "oiio:UnassociatedAlpha" as is (without it they divide by alpha after
-// rounding to the file's depth, which loses precision); the BMP writer stores whatever it gets. TIFF can hold either and keeps the input's choice, so -s 1 reproduces
-// it. Every other format gets premultiplied colour: OpenEXR requires it, and it is OIIO's
-// convention for formats that do not say.
+// rounding to the file's depth, which loses precision); the BMP writer stores whatever it
+// gets. TIFF can hold either and keeps the input's choice, so -s 1 reproduces it. Every other
+// format gets premultiplied colour: OpenEXR requires it, and it is OIIO's convention for
+// formats that do not say.
 AlphaStorage outputAlphaStorage(const std::string& format, const Image& like) {
     static const std::set<std::string> straight = {"png", "targa", "webp", "bmp"};
     if (format == "tiff") return like.metadata ? like.metadata->alpha_storage : AlphaStorage::Straight;
