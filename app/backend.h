@@ -1,5 +1,6 @@
 // A DDT backend runs the three stages the paper times: prepare (build the initial mesh,
-// upload), optimize, render. The serial CPU reference and the Vulkan backend implement it
+// upload), optimize, render, and between the last two, optionally, the consistent
+// reconstruction. The serial CPU reference and the Vulkan backend implement it
 // with the same step names. Inputs too large for a backend's memory are split into tiles by
 // app/tiled_upscale.h, which asks the backend what an input needs and what it has.
 #pragma once
@@ -11,6 +12,7 @@
 #include "image.h"
 #include "lawson.h"
 #include "mesh.h"
+#include "reconstruct.h"
 #include "render.h"
 
 namespace ddt {
@@ -21,6 +23,10 @@ public:
     // Builds the initial triangulation of `image` (which must outlive the backend's use).
     virtual void prepare(const Image& image) = 0;
     virtual OptimizeStats optimize() = 0;
+    // Replaces plain DDT's surface (the input values, linear on each triangle) by the
+    // consistent reconstruction under `model` (core/reconstruct.h); renderWindow then renders
+    // it. prepare and optimize return to the plain surface.
+    virtual void reconstruct(const DegradationModel& model) = 0;
     // Renders `window` (see core/render.h) of the prepared image, which is the crop at
     // (window.crop_x, window.crop_y) of the whole input: window.width() × channels floats per row.
     virtual void renderWindow(const RenderWindow& window, float* rows) = 0;

@@ -122,6 +122,12 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "Output width in pixels; the height keeps the aspect unless --height is given (default: from --scale)");
     app.add_option("--height", settings.height,
                    "Output height in pixels; the width keeps the aspect unless --width is given (default: from --scale)");
+    app.add_option("--reconstruct", settings.reconstruct,
+                   "The surface on the optimized mesh: consistent (quadratic, corrected so that the output, "
+                   "degraded by a pixel footprint, gives the input back) or plain (the paper's DDT: the pixel "
+                   "values interpolated linearly)")
+        ->check(CLI::IsMember({"consistent", "plain"}))
+        ->capture_default_str();
     app.add_option("--tile", settings.tile,
                    "Tile side in input pixels for images too large for the device; 0 = automatic")
         ->capture_default_str();

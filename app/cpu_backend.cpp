@@ -13,17 +13,29 @@ public:
     void prepare(const Image& image) override {
         image_ = &image;
         renderer_.reset();
+        surface_.reset();
         field_ = costFieldOf(image);
         mesh_ = buildGridMesh(image.width, image.height);
     }
 
     OptimizeStats optimize() override {
         renderer_.reset();
+        surface_.reset();
         return optimizeSerial(mesh_, field_);
     }
 
+    void reconstruct(const DegradationModel& model) override {
+        renderer_.reset();
+        surface_ = reconstructSurface(mesh_, *image_, model);
+    }
+
     void renderWindow(const RenderWindow& window, float* rows) override {
-        if (!renderer_) renderer_.emplace(mesh_, *image_);
+        if (!renderer_) {
+            if (surface_)
+                renderer_.emplace(mesh_, surface_->values, &surface_->bubbles);
+            else
+                renderer_.emplace(mesh_, *image_);
+        }
         renderer_->renderWindow(window, rows);
     }
 
@@ -31,11 +43,14 @@ public:
     const Image& preparedImage() const override { return *image_; }
 
     // A rough count of the host arrays: the mesh's two records per edge (32 bytes), the
-    // renderer's triangle list (about two 12-byte triangles per vertex), the cost field and
-    // the sweeps' per-edge state (about 16 bytes per edge, ~3 edges per vertex).
+    // renderer's triangle list (about two 24-byte triangles per vertex), the cost field and
+    // the sweeps' per-edge state (about 16 bytes per edge, ~3 edges per vertex); then the
+    // reconstruction's: per vertex 9 sample hits (16 bytes) and 9 supersamples, bubbles and
+    // double sums per value (edges counted three per vertex).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        return vertices * (3 * (32 + 16) + 2 * 12 + 4 * (channels + 2));
+        const uint64_t reconstruction = 9 * 16 + channels * (9 * 4 * 2 + 4 * 4 * 4 + 4 * 16 * 2);
+        return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + reconstruction);
     }
 
     // Half the machine's memory: the input, the output bands and the rest of the process
@@ -46,6 +61,7 @@ private:
     const Image* image_ = nullptr;
     CostField field_;
     Mesh mesh_;
+    std::optional<Surface> surface_;  // set by reconstruct
     std::optional<MeshRenderer> renderer_;
 };
 

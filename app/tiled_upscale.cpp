@@ -94,6 +94,7 @@ struct Job {
     Backend& backend;
     const Image& image;
     OutputSize out;
+    bool reconstruct;
     const TileStepCallback& on_step;
     RowEmitter& rows;
 
@@ -112,6 +113,11 @@ OptimizeStats upscaleTile(Job& job, const Tile& tile, uint32_t index, uint32_t t
     if (!whole) crop = cropOf(job.image, tile.crop);
     job.backend.prepare(whole ? job.image : crop);
     const OptimizeStats stats = job.backend.optimize();
+    // The model follows the whole image's factors; each crop is reconstructed on its own, and
+    // the overlap keeps the crop's border out of the core's output (test/test_tiling.cpp).
+    if (job.reconstruct)
+        job.backend.reconstruct(
+            degradationFor(double(job.out.width) / job.image.width, double(job.out.height) / job.image.height));
     job.step(index, total, TilePhase::Render);
 
     RenderWindow window;
@@ -185,7 +191,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
     if (side == 0 || side > largest_side) side = largest_side;
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
-    Job job{backend, image, out, on_step, rows};
+    Job job{backend, image, out, options.reconstruct, on_step, rows};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

@@ -34,6 +34,7 @@ using TileStepCallback = std::function<void(const TileStep&)>;
 struct TileOptions {
     uint32_t tile = 0;  // tile side in input pixels; 0 = automatic: tiles only when the input does not fit
     uint32_t overlap = kDefaultOverlap;  // 0 counts as 1
+    bool reconstruct = false;            // each tile's surface: consistent (core/reconstruct.h) or plain
 };
 
 // The tile side automatic tiling picks for a width × height input with `channels`

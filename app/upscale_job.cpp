@@ -144,6 +144,7 @@ void ImageJob::process(Backend& backend) {
     try {
         TileOptions options;
         options.tile = settings_.tile;
+        options.reconstruct = settings_.reconstruct == "consistent";
         report_.stats = upscaleRows(backend, state_->image, out, options, sink, on_step);
     } catch (const UserError& error) {
         throw UserError(inputName(task_.input) + ": " + error.what());

@@ -402,6 +402,10 @@ OptimizeStats VulkanBackend::State::finishStats(const Control& c, double cost_in
     return stats;
 }
 
+void VulkanBackend::reconstruct(const DegradationModel&) {
+    throw UserError("--reconstruct consistent is not implemented on the Vulkan backend yet; use --backend cpu");
+}
+
 OptimizeStats VulkanBackend::optimize() {
     State& s = *state_;
     VulkanContext& c = *s.context;

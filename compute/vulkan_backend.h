@@ -48,6 +48,7 @@ public:
 
     void prepare(const Image& image) override;
     OptimizeStats optimize() override;
+    void reconstruct(const DegradationModel& model) override;
     void renderWindow(const RenderWindow& window, float* rows) override;
     Mesh mesh() override;
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const override;

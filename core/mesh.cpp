@@ -169,8 +169,8 @@ std::vector<Triangle> listTriangles(const Mesh& mesh) {
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
         const EdgeVertices& v = mesh.vertices[e];
         const EdgeNeighbours& n = mesh.neighbours[e];
-        if (v.l != kNone && e < n.bl && e < n.la) triangles.push_back({v.a, v.b, v.l});
-        if (v.r != kNone && e < n.ar && e < n.rb) triangles.push_back({v.b, v.a, v.r});
+        if (v.l != kNone && e < n.bl && e < n.la) triangles.push_back({v.a, v.b, v.l, n.bl, n.la, e});
+        if (v.r != kNone && e < n.ar && e < n.rb) triangles.push_back({v.b, v.a, v.r, n.ar, n.rb, e});
     }
     return triangles;
 }

@@ -79,9 +79,10 @@ inline uint32_t neighbourAt(const EdgeNeighbours& n, int i) {
 std::vector<uint32_t> regionOf(const Mesh& mesh, uint32_t e, int degree);
 
 // A triangle of the mesh, positive, listed once: it is reported by the lowest-id edge among
-// its three edges.
+// its three edges. e0, e1, e2 are its edges opposite v0, v1, v2.
 struct Triangle {
     uint32_t v0, v1, v2;
+    uint32_t e0, e1, e2;
 };
 std::vector<Triangle> listTriangles(const Mesh& mesh);
 

@@ -58,8 +58,10 @@ RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t
     return window;
 }
 
-MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image) : image_(image) {
+MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles)
+    : image_(image), bubbles_(bubbles) {
     assert(image.width == mesh.width && image.height == mesh.height);
+    assert(!bubbles || bubbles->size() == size_t(mesh.edgeCount()) * image.channels);
     std::vector<Triangle> triangles = listTriangles(mesh);
     // Counting sort by top row, so a band of output rows visits only nearby triangles.
     first_in_row_.assign(mesh.height + 1, 0);
@@ -78,15 +80,16 @@ void MeshRenderer::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, 
     renderWindow(wholeRows(image_.width, image_.height, out, y_begin, y_end), rows);
 }
 
-void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
+// Calls visit(x, y, triangle index, l0, l1, l2) for every sample of the window, each once.
+template <typename Visit>
+void MeshRenderer::visitSamples(const RenderWindow& window, Visit visit) const {
     // w, h: the crop the mesh covers; in_w, in_h: the whole input, which sets the sampling.
-    const uint32_t w = image_.width, h = image_.height, c = image_.channels;
+    const uint32_t w = image_.width, h = image_.height;
     const uint32_t in_w = window.input_width, in_h = window.input_height;
     const uint32_t out_w = window.out.width, out_h = window.out.height;
     const uint32_t cx = window.crop_x, cy = window.crop_y;
     assert(cx + w <= in_w && cy + h <= in_h && window.x_end <= out_w && window.y_end <= out_h);
     if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return;
-    const size_t row_floats = size_t(window.width()) * c;
     // Crop rows the window's samples fall in, widened by the tallest triangle.
     const int64_t unit = vertexCoord(1, out_h);
     const uint32_t v_first = uint32_t(sampleCoord(window.y_begin, in_h, out_h) / unit);
@@ -108,12 +111,9 @@ void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
                                vertexCoord(t.v2 % w + cx, out_w)};
         const int64_t py[3] = {vertexCoord(t.v0 / w + cy, out_h), vertexCoord(t.v1 / w + cy, out_h),
                                vertexCoord(t.v2 / w + cy, out_h)};
-        const float* z[3] = {image_.pixels.data() + size_t(t.v0) * c, image_.pixels.data() + size_t(t.v1) * c,
-                             image_.pixels.data() + size_t(t.v2) * c};
         for (uint32_t y = y_lo; y <= y_hi; ++y) {
             const int64_t sv = sampleCoord(y, in_h, out_h);
             const int dir_v = sampleDirection(sv, in_h, out_h);
-            float* out_row = rows + size_t(y - window.y_begin) * row_floats;
             for (uint32_t x = x_lo; x <= x_hi; ++x) {
                 const int64_t su = sampleCoord(x, in_w, out_w);
                 const int dir_u = sampleDirection(su, in_w, out_w);
@@ -126,16 +126,48 @@ void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
                 }
                 if (!inside) continue;
                 const double total = double(weight[0]) + double(weight[1]) + double(weight[2]);
-                const double l0 = double(weight[0]) / total, l1 = double(weight[1]) / total,
-                             l2 = double(weight[2]) / total;
-                float* pixel = out_row + size_t(x - window.x_begin) * c;
-                for (uint32_t k = 0; k < c; ++k) pixel[k] = float(l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k]);
+                visit(x, y, i, double(weight[0]) / total, double(weight[1]) / total, double(weight[2]) / total);
             }
         }
     }
 }
 
-Image renderImage(const Mesh& mesh, const Image& image, OutputSize out) {
+void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
+    const uint32_t c = image_.channels;
+    const size_t row_floats = size_t(window.width()) * c;
+    const float* values = image_.pixels.data();
+    const bool alpha = image_.hasAlpha();
+    visitSamples(window, [&](uint32_t x, uint32_t y, uint32_t i, double l0, double l1, double l2) {
+        const Triangle& t = triangles_[i];
+        const float* z[3] = {values + size_t(t.v0) * c, values + size_t(t.v1) * c, values + size_t(t.v2) * c};
+        float* pixel = rows + size_t(y - window.y_begin) * row_floats + size_t(x - window.x_begin) * c;
+        if (!bubbles_) {
+            for (uint32_t k = 0; k < c; ++k) pixel[k] = float(l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k]);
+            return;
+        }
+        const float* b[3] = {bubbles_->data() + size_t(t.e0) * c, bubbles_->data() + size_t(t.e1) * c,
+                             bubbles_->data() + size_t(t.e2) * c};
+        for (uint32_t k = 0; k < c; ++k) {
+            const double value = l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k] +
+                                 4.0 * (l1 * l2 * b[0][k] + l2 * l0 * b[1][k] + l0 * l1 * b[2][k]);
+            pixel[k] = float(std::clamp<double>(value, std::min({z[0][k], z[1][k], z[2][k]}),
+                                                std::max({z[0][k], z[1][k], z[2][k]})));
+        }
+        if (alpha)
+            for (uint32_t k = 0; k + 1 < c; ++k) pixel[k] = std::min(pixel[k], pixel[c - 1]);
+    });
+}
+
+std::vector<SampleHit> MeshRenderer::locateSamples(OutputSize out) const {
+    std::vector<SampleHit> hits(size_t(out.width) * out.height);
+    visitSamples(wholeRows(image_.width, image_.height, out, 0, out.height),
+                 [&](uint32_t x, uint32_t y, uint32_t i, double l0, double l1, double l2) {
+                     hits[size_t(y) * out.width + x] = {i, {float(l0), float(l1), float(l2)}};
+                 });
+    return hits;
+}
+
+Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles) {
     Image result;
     result.width = out.width;
     result.height = out.height;
@@ -143,7 +175,7 @@ Image renderImage(const Mesh& mesh, const Image& image, OutputSize out) {
     result.sample_type = image.sample_type;
     result.metadata = image.metadata;
     result.pixels.resize(size_t(out.width) * out.height * image.channels);
-    MeshRenderer(mesh, image).renderRows(out, 0, out.height, result.pixels.data());
+    MeshRenderer(mesh, image, bubbles).renderRows(out, 0, out.height, result.pixels.data());
     return result;
 }
 

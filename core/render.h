@@ -51,24 +51,46 @@ struct RenderWindow {
 // Output rows [y_begin, y_end) of an untiled width × height input.
 RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t y_begin, uint32_t y_end);
 
+// Where one sample falls: the index of its triangle in MeshRenderer::triangles() and its
+// barycentric weights for the triangle's v0, v1, v2.
+struct SampleHit {
+    uint32_t triangle;
+    float weights[3];
+};
+
+// The surface rendered on the mesh: on each triangle, the linear interpolation of its vertex
+// values (plain DDT). With edge bubbles (core/reconstruct.h) it becomes quadratic: each edge
+// (p, q) adds 4·λp·λq·bubble, which is zero at the vertices and on the other edges, so the
+// surface stays continuous and still passes through the vertex values. A quadratic sample is
+// clamped to the range of its triangle's vertex values (bounded overshoot), and premultiplied
+// colour to at most its alpha.
 class MeshRenderer {
 public:
-    // `image` holds the vertex values (premultiplied); both must outlive the renderer.
-    MeshRenderer(const Mesh& mesh, const Image& image);
+    // `image` holds the vertex values (premultiplied); `bubbles`, if not null, edgeCount() ×
+    // channels values. All must outlive the renderer.
+    MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles = nullptr);
 
     // Renders the window into `rows`: window.width() × channels floats per row.
     void renderWindow(const RenderWindow& window, float* rows) const;
     // Output rows [y_begin, y_end) of the whole image (`image` is the whole input).
     void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const;
 
+    // The triangle and weights of every sample of an untiled output of size `out`, row-major.
+    std::vector<SampleHit> locateSamples(OutputSize out) const;
+    const std::vector<Triangle>& triangles() const { return triangles_; }
+
 private:
+    template <typename Visit>
+    void visitSamples(const RenderWindow& window, Visit visit) const;
+
     const Image& image_;
+    const std::vector<float>* bubbles_;
     std::vector<Triangle> triangles_;        // sorted by their top row
     std::vector<uint32_t> first_in_row_;     // index of the first triangle per top row, + end
     uint32_t tallest_ = 0;                   // most rows any triangle spans
 };
 
-// Renders the whole image in memory (tests, bench).
-Image renderImage(const Mesh& mesh, const Image& image, OutputSize out);
+// Renders the whole image in memory (tests, bench); `bubbles` as for MeshRenderer.
+Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles = nullptr);
 
 }  // namespace ddt

@@ -1,0 +1,222 @@
+#include "reconstruct.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render.h"
+
+namespace ddt {
+
+namespace {
+
+double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * std::sqrt(1.0 - 1.0 / (scale * scale)); }
+
+int clampIndex(int i, int size) { return std::clamp(i, 0, size - 1); }
+
+// The range each vertex value must stay in: its 3 × 3 input neighbourhood's, widened by the
+// margin, within [0, 1] for integer sample types.
+struct Bounds {
+    std::vector<float> low, high;
+};
+
+Bounds boundsOf(const Image& input) {
+    const uint32_t w = input.width, h = input.height, c = input.channels;
+    const bool integer = input.sample_type == SampleType::UInt8 || input.sample_type == SampleType::UInt16;
+    Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            for (uint32_t k = 0; k < c; ++k) {
+                float lo = INFINITY, hi = -INFINITY;
+                for (uint32_t ny = y ? y - 1 : 0; ny <= std::min(h - 1, y + 1); ++ny)
+                    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
+                        const float v = input.pixels[(size_t(ny) * w + nx) * c + k];
+                        lo = std::min(lo, v);
+                        hi = std::max(hi, v);
+                    }
+                const float margin = kOvershootMargin * (hi - lo);
+                lo -= margin;
+                hi += margin;
+                if (integer) {
+                    lo = std::max(lo, 0.0f);
+                    hi = std::min(hi, 1.0f);
+                }
+                const size_t i = (size_t(y) * w + x) * c + k;
+                bounds.low[i] = lo;
+                bounds.high[i] = hi;
+            }
+    return bounds;
+}
+
+// The degradation D and its transpose between the supersampled grid (sub_w × sub_h, the
+// input's size × kSupersampling) and the input grid. Separable; taps past the border land on
+// the nearest sample.
+class Degradation {
+public:
+    Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model)
+        : w_(width), h_(height), c_(channels), sub_w_(width * kSupersampling), sub_h_(height * kSupersampling),
+          taps_x_(degradationTaps(model.sigma_x)), taps_y_(degradationTaps(model.sigma_y)) {}
+
+    uint32_t subWidth() const { return sub_w_; }
+    uint32_t subHeight() const { return sub_h_; }
+
+    // degraded (w × h) = D(sub).
+    void apply(const std::vector<float>& sub, std::vector<float>& degraded) {
+        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2), q = int(kSupersampling);
+        const size_t sub_row = size_t(sub_w_) * c_;
+        columns_.assign(sub_row * h_, 0.0f);
+        for (uint32_t y = 0; y < h_; ++y)
+            for (int t = -ry; t <= ry; ++t) {
+                const float g = taps_y_[t + ry];
+                const float* in = sub.data() + clampIndex(int(y) * q + q / 2 + t, int(sub_h_)) * sub_row;
+                float* out = columns_.data() + y * sub_row;
+                for (size_t i = 0; i < sub_row; ++i) out[i] += g * in[i];
+            }
+        degraded.assign(size_t(w_) * h_ * c_, 0.0f);
+        for (uint32_t y = 0; y < h_; ++y)
+            for (uint32_t x = 0; x < w_; ++x)
+                for (int t = -rx; t <= rx; ++t) {
+                    const float g = taps_x_[t + rx];
+                    const float* in = columns_.data() + y * sub_row + clampIndex(int(x) * q + q / 2 + t, int(sub_w_)) * c_;
+                    float* out = degraded.data() + (size_t(y) * w_ + x) * c_;
+                    for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
+                }
+    }
+
+    // sub (sub_w × sub_h) = Dᵀ(residual).
+    void transpose(const std::vector<float>& residual, std::vector<float>& sub) {
+        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2), q = int(kSupersampling);
+        const size_t sub_row = size_t(sub_w_) * c_;
+        columns_.assign(sub_row * h_, 0.0f);
+        for (uint32_t y = 0; y < h_; ++y)
+            for (uint32_t x = 0; x < w_; ++x)
+                for (int t = -rx; t <= rx; ++t) {
+                    const float g = taps_x_[t + rx];
+                    const float* in = residual.data() + (size_t(y) * w_ + x) * c_;
+                    float* out = columns_.data() + y * sub_row + clampIndex(int(x) * q + q / 2 + t, int(sub_w_)) * c_;
+                    for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
+                }
+        sub.assign(sub_row * sub_h_, 0.0f);
+        for (uint32_t y = 0; y < h_; ++y)
+            for (int t = -ry; t <= ry; ++t) {
+                const float g = taps_y_[t + ry];
+                const float* in = columns_.data() + y * sub_row;
+                float* out = sub.data() + clampIndex(int(y) * q + q / 2 + t, int(sub_h_)) * sub_row;
+                for (size_t i = 0; i < sub_row; ++i) out[i] += g * in[i];
+            }
+    }
+
+private:
+    uint32_t w_, h_, c_, sub_w_, sub_h_;
+    std::vector<float> taps_x_, taps_y_;
+    std::vector<float> columns_;  // the pass between the two axes
+};
+
+// The surface at every supersample (no clamping: the model sees the surface the solver moves).
+void evaluate(const Surface& surface, const std::vector<Triangle>& triangles, const std::vector<SampleHit>& hits,
+              std::vector<float>& sub) {
+    const uint32_t c = surface.values.channels;
+    const float* v = surface.values.pixels.data();
+    const float* b = surface.bubbles.data();
+    sub.resize(hits.size() * c);
+    for (size_t i = 0; i < hits.size(); ++i) {
+        const Triangle& t = triangles[hits[i].triangle];
+        const float* l = hits[i].weights;
+        const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
+        for (uint32_t k = 0; k < c; ++k)
+            sub[i * c + k] = l[0] * v[t.v0 * c + k] + l[1] * v[t.v1 * c + k] + l[2] * v[t.v2 * c + k] +
+                             q0 * b[t.e0 * c + k] + q1 * b[t.e1 * c + k] + q2 * b[t.e2 * c + k];
+    }
+}
+
+// ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples.
+void projectOnBasis(const std::vector<float>& g, uint32_t c, const std::vector<Triangle>& triangles,
+                    const std::vector<SampleHit>& hits, std::vector<double>& at_vertices,
+                    std::vector<double>& at_edges) {
+    std::fill(at_vertices.begin(), at_vertices.end(), 0.0);
+    std::fill(at_edges.begin(), at_edges.end(), 0.0);
+    for (size_t i = 0; i < hits.size(); ++i) {
+        const Triangle& t = triangles[hits[i].triangle];
+        const float* l = hits[i].weights;
+        const double q0 = 4.0 * l[1] * l[2], q1 = 4.0 * l[2] * l[0], q2 = 4.0 * l[0] * l[1];
+        for (uint32_t k = 0; k < c; ++k) {
+            const double r = g[i * c + k];
+            at_vertices[t.v0 * c + k] += l[0] * r;
+            at_vertices[t.v1 * c + k] += l[1] * r;
+            at_vertices[t.v2 * c + k] += l[2] * r;
+            at_edges[t.e0 * c + k] += q0 * r;
+            at_edges[t.e1 * c + k] += q1 * r;
+            at_edges[t.e2 * c + k] += q2 * r;
+        }
+    }
+}
+
+}  // namespace
+
+DegradationModel degradationFor(double scale_x, double scale_y) { return {sigmaFor(scale_x), sigmaFor(scale_y)}; }
+
+std::vector<float> degradationTaps(double sigma) {
+    if (sigma == 0.0) return {1.0f};
+    const int radius = int(std::ceil(3.0 * sigma * kSupersampling));
+    std::vector<double> weights(2 * radius + 1);
+    double total = 0.0;
+    for (int t = -radius; t <= radius; ++t) {
+        const double d = double(t) / kSupersampling;
+        total += weights[t + radius] = std::exp(-d * d / (2.0 * sigma * sigma));
+    }
+    std::vector<float> taps(weights.size());
+    for (size_t i = 0; i < taps.size(); ++i) taps[i] = float(weights[i] / total);
+    return taps;
+}
+
+Surface initialSurface(const Mesh& mesh, const Image& input) {
+    const int w = int(input.width), h = int(input.height);
+    const uint32_t c = input.channels;
+    Surface surface{input, std::vector<float>(size_t(mesh.edgeCount()) * c)};
+    auto at = [&](int x, int y) { return input.pixels.data() + (size_t(clampIndex(y, h)) * w + clampIndex(x, w)) * c; };
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        const int px = int(mesh.vertices[e].a % w), py = int(mesh.vertices[e].a / w);
+        const int qx = int(mesh.vertices[e].b % w), qy = int(mesh.vertices[e].b / w);
+        const float *p = at(px, py), *q = at(qx, qy);
+        const float *before = at(2 * px - qx, 2 * py - qy), *after = at(2 * qx - px, 2 * qy - py);
+        for (uint32_t k = 0; k < c; ++k)
+            surface.bubbles[e * c + k] = (-before[k] + 9 * p[k] + 9 * q[k] - after[k]) / 16 - (p[k] + q[k]) / 2;
+    }
+    return surface;
+}
+
+Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model, uint32_t iterations) {
+    Surface surface = initialSurface(mesh, input);
+    if (model.identity() || iterations == 0) return surface;  // D is the identity: already consistent
+    const uint32_t c = input.channels;
+    const MeshRenderer renderer(mesh, surface.values, &surface.bubbles);
+    Degradation degradation(input.width, input.height, c, model);
+    const std::vector<SampleHit> hits = renderer.locateSamples({degradation.subWidth(), degradation.subHeight()});
+    const std::vector<Triangle>& triangles = renderer.triangles();
+    const Bounds bounds = boundsOf(input);
+
+    // SART's normalisers: ⟨φ_u, Dᵀ1⟩.
+    std::vector<float> sub, degraded, residual(input.pixels.size(), 1.0f);
+    std::vector<double> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
+    degradation.transpose(residual, sub);
+    projectOnBasis(sub, c, triangles, hits, vertex_weight, edge_weight);
+
+    std::vector<double> vertex_step(vertex_weight.size()), edge_step(edge_weight.size());
+    std::vector<float>& v = surface.values.pixels;
+    for (uint32_t step = 0; step < iterations; ++step) {
+        evaluate(surface, triangles, hits, sub);
+        degradation.apply(sub, degraded);
+        for (size_t i = 0; i < residual.size(); ++i) residual[i] = input.pixels[i] - degraded[i];
+        degradation.transpose(residual, sub);
+        projectOnBasis(sub, c, triangles, hits, vertex_step, edge_step);
+        for (size_t i = 0; i < v.size(); ++i)
+            v[i] = std::clamp(float(v[i] + vertex_step[i] / vertex_weight[i]), bounds.low[i], bounds.high[i]);
+        if (input.hasAlpha())
+            for (size_t p = 0; p < v.size(); p += c)
+                for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
+        for (size_t i = 0; i < surface.bubbles.size(); ++i)
+            if (edge_weight[i] > 0.0) surface.bubbles[i] += float(edge_step[i] / edge_weight[i]);
+    }
+    return surface;
+}
+
+}  // namespace ddt

@@ -1,0 +1,81 @@
+// Consistent reconstruction on the optimised mesh (`--reconstruct consistent`, the default).
+//
+// Plain DDT takes the input's pixel values as point samples of a surface that is linear on
+// each triangle. But a pixel of a downscaled picture or of a camera is an average over its
+// footprint, so that surface, degraded again, does not give the input back, and a linear
+// patch is a poor interpolant between samples. The consistent reconstruction keeps the
+// optimised triangulation and changes the surface on it:
+// - The surface is quadratic on each triangle (core/render.h): the vertex values v, linear,
+//   plus one bubble b_e per edge, 4·λp·λq·b_e on the edge's two triangles. Everything stays on
+//   the mesh: a vertex value reaches only the triangles around its vertex and a bubble only
+//   the two triangles of its edge, so no correction crosses the long edges DDT found.
+// - Bubbles start as the midpoint of a cubic along their edge's line, (−y(2p−q) + 9 y(p) +
+//   9 y(q) − y(2q−p)) / 16 minus the linear midpoint (points clamped into the image). Vertex
+//   values start as the input's.
+// - Then kReconstructIterations steps of SART (simultaneous algebraic reconstruction) make the
+//   degraded surface D(S) approach the input y: with the residual r = y − D(S), every unknown
+//   u (a vertex value or a bubble) moves by ⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩, φ_u its basis function.
+//   Few steps regularise (early stopping damps the frequencies D nearly removes, where noise
+//   and JPEG artefacts live).
+// - After every step each vertex value is clamped to the range of the input's 3 × 3 pixels
+//   around it, widened by kOvershootMargin of that range, and to [0, 1] for integer sample
+//   types; premultiplied colour to at most its alpha. The renderer clamps each quadratic
+//   sample to its triangle's vertex range, so the output overshoots the local input range by
+//   at most that margin: where consistency would need more (a sharp step under area
+//   averaging), the bound wins.
+//
+// The degradation model D, in input-pixel units, is one generic footprint:
+//   D(S)(x) = Σ_d g(d) S(x + d), d on a fixed kSupersampling × kSupersampling grid per input
+//   pixel (offsets −1/3, 0, +1/3), g a separable Gaussian of standard deviation
+//   σ(s) = kFootprintSigma · √(1 − 1/s²) per axis, truncated at 3σ, normalised; the samples
+//   near the border are clamped into the image.
+// - kFootprintSigma, the footprint as s → ∞, is 0.4 input pixels: a box of one pixel (area
+//   averaging) has σ = 0.29, repeated bilinear halvings about 0.45, and a camera's pixel
+//   aperture with its optics lies between.
+// - √(1 − 1/s²) is the spread of s point samples spaced 1/s across one input pixel, which is
+//   what averaging the s output pixels over an input pixel means. It is 0 at s = 1, where D is
+//   the identity, the residual is zero and the output is the input exactly, and it grows
+//   continuously with s.
+// - The surface is evaluated on the fixed supersampling whatever the output size: the final
+//   render at the requested size is the only step whose cost grows with the scale.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "image.h"
+#include "mesh.h"
+
+namespace ddt {
+
+constexpr double kFootprintSigma = 0.4;       // input pixels
+constexpr float kOvershootMargin = 0.25f;     // fraction of the local 3 × 3 input range
+constexpr uint32_t kReconstructIterations = 5;
+constexpr uint32_t kSupersampling = 3;        // odd, so each pixel's centre is a sample
+
+// The degradation's Gaussian per axis for realised factors sx, sy (output / input size).
+struct DegradationModel {
+    double sigma_x = 0.0, sigma_y = 0.0;  // input pixels; 0: no blur on that axis
+
+    bool identity() const { return sigma_x == 0.0 && sigma_y == 0.0; }
+};
+DegradationModel degradationFor(double scale_x, double scale_y);
+
+// The model's taps on the supersampling: weight of offset t / kSupersampling for t in
+// [−radius, radius], normalised; {1} for sigma 0.
+std::vector<float> degradationTaps(double sigma);
+
+// A quadratic surface on a mesh: vertex values and one bubble per edge (render.h).
+struct Surface {
+    Image values;                // the vertex values, like the input image
+    std::vector<float> bubbles;  // edgeCount() × channels
+};
+
+// The starting surface: the input's values and the cubic-midpoint bubbles.
+Surface initialSurface(const Mesh& mesh, const Image& input);
+
+// The consistent surface for `mesh` (optimised on `input`) under `model`.
+Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
+                           uint32_t iterations = kReconstructIterations);
+
+}  // namespace ddt
