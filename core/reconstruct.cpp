@@ -1,7 +1,11 @@
 #include "reconstruct.h"
 
+#include <OpenImageIO/parallel.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 
 #include "render.h"
 
@@ -111,43 +115,118 @@ private:
     std::vector<float> columns_;  // the pass between the two axes
 };
 
+// The supersamples grouped by triangle, and the triangles around each vertex and edge, so that
+// every pass below is a gather: each output is written by one task, in a fixed order, and
+// the result does not depend on how the work is split across threads.
+struct SampleLayout {
+    std::vector<Triangle> triangles;
+    std::vector<uint32_t> first_sample;  // per triangle, + end: its range in `samples`
+    std::vector<uint32_t> samples;       // supersample indices, grouped by triangle
+    std::vector<std::array<float, 3>> weights;
+    std::vector<uint32_t> first_corner;  // per vertex, + end: its range in `corners`
+    std::vector<uint32_t> corners;       // 3 · triangle + k, where the vertex is the triangle's v_k
+    std::vector<std::array<uint32_t, 2>> edge_sides;  // per edge: 3 · triangle + k for e_k, or kNone
+};
+
+SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize sub_size) {
+    SampleLayout layout;
+    layout.triangles = renderer.triangles();
+    const size_t triangles = layout.triangles.size();
+    const std::vector<SampleHit> hits = renderer.locateSamples(sub_size);
+    layout.first_sample.assign(triangles + 1, 0);
+    for (const SampleHit& hit : hits) ++layout.first_sample[hit.triangle + 1];
+    for (size_t t = 0; t < triangles; ++t) layout.first_sample[t + 1] += layout.first_sample[t];
+    layout.samples.resize(hits.size());
+    layout.weights.resize(hits.size());
+    std::vector<uint32_t> next(layout.first_sample.begin(), layout.first_sample.end() - 1);
+    for (size_t i = 0; i < hits.size(); ++i) {
+        const uint32_t slot = next[hits[i].triangle]++;
+        layout.samples[slot] = uint32_t(i);
+        layout.weights[slot] = {hits[i].weights[0], hits[i].weights[1], hits[i].weights[2]};
+    }
+    layout.first_corner.assign(size_t(mesh.vertexCount()) + 1, 0);
+    layout.edge_sides.assign(mesh.edgeCount(), {kNone, kNone});
+    for (const Triangle& t : layout.triangles)
+        for (uint32_t v : {t.v0, t.v1, t.v2}) ++layout.first_corner[v + 1];
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) layout.first_corner[v + 1] += layout.first_corner[v];
+    layout.corners.resize(3 * triangles);
+    next.assign(layout.first_corner.begin(), layout.first_corner.end() - 1);
+    for (uint32_t t = 0; t < triangles; ++t) {
+        const Triangle& tri = layout.triangles[t];
+        const uint32_t vertices[3] = {tri.v0, tri.v1, tri.v2}, edges[3] = {tri.e0, tri.e1, tri.e2};
+        for (uint32_t k = 0; k < 3; ++k) {
+            layout.corners[next[vertices[k]]++] = 3 * t + k;
+            std::array<uint32_t, 2>& sides = layout.edge_sides[edges[k]];
+            sides[sides[0] == kNone ? 0 : 1] = 3 * t + k;
+        }
+    }
+    return layout;
+}
+
+// Runs task(begin, end) over [0, count) on OIIO's thread pool.
+void inParallel(size_t count, const std::function<void(size_t, size_t)>& task) {
+    OIIO::parallel_for_range(uint64_t(0), uint64_t(count), [&](uint64_t begin, uint64_t end) { task(begin, end); });
+}
+
 // The surface at every supersample (no clamping: the model sees the surface the solver moves).
-void evaluate(const Surface& surface, const std::vector<Triangle>& triangles, const std::vector<SampleHit>& hits,
-              std::vector<float>& sub) {
+void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<float>& sub) {
     const uint32_t c = surface.values.channels;
     const float* v = surface.values.pixels.data();
     const float* b = surface.bubbles.data();
-    sub.resize(hits.size() * c);
-    for (size_t i = 0; i < hits.size(); ++i) {
-        const Triangle& t = triangles[hits[i].triangle];
-        const float* l = hits[i].weights;
-        const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
-        for (uint32_t k = 0; k < c; ++k)
-            sub[i * c + k] = l[0] * v[t.v0 * c + k] + l[1] * v[t.v1 * c + k] + l[2] * v[t.v2 * c + k] +
+    inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
+        for (size_t ti = begin; ti < end; ++ti) {
+            const Triangle& t = layout.triangles[ti];
+            for (uint32_t j = layout.first_sample[ti]; j < layout.first_sample[ti + 1]; ++j) {
+                const std::array<float, 3>& l = layout.weights[j];
+                const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
+                float* out = sub.data() + size_t(layout.samples[j]) * c;
+                for (uint32_t k = 0; k < c; ++k)
+                    out[k] = l[0] * v[t.v0 * c + k] + l[1] * v[t.v1 * c + k] + l[2] * v[t.v2 * c + k] +
                              q0 * b[t.e0 * c + k] + q1 * b[t.e1 * c + k] + q2 * b[t.e2 * c + k];
-    }
+            }
+        }
+    });
 }
 
-// ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples.
-void projectOnBasis(const std::vector<float>& g, uint32_t c, const std::vector<Triangle>& triangles,
-                    const std::vector<SampleHit>& hits, std::vector<double>& at_vertices,
-                    std::vector<double>& at_edges) {
-    std::fill(at_vertices.begin(), at_vertices.end(), 0.0);
-    std::fill(at_edges.begin(), at_edges.end(), 0.0);
-    for (size_t i = 0; i < hits.size(); ++i) {
-        const Triangle& t = triangles[hits[i].triangle];
-        const float* l = hits[i].weights;
-        const double q0 = 4.0 * l[1] * l[2], q1 = 4.0 * l[2] * l[0], q2 = 4.0 * l[0] * l[1];
-        for (uint32_t k = 0; k < c; ++k) {
-            const double r = g[i * c + k];
-            at_vertices[t.v0 * c + k] += l[0] * r;
-            at_vertices[t.v1 * c + k] += l[1] * r;
-            at_vertices[t.v2 * c + k] += l[2] * r;
-            at_edges[t.e0 * c + k] += q0 * r;
-            at_edges[t.e1 * c + k] += q1 * r;
-            at_edges[t.e2 * c + k] += q2 * r;
+// ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples: each triangle's
+// six sums (its corners' hat functions, its edges' bubbles), then each vertex and edge adds
+// those of its triangles.
+void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout,
+                    std::vector<float>& partial, std::vector<float>& at_vertices, std::vector<float>& at_edges) {
+    partial.resize(layout.triangles.size() * 6 * c);
+    inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
+        for (size_t t = begin; t < end; ++t) {
+            double sums[6][4] = {};
+            for (uint32_t j = layout.first_sample[t]; j < layout.first_sample[t + 1]; ++j) {
+                const std::array<float, 3>& l = layout.weights[j];
+                const double basis[6] = {l[0], l[1], l[2], 4.0 * l[1] * l[2], 4.0 * l[2] * l[0], 4.0 * l[0] * l[1]};
+                const float* value = g.data() + size_t(layout.samples[j]) * c;
+                for (int n = 0; n < 6; ++n)
+                    for (uint32_t k = 0; k < c; ++k) sums[n][k] += basis[n] * value[k];
+            }
+            for (int n = 0; n < 6; ++n)
+                for (uint32_t k = 0; k < c; ++k) partial[(t * 6 + n) * c + k] = float(sums[n][k]);
         }
-    }
+    });
+    const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
+    inParallel(vertices, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v)
+            for (uint32_t k = 0; k < c; ++k) {
+                float sum = 0.0f;
+                for (uint32_t j = layout.first_corner[v]; j < layout.first_corner[v + 1]; ++j)
+                    sum += partial[((layout.corners[j] / 3) * 6 + layout.corners[j] % 3) * c + k];
+                at_vertices[v * c + k] = sum;
+            }
+    });
+    inParallel(layout.edge_sides.size(), [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e)
+            for (uint32_t k = 0; k < c; ++k) {
+                float sum = 0.0f;
+                for (uint32_t side : layout.edge_sides[e])
+                    if (side != kNone) sum += partial[((side / 3) * 6 + 3 + side % 3) * c + k];
+                at_edges[e * c + k] = sum;
+            }
+    });
 }
 
 }  // namespace
@@ -188,33 +267,32 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     Surface surface = initialSurface(mesh, input);
     if (model.identity() || iterations == 0) return surface;  // D is the identity: already consistent
     const uint32_t c = input.channels;
-    const MeshRenderer renderer(mesh, surface.values, &surface.bubbles);
     Degradation degradation(input.width, input.height, c, model);
-    const std::vector<SampleHit> hits = renderer.locateSamples({degradation.subWidth(), degradation.subHeight()});
-    const std::vector<Triangle>& triangles = renderer.triangles();
+    const SampleLayout layout = layoutOf(mesh, MeshRenderer(mesh, input), {degradation.subWidth(), degradation.subHeight()});
     const Bounds bounds = boundsOf(input);
 
     // SART's normalisers: ⟨φ_u, Dᵀ1⟩.
-    std::vector<float> sub, degraded, residual(input.pixels.size(), 1.0f);
-    std::vector<double> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
+    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c), degraded, partial;
+    std::vector<float> residual(input.pixels.size(), 1.0f);
+    std::vector<float> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
     degradation.transpose(residual, sub);
-    projectOnBasis(sub, c, triangles, hits, vertex_weight, edge_weight);
+    projectOnBasis(sub, c, layout, partial, vertex_weight, edge_weight);
 
-    std::vector<double> vertex_step(vertex_weight.size()), edge_step(edge_weight.size());
+    std::vector<float> vertex_step(vertex_weight.size()), edge_step(edge_weight.size());
     std::vector<float>& v = surface.values.pixels;
     for (uint32_t step = 0; step < iterations; ++step) {
-        evaluate(surface, triangles, hits, sub);
+        evaluate(surface, layout, sub);
         degradation.apply(sub, degraded);
         for (size_t i = 0; i < residual.size(); ++i) residual[i] = input.pixels[i] - degraded[i];
         degradation.transpose(residual, sub);
-        projectOnBasis(sub, c, triangles, hits, vertex_step, edge_step);
+        projectOnBasis(sub, c, layout, partial, vertex_step, edge_step);
         for (size_t i = 0; i < v.size(); ++i)
-            v[i] = std::clamp(float(v[i] + vertex_step[i] / vertex_weight[i]), bounds.low[i], bounds.high[i]);
+            v[i] = std::clamp(v[i] + vertex_step[i] / vertex_weight[i], bounds.low[i], bounds.high[i]);
         if (input.hasAlpha())
             for (size_t p = 0; p < v.size(); p += c)
                 for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
         for (size_t i = 0; i < surface.bubbles.size(); ++i)
-            if (edge_weight[i] > 0.0) surface.bubbles[i] += float(edge_step[i] / edge_weight[i]);
+            if (edge_weight[i] > 0.0f) surface.bubbles[i] += edge_step[i] / edge_weight[i];
     }
     return surface;
 }
