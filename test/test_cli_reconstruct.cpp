@@ -1,0 +1,55 @@
+// --reconstruct through the real executable: both modes on 8-bit, 16-bit and float inputs keep
+// the sample type and the exact output size, the modes give different pictures, and an
+// unknown mode is refused with one line.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "image.h"
+#include "run_ddtup.h"
+#include "temp_folder.h"
+#include "test_support.h"
+
+TEST_CASE("cli: --reconstruct consistent and plain on 8-bit, 16-bit and float inputs, at exact sizes") {
+    TempFolder folder;
+    ddt::Image image = ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png"));
+    ddt::writeImage(folder / "in8.png", image);
+    image.sample_type = ddt::SampleType::UInt16;
+    ddt::writeImage(folder / "in16.png", image);
+    image.sample_type = ddt::SampleType::Float;
+    ddt::writeImage(folder / "inf.exr", image);
+
+    for (const char* name : {"in8.png", "in16.png", "inf.exr"}) {
+        const std::string input = folder / name;
+        const ddt::Image source = ddt::readImage(input);
+        for (const char* backend : {"cpu", "vulkan"}) {
+            ddt::Image outputs[2];
+            int i = 0;
+            for (const char* mode : {"consistent", "plain"}) {
+                const std::string output = folder / (std::string(mode) + "-" + name);
+                const Run run = runDdtup({input, output, "--width", "75", "--height", "41", "--backend", backend,
+                                          "--reconstruct", mode, "-q"});
+                INFO(name << " " << backend << " " << mode << ": " << run.err);
+                REQUIRE(run.exit_code == 0);
+                outputs[i] = ddt::readImage(output);
+                CHECK(outputs[i].width == 75);
+                CHECK(outputs[i].height == 41);
+                CHECK(outputs[i].sample_type == source.sample_type);
+                ++i;
+            }
+            INFO(name << " " << backend);
+            CHECK(outputs[0].pixels != outputs[1].pixels);
+        }
+    }
+}
+
+TEST_CASE("cli: an unknown --reconstruct mode is refused with one line") {
+    TempFolder folder;
+    const std::string input = folder / "in.png";
+    std::filesystem::copy_file(ddt::test::testDataPath("crop32_astronaut.png"), input);
+    const auto before = folder.names();
+    const Run run = runDdtup({input, folder / "out.png", "--reconstruct", "sharp"});
+    requireOneLineError(run, 2, "--reconstruct", "sharp");
+    CHECK(folder.names() == before);
+}
