@@ -17,8 +17,27 @@ double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * st
 
 int clampIndex(int i, int size) { return std::clamp(i, 0, size - 1); }
 
-// The range each vertex value must stay in: its 3 × 3 input neighbourhood's, widened by the
-// margin, within [0, 1] for integer sample types.
+// Half a quantisation step of the sample type: how far a stored value may be from the value
+// it stands for. Float samples are taken as exact.
+float quantisationTolerance(SampleType type) {
+    switch (type) {
+    case SampleType::UInt8: return 0.5f / 255.0f;
+    case SampleType::UInt16: return 0.5f / 65535.0f;
+    case SampleType::Half:
+    case SampleType::Float: return 0.0f;
+    }
+    return 0.0f;
+}
+
+// The part of a residual beyond the tolerance: a surface whose degraded value lies within the
+// input's quantisation interval is consistent with it, and chasing the rest would only
+// sharpen the rounding noise.
+float beyondTolerance(float residual, float tolerance) {
+    return residual > tolerance ? residual - tolerance : residual < -tolerance ? residual + tolerance : 0.0f;
+}
+
+// The range each vertex value must stay in: its 3 × 3 input neighbourhood's, within [0, 1]
+// for integer sample types.
 struct Bounds {
     std::vector<float> low, high;
 };
@@ -37,9 +56,6 @@ Bounds boundsOf(const Image& input) {
                         lo = std::min(lo, v);
                         hi = std::max(hi, v);
                     }
-                const float margin = kOvershootMargin * (hi - lo);
-                lo -= margin;
-                hi += margin;
                 if (integer) {
                     lo = std::max(lo, 0.0f);
                     hi = std::min(hi, 1.0f);
@@ -270,6 +286,7 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     Degradation degradation(input.width, input.height, c, model);
     const SampleLayout layout = layoutOf(mesh, MeshRenderer(mesh, input), {degradation.subWidth(), degradation.subHeight()});
     const Bounds bounds = boundsOf(input);
+    const float tolerance = quantisationTolerance(input.sample_type);
 
     // SART's normalisers: ⟨φ_u, Dᵀ1⟩.
     std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c), degraded, partial;
@@ -283,7 +300,7 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     for (uint32_t step = 0; step < iterations; ++step) {
         evaluate(surface, layout, sub);
         degradation.apply(sub, degraded);
-        for (size_t i = 0; i < residual.size(); ++i) residual[i] = input.pixels[i] - degraded[i];
+        for (size_t i = 0; i < residual.size(); ++i) residual[i] = beyondTolerance(input.pixels[i] - degraded[i], tolerance);
         degradation.transpose(residual, sub);
         projectOnBasis(sub, c, layout, partial, vertex_step, edge_step);
         for (size_t i = 0; i < v.size(); ++i)

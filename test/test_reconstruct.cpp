@@ -58,18 +58,36 @@ std::vector<double> degraded(const Mesh& mesh, const Surface& surface, double sc
     return result;
 }
 
-double rmsResidual(const Image& input, const std::vector<double>& degraded_values) {
-    double sum = 0.0;
-    for (size_t i = 0; i < degraded_values.size(); ++i) sum += std::pow(input.pixels[i] - degraded_values[i], 2);
-    return std::sqrt(sum / degraded_values.size());
+struct Residual {
+    double rms = 0.0, largest = 0.0;
+};
+
+// Over the pixels two or more from the frame (a grey image): the ramp below has its extremes
+// on the frame, where the overshoot bound binds.
+Residual interiorResidualOf(const Image& input, const std::vector<double>& degraded_values) {
+    Residual r;
+    size_t count = 0;
+    for (uint32_t y = 2; y + 2 < input.height; ++y)
+        for (uint32_t x = 2; x + 2 < input.width; ++x) {
+            const size_t i = size_t(y) * input.width + x;
+            const double d = std::abs(input.pixels[i] - degraded_values[i]);
+            r.rms += d * d;
+            r.largest = std::max(r.largest, d);
+            ++count;
+        }
+    r.rms = std::sqrt(r.rms / count);
+    return r;
 }
 
-// A smooth grey image: two slow waves, values in [0.2, 0.8].
+// A smooth grey image without local extrema (where the overshoot bound never binds): rising
+// in x and y with curvature in both, values in [0.1, 0.9].
 Image smoothImage(uint32_t w, uint32_t h) {
     std::vector<float> pixels;
     for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x)
-            pixels.push_back(float(0.5 + 0.15 * std::sin(0.45 * x + 0.2 * y) + 0.15 * std::cos(0.3 * y - 0.1 * x)));
+        for (uint32_t x = 0; x < w; ++x) {
+            const double u = double(x) / (w - 1), v = double(y) / (h - 1);
+            pixels.push_back(float(0.1 + 0.45 * u * u + 0.25 * std::sqrt(v) + 0.1 * u * v));
+        }
     return test::makeImage(w, h, 1, pixels);
 }
 
@@ -79,15 +97,32 @@ TEST_CASE("reconstruct: on a smooth input the output, degraded by the model, giv
     const Image input = smoothImage(40, 30);
     const Mesh mesh = optimisedMesh(input);
     for (double scale : {2.0, 4.0, 8.0}) {
-        const double plain = rmsResidual(input, degraded(mesh, initialSurface(mesh, input), scale));
-        const double consistent =
-            rmsResidual(input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(scale, scale)), scale));
-        CAPTURE(scale, plain, consistent);
-        // The stated tolerance: 1/4 of a level of 8 bits (RMS). Five SART steps leave a residual
-        // that shrinks geometrically; measured 0.00035–0.00049 here (×2 to ×8), against
-        // 0.0024–0.0030 for the starting surface.
-        CHECK(consistent < 0.25 / 255);
-        CHECK(consistent < plain / 5);
+        const Residual consistent = interiorResidualOf(
+            input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(scale, scale)), scale));
+        CAPTURE(scale, consistent.rms, consistent.largest);
+        // The stated tolerance: half a level of 8 bits (the input's quantisation tolerance:
+        // residuals within it are not chased) plus a quarter level that five SART steps may
+        // leave. Measured: at most 0.0018 against 0.0029 allowed.
+        CHECK(consistent.largest <= (0.5 + 0.25) / 255);
+    }
+}
+
+TEST_CASE("reconstruct: on a wavy input the residual drops well below plain DDT's") {
+    // Two slow waves: their crests are local extrema, where the bound keeps the surface from
+    // rising above the input (bounded overshoot wins), so only part of the residual can go.
+    std::vector<float> pixels;
+    for (uint32_t y = 0; y < 30; ++y)
+        for (uint32_t x = 0; x < 40; ++x)
+            pixels.push_back(float(0.5 + 0.15 * std::sin(0.45 * x + 0.2 * y) + 0.15 * std::cos(0.3 * y - 0.1 * x)));
+    const Image input = test::makeImage(40, 30, 1, pixels);
+    const Mesh mesh = optimisedMesh(input);
+    const Surface plain{input, std::vector<float>(size_t(mesh.edgeCount()), 0.0f)};  // linear: the paper's surface
+    for (double scale : {2.0, 4.0, 8.0}) {
+        const Residual before = interiorResidualOf(input, degraded(mesh, plain, scale));
+        const Residual after = interiorResidualOf(
+            input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(scale, scale)), scale));
+        CAPTURE(scale, before.rms, after.rms);
+        CHECK(after.rms < before.rms / 2);  // measured: 2.4× to 2.8× lower
     }
 }
 
@@ -102,7 +137,7 @@ TEST_CASE("reconstruct: a flat image stays exactly flat") {
     }
 }
 
-TEST_CASE("reconstruct: a step edge keeps its plateaus, and overshoot stays within the margin") {
+TEST_CASE("reconstruct: a step edge keeps its plateaus and never overshoots them") {
     // A vertical step 0.2 | 0.8 between columns 9 and 10 of a 20×12 grey image.
     std::vector<float> pixels;
     for (uint32_t y = 0; y < 12; ++y)
@@ -112,15 +147,14 @@ TEST_CASE("reconstruct: a step edge keeps its plateaus, and overshoot stays with
     const double scale = 4.0;
     const Surface surface = reconstructSurface(mesh, input, degradationFor(scale, scale));
     const Image out = renderImage(mesh, surface.values, scaledOutputSize(20, 12, scale), &surface.bubbles);
-    // The bound: the 3 × 3 input range widened by kOvershootMargin of it on each side.
-    const float margin = kOvershootMargin * 0.6f;
     for (uint32_t y = 0; y < out.height; ++y)
         for (uint32_t x = 0; x < out.width; ++x) {
             const float v = out.pixels[size_t(y) * out.width + x];
             const double u = (x + 0.5) / scale - 0.5;  // the sample's input column
             CAPTURE(x, y, u, v);
-            CHECK(v >= 0.2f - margin - 1e-6f);
-            CHECK(v <= 0.8f + margin + 1e-6f);
+            // The bound: the 3 × 3 input range around each vertex, no margin.
+            CHECK(v >= 0.2f);
+            CHECK(v <= 0.8f);
             // Samples whose triangles lie two or more pixels from the step see a flat 3 × 3.
             if (u <= 7.0) CHECK(v == 0.2f);
             if (u >= 12.0) CHECK(v == 0.8f);
@@ -145,10 +179,10 @@ TEST_CASE("reconstruct: s = 1 is the identity, and the surface moves continuousl
     };
     const float d_1001 = distance(1.001), d_101 = distance(1.01), d_11 = distance(1.1), d_2 = distance(2.0);
     CAPTURE(d_1001, d_101, d_11, d_2);
-    CHECK(d_1001 < d_101);
-    CHECK(d_101 < d_11);
+    CHECK(d_1001 <= d_101);
+    CHECK(d_101 <= d_11);
     CHECK(d_11 < d_2);
-    CHECK(d_1001 < 0.01f);  // σ(1.001) = 0.018 pixels: the footprint is nearly a point
+    CHECK(d_101 < 0.01f);  // σ(1.01) = 0.056 pixels: the footprint is nearly a point
 }
 
 TEST_CASE("reconstruct: premultiplied colour never exceeds alpha, and values stay in [0, 1]") {
