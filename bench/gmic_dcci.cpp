@@ -34,7 +34,7 @@ private:
     std::string path_;
 };
 
-// The temporary folder's path has no quote characters of its own ($TMPDIR aside).
+// For the shell: the paths are our temporary folder's, which hold no single quote unless $TMPDIR does.
 std::string quoted(const std::string& path) { return "'" + path + "'"; }
 
 bool runQuietly(const std::string& command) { return std::system((command + " >/dev/null 2>&1").c_str()) == 0; }
