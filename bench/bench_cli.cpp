@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <iostream>
 
+#include "low_res_protocols.h"
+
 namespace bench {
 
 namespace {
@@ -41,6 +43,13 @@ std::optional<BenchOptions> parseBenchCommandLine(int argc, char** argv, int& ex
         ->capture_default_str();
     app.add_option("--scaling-repeats", options.scaling_repeats, "Timed runs per size in Fig. 13 (--quick: 1)")
         ->capture_default_str();
+    app.add_option("--tables", options.tables,
+                   "Which tables: paper (Tables 1-3 and Fig. 13), protocols (protocols A, B and JPEG at x2, x2.5, "
+                   "x4, x8 with the peers and consistent DDT), or all")
+        ->check(CLI::IsMember({"paper", "protocols", "all"}))
+        ->capture_default_str();
+    app.add_option("--protocol-filter", options.protocol_filter,
+                   "Adds protocol C to the protocol tables: one OIIO resize with this filter (e.g. mitchell, lanczos3)");
     app.add_flag("--quick", options.quick,
                  "Two small crops, factor 4, one repeat, Fig. 13 up to 128 px: checks that the bench still runs");
     try {
@@ -65,6 +74,8 @@ std::optional<BenchOptions> parseBenchCommandLine(int argc, char** argv, int& ex
     for (uint32_t factor : options.factors)
         if (factor < 2 || factor > 64 || !isPowerOfTwo(factor))
             return usage("--factor must be a power of two from 2 to 64 (got " + std::to_string(factor) + ")");
+    if (!options.protocol_filter.empty() && !isOiioFilter(options.protocol_filter))
+        return usage("--protocol-filter " + options.protocol_filter + ": not an OIIO filter name");
     if (options.repeats == 0) return usage("--repeats must be at least 1");
     if (options.scaling_repeats == 0) return usage("--scaling-repeats must be at least 1");
     if (options.scaling_max_side < 64) return usage("--scaling-max must be at least 64");

@@ -18,6 +18,8 @@ struct BenchOptions {
     std::string scaling_image;   // Fig. 13's resized image; default: the first set's first
     uint32_t scaling_max_side = 2048;
     uint32_t scaling_repeats = 3;
+    std::string tables = "all";   // "paper" (Tables 1–3, Fig. 13), "protocols" (bench/README.md) or "all"
+    std::string protocol_filter;  // an OIIO filter for the held-back protocol C; "": none
     bool quick = false;  // CI: two small crops, one factor, one repeat, small Fig. 13
 };
 

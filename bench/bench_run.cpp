@@ -10,6 +10,7 @@
 #include "image_sets.h"
 #include "memory_png.h"
 #include "protocol.h"
+#include "protocol_study.h"
 #include "reference_check.h"
 #include "report.h"
 #include "scaling.h"
@@ -26,10 +27,6 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 // --quick: the first image of the first two sets (or the first two of a single set),
 // cropped to this square, so that CI runs the whole bench in seconds.
 const uint32_t kQuickSide = 128;
-
-// Crops of the Figs. 11/12 strips: a 128-pixel square of the original, shown 2×.
-const uint32_t kCropSide = 128;
-const uint32_t kCropZoom = 2;
 
 void say(const char* format, auto... args) {
     std::printf(format, args...);
@@ -114,8 +111,11 @@ void printHeader(const BenchResults& results, const BenchOptions& options, size_
         say("Vulkan device %s: %s\n", device.id.c_str(), device.name.c_str());
     say("timing: %u warm-up + %u timed runs per DDT method and image (median); Fig. 13: %u timed runs\n",
         results.warmups, results.repeats, results.scaling_repeats);
-    for (const DdtMethod& method : results.columns)
-        if (!method.unavailable.empty()) say("  %s: n/a (%s)\n", method.label.c_str(), method.unavailable.c_str());
+    if (results.paper_tables)
+        for (const DdtMethod& method : results.columns)
+            if (!method.unavailable.empty()) say("  %s: n/a (%s)\n", method.label.c_str(), method.unavailable.c_str());
+    for (const Upscaler& u : results.upscalers)
+        if (!u.unavailable.empty()) say("  protocol tables, %s: n/a (%s)\n", u.label.c_str(), u.unavailable.c_str());
 }
 
 // One original at one factor: every filter and DDT method, its scores and a crop strip.
@@ -219,7 +219,9 @@ void runBench(const BenchOptions& options) {
     const std::vector<ImageSet> sets = findImageSets(options.data_dirs);
     for (const ImageSet& set : sets) results.set_names.push_back(set.name);
     const std::vector<BenchImage> images = imagesToRun(sets, options.quick);
-    checkImageSizes(images, results.factors, options.quick);
+    std::vector<uint32_t> checked_factors = results.factors;
+    if (options.tables != "paper") checked_factors.push_back(8);  // the protocol tables' largest
+    checkImageSizes(images, checked_factors, options.quick);
 
     results.devices = benchDevices(options.device);
     results.columns = ddtMethods(results.devices.empty() ? nullptr : &results.devices.front());
@@ -233,20 +235,39 @@ void runBench(const BenchOptions& options) {
     std::error_code ec;
     fs::create_directories(crops_dir, ec);
     if (ec) throw ddt::UserError(crops_dir + ": cannot create the folder (" + ec.message() + ")");
+    results.paper_tables = options.tables != "protocols";
+    if (options.tables != "paper") {
+        results.protocols = benchProtocols(options.protocol_filter, options.quick);
+        UpscalerSetup setup = protocolUpscalers(results.devices.empty() ? nullptr : &results.devices.front());
+        results.upscalers = std::move(setup.upscalers);
+        for (const std::string& note : setup.notes) addNote(results, note);
+    }
     printHeader(results, options, images.size());
 
     bool fonts_ok = true;
-    for (uint32_t factor : results.factors)
-        for (size_t i = 0; i < images.size(); ++i) {
-            const ddt::Image loaded = loadForBench(images[i].path, results.quick, results);
-            results.images.push_back(benchImage(results, ddt_methods, images[i], loaded, factor, crops_dir, fonts_ok));
-            printImageLine(results.images.back(), i + 1, images.size());
-        }
+    if (results.paper_tables) {
+        for (uint32_t factor : results.factors)
+            for (size_t i = 0; i < images.size(); ++i) {
+                const ddt::Image loaded = loadForBench(images[i].path, results.quick, results);
+                results.images.push_back(
+                    benchImage(results, ddt_methods, images[i], loaded, factor, crops_dir, fonts_ok));
+                printImageLine(results.images.back(), i + 1, images.size());
+            }
+    }
+    if (!results.protocols.empty()) {
+        const Clock::time_point protocols_start = Clock::now();
+        std::vector<StudyImage> originals;
+        for (const BenchImage& image : images)
+            originals.push_back({image.set, imageName(image.path), loadForBench(image.path, results.quick, results)});
+        fonts_ok = runProtocolStudy(results, originals, crops_dir) && fonts_ok;
+        say("protocol tables: %.0f s\n", secondsSince(protocols_start));
+    }
     if (!fonts_ok)
         addNote(results,
                 "no DejaVuSans font for OIIO's render_text: the crop strips are unlabelled; their panels "
-                "are, left to right, original, bilinear, Lanczos, CPU DDT, GPU ExpROI MaxGain");
-    runScaling(results, images, options);
+                "are, left to right, original, bilinear, Lanczos, CPU DDT, GPU ExpROI MaxGain (crops/protocols: "
+                "original, Lanczos3, CPU DDT, CPU DDT consistent)");
+    if (results.paper_tables) runScaling(results, images, options);
 
     results.wall_seconds = secondsSince(start);
     writeReport(results, options.out_dir);

@@ -10,6 +10,10 @@
 
 namespace bench {
 
+// The strips' crops: a 128-pixel square of the original, shown 2×.
+constexpr uint32_t kCropSide = 128;
+constexpr uint32_t kCropZoom = 2;
+
 struct CropPanel {
     std::string label;
     const ddt::Image* image;  // at the original's size; null: the method is not available

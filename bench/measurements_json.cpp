@@ -143,6 +143,64 @@ void writeImages(JsonWriter& json, const BenchResults& r) {
     json.endArray();
 }
 
+void writeOvershoot(JsonWriter& json, const OvershootScores& o) {
+    json.beginObject().key("mean_levels").value(o.mean_levels).key("share_over_4").value(o.share_over_4).endObject();
+}
+
+// The protocol tables' inputs and every per-image score, both overshoot neighbourhoods included.
+void writeProtocolStudy(JsonWriter& json, const BenchResults& r) {
+    json.key("protocol_study").beginObject();
+    json.key("protocols").beginArray();
+    for (const Protocol& p : r.protocols) {
+        json.beginObject().key("key").value(p.key).key("label").value(p.label);
+        json.key("definition").value(describeProtocol(p)).key("factors").beginArray();
+        for (Magnification f : p.factors) json.value(f.value());
+        json.endArray().endObject();
+    }
+    json.endArray();
+    json.key("methods").beginArray();
+    for (const Upscaler& u : r.upscalers)
+        json.beginObject()
+            .key("key")
+            .value(u.key)
+            .key("label")
+            .value(u.label)
+            .key("available")
+            .value(u.unavailable.empty())
+            .key("unavailable_reason")
+            .value(u.unavailable)
+            .endObject();
+    json.endArray();
+    json.key("overshoot")
+        .value("per output value: max(0, v - max, min - v) over the input pixels around its sample point "
+               "(X + 0.5) / sx - 0.5, in 8-bit levels; nearest_4x4: floor(p) - 1 .. floor(p) + 2, nearest_2x2: "
+               "floor(p) .. floor(p) + 1, clamped");
+    json.key("images").beginArray();
+    for (const ProtocolImageResult& image : r.protocol_images) {
+        json.beginObject();
+        json.key("protocol").value(image.protocol).key("factor").value(image.factor.value());
+        json.key("set").value(image.set).key("name").value(image.name);
+        json.key("width").value(image.width).key("height").value(image.height);
+        json.key("low_width").value(image.low_width).key("low_height").value(image.low_height);
+        json.key("scores").beginObject();
+        for (const auto& [key, s] : image.scores) {
+            json.key(key).beginObject();
+            json.key("quality");
+            writeQuality(json, s.quality);
+            json.key("gmsd").value(s.gmsd);
+            json.key("overshoot_4x4");
+            writeOvershoot(json, s.overshoot.nearest_4x4);
+            json.key("overshoot_2x2");
+            writeOvershoot(json, s.overshoot.nearest_2x2);
+            json.endObject();
+        }
+        json.endObject();
+        json.endObject();
+    }
+    json.endArray();
+    json.endObject();
+}
+
 void writeScaling(JsonWriter& json, const BenchResults& r) {
     json.key("scaling_image").value(r.scaling_image);
     json.key("scaling").beginArray();
@@ -174,6 +232,7 @@ std::string measurementsJson(const BenchResults& r) {
     writeMethods(json, r);
     writeImages(json, r);
     writeScaling(json, r);
+    writeProtocolStudy(json, r);
     json.key("notes").beginArray();
     for (const std::string& note : r.notes) json.value(note);
     json.endArray();

@@ -5,6 +5,7 @@
 #include "fig13.h"
 #include "measurements_json.h"
 #include "paper_tables.h"
+#include "protocol_tables.h"
 #include "reference_check.h"
 #include "scaling.h"
 #include "text_file.h"
@@ -90,13 +91,43 @@ std::string scalingTable(const BenchResults& r) {
     return text;
 }
 
-std::string reportMarkdown(const BenchResults& r) {
-    std::string text = "# ddtup bench: the paper's Tables 1–3 and Fig. 13\n\n";
-    text += "Červeňanský et al., *Parallel GPU-based data-dependent triangulations* (2010), Sec. 6. Sets:";
-    for (const std::string& set : r.set_names) text += " " + set;
-    text += ". Raw measurements: `measurements.json`.\n\n";
-    text += machineSection(r);
-    text += conventionsSection(r);
+std::string protocolSection(const BenchResults& r) {
+    std::string text = "## Protocol tables: beyond Lanczos\n\n";
+    text +=
+        "Table 3's metrics under other ways of making the low-resolution input, the same originals and the same "
+        "SSIM (core/metrics.h). Originals are cropped (centred) to a multiple of the factor's numerator (5 for "
+        "×2.5), so the low-resolution size is exact. Protocols:\n\n";
+    for (const Protocol& p : r.protocols) {
+        text += "- **" + p.key + "** (" + p.label + "): " + describeProtocol(p) + "; factors";
+        for (Magnification f : p.factors) text += " ×" + f.name();
+        text += ".\n";
+    }
+    text +=
+        "\nMethods: OIIO `triangle` (bilinear) and `lanczos3`; libvips Nohalo (vips_affine, output pixel X samples "
+        "input (X + 0.5)/s − 0.5 as ddtup does); G'MIC DCCI (×2 only); DDT plain and consistent (core/reconstruct.h, "
+        "`Backend::reconstruct(degradationFor(sx, sy))` after `optimize`) on the CPU and on the Vulkan backend's "
+        "default variant. Plain and consistent DDT share one optimisation per input.\n\n";
+    text +=
+        "Metrics (means of per-image values): PSNR and SSIM as core/metrics.h; GMSD (Xue et al. 2014, bench/gmsd.h: "
+        "luma of the 8-bit values, 2 × 2 average and downsampling by 2, Prewitt gradients, c = 170, standard "
+        "deviation of the similarity map; lower is better); overshoot (bench/overshoot.h: per output value, how far "
+        "it leaves [min, max] of the 4 × 4 input pixels nearest its sample point (X + 0.5)/sx − 0.5, in 8-bit "
+        "levels; the mean over all values, and the share above 4 levels; the 2 × 2 neighbourhood is in "
+        "`measurements.json`).\n\n";
+    for (const Upscaler& u : r.upscalers)
+        if (!u.unavailable.empty()) text += "- " + u.label + ": n/a (" + u.unavailable + ")\n";
+    text += "\n### Consistent DDT against Lanczos3 (the issue's criterion: ≥ 0.5 dB)\n\n" +
+            toMarkdown(consistentGainTable(r)) + "\n`table3_protocols_gain.csv`\n\n";
+    text += "### Quality per protocol, factor and set\n\n" + toMarkdown(protocolQualityTable(r)) +
+            "\n`table3_protocols.csv`\n\n";
+    text +=
+        "Crops: `crops/protocols/PROTOCOL_SET_IMAGE_xFACTOR.png`, left to right original, Lanczos3, CPU DDT and CPU "
+        "DDT consistent.\n\n";
+    return text;
+}
+
+std::string paperSections(const BenchResults& r) {
+    std::string text;
     text += "## Table 1: cost and time (averages per set)\n\n" + toMarkdown(costAndTimeTable(r)) + "\n`table1.csv`\n\n";
     text += "## Table 2: time-sum (s) of every GPU variant on every Vulkan device\n\n" +
             toMarkdown(deviceTimeTable(r)) + "\n`table2.csv`\n\n";
@@ -118,6 +149,17 @@ std::string reportMarkdown(const BenchResults& r) {
         "## Crops (Figs. 11 and 12)\n\n`crops/SET_IMAGE_xFACTOR.png`: left to right original, bilinear, Lanczos, "
         "CPU DDT and GPU ExpROI MaxGain (grey when not available), the 128-pixel square with the most detail, "
         "shown 2× with nearest-neighbour.\n\n";
+    return text;
+}
+
+std::string reportMarkdown(const BenchResults& r) {
+    std::string text = "# ddtup bench: the paper's Tables 1–3 and Fig. 13\n\n";
+    text += "Červeňanský et al., *Parallel GPU-based data-dependent triangulations* (2010), Sec. 6. Sets:";
+    for (const std::string& set : r.set_names) text += " " + set;
+    text += ". Raw measurements: `measurements.json`.\n\n";
+    text += machineSection(r);
+    if (r.paper_tables) text += conventionsSection(r) + paperSections(r);
+    if (!r.protocols.empty()) text += protocolSection(r);
     if (!r.notes.empty()) {
         text += "## Notes\n\n";
         for (const std::string& note : r.notes) text += "- " + note + "\n";
@@ -128,10 +170,16 @@ std::string reportMarkdown(const BenchResults& r) {
 }  // namespace
 
 void writeReport(const BenchResults& results, const std::string& out_dir) {
-    writeTextFile(out_dir + "/table1.csv", toCsv(costAndTimeTable(results)));
-    writeTextFile(out_dir + "/table2.csv", toCsv(deviceTimeTable(results)));
-    writeTextFile(out_dir + "/table3.csv", toCsv(qualityTable(results)));
-    writeFig13(results, out_dir);
+    if (results.paper_tables) {
+        writeTextFile(out_dir + "/table1.csv", toCsv(costAndTimeTable(results)));
+        writeTextFile(out_dir + "/table2.csv", toCsv(deviceTimeTable(results)));
+        writeTextFile(out_dir + "/table3.csv", toCsv(qualityTable(results)));
+        writeFig13(results, out_dir);
+    }
+    if (!results.protocols.empty()) {
+        writeTextFile(out_dir + "/table3_protocols.csv", toCsv(protocolQualityTable(results)));
+        writeTextFile(out_dir + "/table3_protocols_gain.csv", toCsv(consistentGainTable(results)));
+    }
     writeTextFile(out_dir + "/measurements.json", measurementsJson(results));
     writeTextFile(out_dir + "/report.md", reportMarkdown(results));
 }

@@ -7,9 +7,12 @@
 #include <vector>
 
 #include "ddt_timing.h"
+#include "low_res_protocols.h"
 #include "machine.h"
 #include "methods.h"
 #include "metrics.h"
+#include "overshoot.h"
+#include "protocol_methods.h"
 
 namespace bench {
 
@@ -34,6 +37,24 @@ struct ScalingResult {
     DdtMeasurement measurement;
 };
 
+// One method's scores on one image of the protocol tables.
+struct MethodScores {
+    ddt::QualityScores quality;
+    double gmsd = 0.0;
+    Overshoot overshoot;  // against the method's low-resolution input
+};
+
+// One original under one protocol at one factor, magnified by every protocol-table method.
+struct ProtocolImageResult {
+    std::string protocol;  // Protocol::key
+    Magnification factor;
+    std::string set;
+    std::string name;
+    uint32_t width = 0, height = 0;          // the original, after cropping to the factor
+    uint32_t low_width = 0, low_height = 0;  // the input every method magnifies
+    std::map<std::string, MethodScores> scores;  // by Upscaler::key; absent: n/a here
+};
+
 struct BenchResults {
     MachineInfo machine;
     bool quick = false;
@@ -47,6 +68,10 @@ struct BenchResults {
     std::string scaling_image;
     std::vector<ImageResult> images;
     std::vector<ScalingResult> scaling;
+    bool paper_tables = true;           // Tables 1–3 and Fig. 13 were run
+    std::vector<Protocol> protocols;    // the protocol tables' protocols; empty: not run
+    std::vector<Upscaler> upscalers;    // their columns
+    std::vector<ProtocolImageResult> protocol_images;
     std::vector<std::string> notes;  // remarks for the report (dropped alpha, missing fonts …)
     double wall_seconds = 0.0;
 };

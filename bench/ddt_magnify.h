@@ -1,0 +1,29 @@
+// DDT for the protocol tables: one prepare and optimize per input, then the plain surface
+// rendered, then the consistent reconstruction (core/reconstruct.h) under the degradation
+// model of the realised factors rendered from the same mesh. Untimed: Tables 1–2 time DDT.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "backend.h"
+#include "methods.h"
+
+namespace bench {
+
+struct DdtOutputs {
+    std::optional<ddt::Image> plain;
+    std::optional<ddt::Image> consistent;
+    std::string consistent_error;  // why `consistent` is missing when it was asked for
+};
+
+// `low` magnified to width × height by `backend`: the plain surface if `plain`, the
+// consistent one if `consistent`. A backend whose reconstruct throws UserError leaves
+// `consistent` empty with the message.
+DdtOutputs magnifyWithDdt(ddt::Backend& backend, const ddt::Image& low, uint32_t width, uint32_t height, bool plain,
+                          bool consistent);
+
+// "" when `method`'s backend can reconstruct (tried on a small image), else the reason.
+std::string consistentUnavailableReason(const DdtMethod& method);
+
+}  // namespace bench

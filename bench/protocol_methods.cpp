@@ -1,0 +1,100 @@
+#include "protocol_methods.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "ddt_magnify.h"
+#include "gmic_dcci.h"
+#include "vips_nohalo.h"
+
+namespace bench {
+
+namespace {
+
+// Beyond this the peer's sampling grid is not ddtup's, and its scores would measure the shift.
+const double kAlignmentTolerance = 0.01;  // input pixels
+
+Upscaler filter(const char* name, const char* label) {
+    Upscaler u;
+    u.key = std::string("filter/") + name;
+    u.label = label;
+    u.oiio_filter = name;
+    return u;
+}
+
+Upscaler ddtColumn(const DdtMethod& method, const std::string& label, bool consistent) {
+    Upscaler u;
+    u.key = method.key + (consistent ? "+consistent" : "");
+    u.label = label;
+    u.kind = UpscalerKind::Ddt;
+    u.ddt = method;
+    u.consistent = consistent;
+    u.unavailable = consistent ? consistentUnavailableReason(method) : method.unavailable;
+    return u;
+}
+
+std::string formatted(const char* pattern, double value) {
+    char text[256];
+    std::snprintf(text, sizeof text, pattern, value);
+    return text;
+}
+
+Upscaler nohaloColumn(std::vector<std::string>& notes) {
+    Upscaler u;
+    u.key = "vips/nohalo";
+    u.label = "Nohalo (libvips)";
+    u.kind = UpscalerKind::Nohalo;
+    try {
+        const double shift = nohaloMisalignment();
+        notes.push_back(formatted("libvips Nohalo: a magnified ramp lines up with ddtup's sampling convention "
+                                  "within %.2g input pixels",
+                                  shift));
+        if (shift > kAlignmentTolerance) u.unavailable = formatted("misaligned by %.3f input pixels", shift);
+    } catch (const std::exception& error) {
+        u.unavailable = error.what();
+    }
+    return u;
+}
+
+Upscaler dcciColumn(std::vector<std::string>& notes) {
+    Upscaler u;
+    u.key = "gmic/dcci2x";
+    u.label = "DCCI (G'MIC, ×2)";
+    u.kind = UpscalerKind::Dcci;
+    u.only_times_two = true;
+    u.unavailable = dcciUnavailableReason();
+    if (!u.unavailable.empty()) return u;
+    try {
+        const double shift = dcciMisalignment();
+        if (std::fabs(shift) > kAlignmentTolerance)
+            notes.push_back(formatted("G'MIC DCCI samples %+.3f input pixels off ddtup's convention (it keeps input "
+                                      "pixel x at output 2x); a half-output-pixel shift no integer crop removes, so "
+                                      "its scores include it",
+                                      shift));
+    } catch (const std::exception& error) {
+        u.unavailable = error.what();
+    }
+    return u;
+}
+
+}  // namespace
+
+UpscalerSetup protocolUpscalers(const BenchDevice* device) {
+    UpscalerSetup setup;
+    std::vector<DdtMethod> methods = scalingMethods(device);  // CPU, then the Vulkan default variant
+    const DdtMethod& cpu = methods[0];
+    const DdtMethod& gpu = methods[1];
+    setup.upscalers = {
+        filter("triangle", "Bilinear"),
+        filter("lanczos3", "Lanczos3"),
+        nohaloColumn(setup.notes),
+        dcciColumn(setup.notes),
+        ddtColumn(cpu, "CPU DDT", false),
+        ddtColumn(cpu, "CPU DDT consistent", true),
+        ddtColumn(gpu, "GPU DDT", false),
+        ddtColumn(gpu, "GPU DDT consistent", true),
+    };
+    return setup;
+}
+
+}  // namespace bench

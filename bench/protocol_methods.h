@@ -1,0 +1,36 @@
+// The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peers (libvips'
+// Nohalo, G'MIC's DCCI at ×2), and DDT plain and consistent on the CPU and on the Vulkan
+// backend's default variant. Availability is probed once, up front: a column that cannot
+// run here keeps its place as "n/a" with the reason, and runs as soon as it can (e.g. the
+// Vulkan backend's reconstruct, which throws "not implemented" today).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "methods.h"
+
+namespace bench {
+
+enum class UpscalerKind { OiioFilter, Nohalo, Dcci, Ddt };
+
+struct Upscaler {
+    std::string key;    // unique in the raw measurements: "filter/lanczos3", "cpu+consistent" …
+    std::string label;  // column heading
+    UpscalerKind kind = UpscalerKind::OiioFilter;
+    std::string oiio_filter;  // OiioFilter
+    DdtMethod ddt;            // Ddt
+    bool consistent = false;  // Ddt: the consistent reconstruction instead of the plain surface
+    bool only_times_two = false;
+    std::string unavailable;  // "" if it runs here
+};
+
+struct UpscalerSetup {
+    std::vector<Upscaler> upscalers;
+    std::vector<std::string> notes;  // the peers' measured alignment
+};
+
+// Probes every peer and DDT backend; `device` null: no Vulkan device.
+UpscalerSetup protocolUpscalers(const BenchDevice* device);
+
+}  // namespace bench
