@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include "ddt_magnify.h"
-#include "gmic_dcci.h"
 #include "vips_nohalo.h"
 
 namespace bench {
@@ -56,27 +55,6 @@ Upscaler nohaloColumn(std::vector<std::string>& notes) {
     return u;
 }
 
-Upscaler dcciColumn(std::vector<std::string>& notes) {
-    Upscaler u;
-    u.key = "gmic/dcci2x";
-    u.label = "DCCI (G'MIC, ×2)";
-    u.kind = UpscalerKind::Dcci;
-    u.only_times_two = true;
-    u.unavailable = dcciUnavailableReason();
-    if (!u.unavailable.empty()) return u;
-    try {
-        const double shift = dcciMisalignment();
-        if (std::fabs(shift) > kAlignmentTolerance)
-            notes.push_back(formatted("G'MIC DCCI samples %+.3f input pixels off ddtup's convention (it keeps input "
-                                      "pixel x at output 2x); a half-output-pixel shift no integer crop removes, so "
-                                      "its scores include it",
-                                      shift));
-    } catch (const std::exception& error) {
-        u.unavailable = error.what();
-    }
-    return u;
-}
-
 }  // namespace
 
 UpscalerSetup protocolUpscalers(const BenchDevice* device) {
@@ -88,7 +66,6 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
         filter("triangle", "Bilinear"),
         filter("lanczos3", "Lanczos3"),
         nohaloColumn(setup.notes),
-        dcciColumn(setup.notes),
         ddtColumn(cpu, "CPU DDT", false),
         ddtColumn(cpu, "CPU DDT consistent", true),
         ddtColumn(gpu, "GPU DDT", false),

@@ -1,5 +1,5 @@
-// The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peers (libvips'
-// Nohalo, G'MIC's DCCI at ×2), and DDT plain and consistent on the CPU and on the Vulkan
+// The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peer libvips'
+// Nohalo, and DDT plain and consistent on the CPU and on the Vulkan
 // backend's default variant. Availability is probed once, up front: a column that cannot
 // run here keeps its place as "n/a" with the reason, and runs as soon as it can (e.g. the
 // Vulkan backend's reconstruct, which throws "not implemented" today).
@@ -12,7 +12,7 @@
 
 namespace bench {
 
-enum class UpscalerKind { OiioFilter, Nohalo, Dcci, Ddt };
+enum class UpscalerKind { OiioFilter, Nohalo, Ddt };
 
 struct Upscaler {
     std::string key;    // unique in the raw measurements: "filter/lanczos3", "cpu+consistent" …
@@ -21,7 +21,6 @@ struct Upscaler {
     std::string oiio_filter;  // OiioFilter
     DdtMethod ddt;            // Ddt
     bool consistent = false;  // Ddt: the consistent reconstruction instead of the plain surface
-    bool only_times_two = false;
     std::string unavailable;  // "" if it runs here
 };
 

@@ -8,7 +8,6 @@
 
 #include "crops.h"
 #include "ddt_magnify.h"
-#include "gmic_dcci.h"
 #include "gmsd.h"
 #include "protocol.h"
 #include "vips_nohalo.h"
@@ -24,10 +23,6 @@ void addNote(BenchResults& results, const std::string& note) {
         results.notes.push_back(note);
 }
 
-bool appliesAt(const Upscaler& u, Magnification factor) {
-    return u.unavailable.empty() && (!u.only_times_two || factor == Magnification{2, 1});
-}
-
 // One backend per DDT method for the whole study: creating a Vulkan device is not free.
 class DdtBackends {
 public:
@@ -41,14 +36,14 @@ private:
     std::map<std::string, std::unique_ptr<ddt::Backend>> backends_;
 };
 
-// Every applicable column's magnification of `low` to width × height, by Upscaler::key.
+// Every available column's magnification of `low` to width × height, by Upscaler::key.
 std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends& backends, const ddt::Image& low,
-                                             Magnification factor, uint32_t width, uint32_t height,
+                                             uint32_t width, uint32_t height,
                                              const std::string& where) {
     std::map<std::string, ddt::Image> outputs;
     std::set<std::string> ddt_methods_run;
     for (const Upscaler& u : results.upscalers) {
-        if (!appliesAt(u, factor) || (u.kind == UpscalerKind::Ddt && !ddt_methods_run.insert(u.ddt.key).second))
+        if (!u.unavailable.empty() || (u.kind == UpscalerKind::Ddt && !ddt_methods_run.insert(u.ddt.key).second))
             continue;
         try {
             switch (u.kind) {
@@ -58,15 +53,12 @@ std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends&
             case UpscalerKind::Nohalo:
                 outputs[u.key] = magnifyWithNohalo(low, width, height);
                 break;
-            case UpscalerKind::Dcci:
-                outputs[u.key] = magnifyWithDcci(low);
-                break;
             case UpscalerKind::Ddt: {
                 // Plain and consistent share one optimisation of the same method.
                 const Upscaler* plain = nullptr;
                 const Upscaler* consistent = nullptr;
                 for (const Upscaler& v : results.upscalers)
-                    if (v.kind == UpscalerKind::Ddt && v.ddt.key == u.ddt.key && appliesAt(v, factor))
+                    if (v.kind == UpscalerKind::Ddt && v.ddt.key == u.ddt.key && v.unavailable.empty())
                         (v.consistent ? consistent : plain) = &v;
                 DdtOutputs ddt = magnifyWithDdt(backends.forMethod(u.ddt), low, width, height, plain != nullptr,
                                                 consistent != nullptr);
@@ -121,7 +113,7 @@ bool runProtocolStudy(BenchResults& results, const std::vector<StudyImage>& imag
                                       low.width, low.height, {}};
                 const std::string where = protocol.key + " ×" + factor.name() + " " + image.set + "/" + image.name;
                 const std::map<std::string, ddt::Image> outputs =
-                    magnifyAll(results, backends, low, factor, original.width, original.height, where);
+                    magnifyAll(results, backends, low, original.width, original.height, where);
                 const ddt::ByteImage original_bytes = ddt::toBytes(original), low_bytes = ddt::toBytes(low);
                 for (const auto& [key, output] : outputs) r.scores[key] = score(original_bytes, low_bytes, output);
 

@@ -66,7 +66,6 @@ Table protocolQualityTable(const BenchResults& results) {
                 const auto images = imagesOf(results, protocol.key, factor, set);
                 const std::string section = "Protocol " + protocol.key + ", ×" + factor.name() + ", " + set;
                 for (const Upscaler& u : results.upscalers) {
-                    if (u.only_times_two && !(factor == Magnification{2, 1})) continue;
                     TableRow row{{protocol.key, factor.name(), set}, section, u.label, {}, 4};
                     for (const auto& [label, value] : metrics) row.values.push_back(meanOf(images, u.key, value));
                     table.rows.push_back(row);
