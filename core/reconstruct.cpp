@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <type_traits>
 
 #include "render.h"
 
@@ -36,6 +37,14 @@ float beyondTolerance(float residual, float tolerance) {
     return residual > tolerance ? residual - tolerance : residual < -tolerance ? residual + tolerance : 0.0f;
 }
 
+// Runs task(begin, end) over [0, count) on OIIO's thread pool. Items may be whole rows, so
+// even a few of them are worth splitting (OIIO's default keeps 1024 together).
+void inParallel(size_t count, const std::function<void(size_t, size_t)>& task) {
+    const OIIO::paropt options(0, OIIO::paropt::SplitDir::Y, 8);
+    OIIO::parallel_for_range(uint64_t(0), uint64_t(count), [&](uint64_t begin, uint64_t end) { task(begin, end); },
+                             options);
+}
+
 // The range each vertex value must stay in: its 3 × 3 input neighbourhood's, within [0, 1]
 // for integer sample types.
 struct Bounds {
@@ -46,26 +55,28 @@ Bounds boundsOf(const Image& input) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
     const bool integer = input.sample_type == SampleType::UInt8 || input.sample_type == SampleType::UInt16;
     Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
-    for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x)
-            for (uint32_t k = 0; k < c; ++k) {
-                float lo = INFINITY, hi = -INFINITY;
-                for (uint32_t ny = y ? y - 1 : 0; ny <= std::min(h - 1, y + 1); ++ny)
-                    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
-                        const float v = input.pixels[(size_t(ny) * w + nx) * c + k];
-                        lo = std::min(lo, v);
-                        hi = std::max(hi, v);
+    inParallel(h, [&](size_t begin, size_t end) {
+        for (size_t y = begin; y < end; ++y)
+            for (uint32_t x = 0; x < w; ++x)
+                for (uint32_t k = 0; k < c; ++k) {
+                    float lo = INFINITY, hi = -INFINITY;
+                    for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny)
+                        for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
+                            const float v = input.pixels[(ny * w + nx) * c + k];
+                            lo = std::min(lo, v);
+                            hi = std::max(hi, v);
+                        }
+                    if (integer) {
+                        lo = std::max(lo, 0.0f);
+                        hi = std::min(hi, 1.0f);
                     }
-                if (integer) {
-                    lo = std::max(lo, 0.0f);
-                    hi = std::min(hi, 1.0f);
+                    bounds.low[(y * w + x) * c + k] = lo;
+                    bounds.high[(y * w + x) * c + k] = hi;
                 }
-                const size_t i = (size_t(y) * w + x) * c + k;
-                bounds.low[i] = lo;
-                bounds.high[i] = hi;
-            }
+    });
     return bounds;
 }
+
 
 // The degradation D and its transpose between the supersampled grid (sub_w × sub_h, the
 // input's size × kSupersampling) and the input grid. Separable; taps past the border land on
@@ -81,51 +92,72 @@ public:
 
     // degraded (w × h) = D(sub).
     void apply(const std::vector<float>& sub, std::vector<float>& degraded) {
-        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2), q = int(kSupersampling);
+        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2);
         const size_t sub_row = size_t(sub_w_) * c_;
         columns_.assign(sub_row * h_, 0.0f);
-        for (uint32_t y = 0; y < h_; ++y)
-            for (int t = -ry; t <= ry; ++t) {
-                const float g = taps_y_[t + ry];
-                const float* in = sub.data() + clampIndex(int(y) * q + q / 2 + t, int(sub_h_)) * sub_row;
-                float* out = columns_.data() + y * sub_row;
-                for (size_t i = 0; i < sub_row; ++i) out[i] += g * in[i];
-            }
         degraded.assign(size_t(w_) * h_ * c_, 0.0f);
-        for (uint32_t y = 0; y < h_; ++y)
-            for (uint32_t x = 0; x < w_; ++x)
-                for (int t = -rx; t <= rx; ++t) {
-                    const float g = taps_x_[t + rx];
-                    const float* in = columns_.data() + y * sub_row + clampIndex(int(x) * q + q / 2 + t, int(sub_w_)) * c_;
-                    float* out = degraded.data() + (size_t(y) * w_ + x) * c_;
-                    for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
+        inParallel(h_, [&](size_t begin, size_t end) {
+            for (size_t y = begin; y < end; ++y) {
+                float* column_row = columns_.data() + y * sub_row;
+                for (int t = -ry; t <= ry; ++t) {
+                    const float g = taps_y_[t + ry];
+                    const float* in = sub.data() + centreSample(y, t, sub_h_) * sub_row;
+                    for (size_t i = 0; i < sub_row; ++i) column_row[i] += g * in[i];
                 }
+                for (uint32_t x = 0; x < w_; ++x) {
+                    float* out = degraded.data() + (y * w_ + x) * c_;
+                    for (int t = -rx; t <= rx; ++t) {
+                        const float g = taps_x_[t + rx];
+                        const float* in = column_row + centreSample(x, t, sub_w_) * c_;
+                        for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
+                    }
+                }
+            }
+        });
     }
 
-    // sub (sub_w × sub_h) = Dᵀ(residual).
+    // sub (sub_w × sub_h) = Dᵀ(residual), each supersample gathering the pixels whose taps
+    // reach it.
     void transpose(const std::vector<float>& residual, std::vector<float>& sub) {
-        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2), q = int(kSupersampling);
+        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2);
         const size_t sub_row = size_t(sub_w_) * c_;
         columns_.assign(sub_row * h_, 0.0f);
-        for (uint32_t y = 0; y < h_; ++y)
-            for (uint32_t x = 0; x < w_; ++x)
-                for (int t = -rx; t <= rx; ++t) {
-                    const float g = taps_x_[t + rx];
-                    const float* in = residual.data() + (size_t(y) * w_ + x) * c_;
-                    float* out = columns_.data() + y * sub_row + clampIndex(int(x) * q + q / 2 + t, int(sub_w_)) * c_;
-                    for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
+        inParallel(h_, [&](size_t begin, size_t end) {
+            for (size_t y = begin; y < end; ++y)
+                for (uint32_t x = 0; x < w_; ++x) {
+                    const float* in = residual.data() + (y * w_ + x) * c_;
+                    for (int t = -rx; t <= rx; ++t) {
+                        const float g = taps_x_[t + rx];
+                        float* out = columns_.data() + y * sub_row + centreSample(x, t, sub_w_) * c_;
+                        for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
+                    }
                 }
+        });
         sub.assign(sub_row * sub_h_, 0.0f);
-        for (uint32_t y = 0; y < h_; ++y)
-            for (int t = -ry; t <= ry; ++t) {
-                const float g = taps_y_[t + ry];
-                const float* in = columns_.data() + y * sub_row;
-                float* out = sub.data() + clampIndex(int(y) * q + q / 2 + t, int(sub_h_)) * sub_row;
-                for (size_t i = 0; i < sub_row; ++i) out[i] += g * in[i];
+        const int q = int(kSupersampling);
+        inParallel(sub_h_, [&](size_t begin, size_t end) {
+            for (size_t row = begin; row < end; ++row) {
+                float* out = sub.data() + row * sub_row;
+                // Input rows whose taps can land on this row, the border's clamped ones included.
+                const int first = std::max(0, (int(row) - q / 2 - ry) / q - 1);
+                const int last = std::min(int(h_) - 1, (int(row) - q / 2 + ry) / q + 1);
+                for (int y = first; y <= last; ++y)
+                    for (int t = -ry; t <= ry; ++t) {
+                        if (centreSample(y, t, sub_h_) != row) continue;
+                        const float g = taps_y_[t + ry];
+                        const float* in = columns_.data() + y * sub_row;
+                        for (size_t i = 0; i < sub_row; ++i) out[i] += g * in[i];
+                    }
             }
+        });
     }
 
 private:
+    // The supersample t steps from the centre sample of pixel i, clamped into [0, size).
+    static size_t centreSample(size_t i, int t, uint32_t size) {
+        return size_t(clampIndex(int(i) * int(kSupersampling) + int(kSupersampling) / 2 + t, int(size)));
+    }
+
     uint32_t w_, h_, c_, sub_w_, sub_h_;
     std::vector<float> taps_x_, taps_y_;
     std::vector<float> columns_;  // the pass between the two axes
@@ -148,7 +180,10 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
     SampleLayout layout;
     layout.triangles = renderer.triangles();
     const size_t triangles = layout.triangles.size();
-    const std::vector<SampleHit> hits = renderer.locateSamples(sub_size);
+    std::vector<SampleHit> hits(size_t(sub_size.width) * sub_size.height);
+    inParallel(sub_size.height, [&](size_t begin, size_t end) {
+        renderer.locateSamples(sub_size, uint32_t(begin), uint32_t(end), hits.data() + begin * sub_size.width);
+    });
     layout.first_sample.assign(triangles + 1, 0);
     for (const SampleHit& hit : hits) ++layout.first_sample[hit.triangle + 1];
     for (size_t t = 0; t < triangles; ++t) layout.first_sample[t + 1] += layout.first_sample[t];
@@ -179,28 +214,38 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
     return layout;
 }
 
-// Runs task(begin, end) over [0, count) on OIIO's thread pool.
-void inParallel(size_t count, const std::function<void(size_t, size_t)>& task) {
-    OIIO::parallel_for_range(uint64_t(0), uint64_t(count), [&](uint64_t begin, uint64_t end) { task(begin, end); });
+
+// Calls f(std::integral_constant<uint32_t, channels>) so that the per-channel loops of the
+// hot passes have a constant trip count the compiler unrolls.
+template <typename F>
+void withChannelCount(uint32_t channels, F f) {
+    switch (channels) {
+    case 1: f(std::integral_constant<uint32_t, 1>()); break;
+    case 2: f(std::integral_constant<uint32_t, 2>()); break;
+    case 3: f(std::integral_constant<uint32_t, 3>()); break;
+    default: f(std::integral_constant<uint32_t, 4>()); break;
+    }
 }
 
 // The surface at every supersample (no clamping: the model sees the surface the solver moves).
 void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<float>& sub) {
-    const uint32_t c = surface.values.channels;
-    const float* v = surface.values.pixels.data();
-    const float* b = surface.bubbles.data();
-    inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
-        for (size_t ti = begin; ti < end; ++ti) {
-            const Triangle& t = layout.triangles[ti];
-            for (uint32_t j = layout.first_sample[ti]; j < layout.first_sample[ti + 1]; ++j) {
-                const std::array<float, 3>& l = layout.weights[j];
-                const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
-                float* out = sub.data() + size_t(layout.samples[j]) * c;
-                for (uint32_t k = 0; k < c; ++k)
-                    out[k] = l[0] * v[t.v0 * c + k] + l[1] * v[t.v1 * c + k] + l[2] * v[t.v2 * c + k] +
-                             q0 * b[t.e0 * c + k] + q1 * b[t.e1 * c + k] + q2 * b[t.e2 * c + k];
+    withChannelCount(surface.values.channels, [&](auto channels) {
+        constexpr uint32_t c = decltype(channels)::value;
+        const float* v = surface.values.pixels.data();
+        const float* b = surface.bubbles.data();
+        inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
+            for (size_t ti = begin; ti < end; ++ti) {
+                const Triangle& t = layout.triangles[ti];
+                for (uint32_t j = layout.first_sample[ti]; j < layout.first_sample[ti + 1]; ++j) {
+                    const std::array<float, 3>& l = layout.weights[j];
+                    const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
+                    float* out = sub.data() + size_t(layout.samples[j]) * c;
+                    for (uint32_t k = 0; k < c; ++k)
+                        out[k] = l[0] * v[t.v0 * c + k] + l[1] * v[t.v1 * c + k] + l[2] * v[t.v2 * c + k] +
+                                 q0 * b[t.e0 * c + k] + q1 * b[t.e1 * c + k] + q2 * b[t.e2 * c + k];
+                }
             }
-        }
+        });
     });
 }
 
@@ -210,19 +255,21 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
 void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout,
                     std::vector<float>& partial, std::vector<float>& at_vertices, std::vector<float>& at_edges) {
     partial.resize(layout.triangles.size() * 6 * c);
-    inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
-        for (size_t t = begin; t < end; ++t) {
-            double sums[6][4] = {};
-            for (uint32_t j = layout.first_sample[t]; j < layout.first_sample[t + 1]; ++j) {
-                const std::array<float, 3>& l = layout.weights[j];
-                const double basis[6] = {l[0], l[1], l[2], 4.0 * l[1] * l[2], 4.0 * l[2] * l[0], 4.0 * l[0] * l[1]};
-                const float* value = g.data() + size_t(layout.samples[j]) * c;
-                for (int n = 0; n < 6; ++n)
-                    for (uint32_t k = 0; k < c; ++k) sums[n][k] += basis[n] * value[k];
+    withChannelCount(c, [&](auto channels) {
+        constexpr uint32_t cc = decltype(channels)::value;
+        inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
+            for (size_t t = begin; t < end; ++t) {
+                float sums[6][cc] = {};
+                for (uint32_t j = layout.first_sample[t]; j < layout.first_sample[t + 1]; ++j) {
+                    const std::array<float, 3>& l = layout.weights[j];
+                    const float basis[6] = {l[0], l[1], l[2], 4 * l[1] * l[2], 4 * l[2] * l[0], 4 * l[0] * l[1]};
+                    const float* value = g.data() + size_t(layout.samples[j]) * cc;
+                    for (int n = 0; n < 6; ++n)
+                        for (uint32_t k = 0; k < cc; ++k) sums[n][k] += basis[n] * value[k];
+                }
+                std::copy_n(&sums[0][0], 6 * cc, partial.data() + t * 6 * cc);
             }
-            for (int n = 0; n < 6; ++n)
-                for (uint32_t k = 0; k < c; ++k) partial[(t * 6 + n) * c + k] = float(sums[n][k]);
-        }
+        });
     });
     const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
     inParallel(vertices, [&](size_t begin, size_t end) {
@@ -300,16 +347,22 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     for (uint32_t step = 0; step < iterations; ++step) {
         evaluate(surface, layout, sub);
         degradation.apply(sub, degraded);
-        for (size_t i = 0; i < residual.size(); ++i) residual[i] = beyondTolerance(input.pixels[i] - degraded[i], tolerance);
+        inParallel(residual.size(), [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) residual[i] = beyondTolerance(input.pixels[i] - degraded[i], tolerance);
+        });
         degradation.transpose(residual, sub);
         projectOnBasis(sub, c, layout, partial, vertex_step, edge_step);
-        for (size_t i = 0; i < v.size(); ++i)
-            v[i] = std::clamp(v[i] + vertex_step[i] / vertex_weight[i], bounds.low[i], bounds.high[i]);
-        if (input.hasAlpha())
-            for (size_t p = 0; p < v.size(); p += c)
-                for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
-        for (size_t i = 0; i < surface.bubbles.size(); ++i)
-            if (edge_weight[i] > 0.0f) surface.bubbles[i] += edge_step[i] / edge_weight[i];
+        inParallel(v.size() / c, [&](size_t begin, size_t end) {
+            for (size_t i = begin * c; i < end * c; ++i)
+                v[i] = std::clamp(v[i] + vertex_step[i] / vertex_weight[i], bounds.low[i], bounds.high[i]);
+            if (input.hasAlpha())
+                for (size_t p = begin * c; p < end * c; p += c)
+                    for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
+        });
+        inParallel(surface.bubbles.size(), [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i)
+                if (edge_weight[i] > 0.0f) surface.bubbles[i] += edge_step[i] / edge_weight[i];
+        });
     }
     return surface;
 }

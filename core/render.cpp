@@ -158,13 +158,11 @@ void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
     });
 }
 
-std::vector<SampleHit> MeshRenderer::locateSamples(OutputSize out) const {
-    std::vector<SampleHit> hits(size_t(out.width) * out.height);
-    visitSamples(wholeRows(image_.width, image_.height, out, 0, out.height),
+void MeshRenderer::locateSamples(OutputSize out, uint32_t y_begin, uint32_t y_end, SampleHit* hits) const {
+    visitSamples(wholeRows(image_.width, image_.height, out, y_begin, y_end),
                  [&](uint32_t x, uint32_t y, uint32_t i, double l0, double l1, double l2) {
-                     hits[size_t(y) * out.width + x] = {i, {float(l0), float(l1), float(l2)}};
+                     hits[size_t(y - y_begin) * out.width + x] = {i, {float(l0), float(l1), float(l2)}};
                  });
-    return hits;
 }
 
 Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles) {

@@ -75,8 +75,9 @@ public:
     // Output rows [y_begin, y_end) of the whole image (`image` is the whole input).
     void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const;
 
-    // The triangle and weights of every sample of an untiled output of size `out`, row-major.
-    std::vector<SampleHit> locateSamples(OutputSize out) const;
+    // The triangle and weights of every sample of rows [y_begin, y_end) of an untiled output
+    // of size `out`, row-major into `hits`.
+    void locateSamples(OutputSize out, uint32_t y_begin, uint32_t y_end, SampleHit* hits) const;
     const std::vector<Triangle>& triangles() const { return triangles_; }
 
 private:
