@@ -29,9 +29,12 @@ void printStats(const ddt::ImageJob& job, bool batch) {
     if (s.device_ms > 0.0) std::printf("device-comp    %.3f s  (GPU timestamps)\n", s.device_ms * 1e-3);
     std::printf("time-init      %.3f s  (read the image)\n", report.times.init_s);
     std::printf("time-comp      %.3f s  (build the mesh, upload, optimize)\n", report.times.comp_s);
+    if (report.times.reconstruct_s > 0.0)
+        std::printf("time-recon     %.3f s  (the consistent reconstruction, --reconstruct)\n", report.times.reconstruct_s);
     std::printf("time-final     %.3f s  (render + save image; the paper's time-final saved the mesh)\n",
                 report.times.final_s);
-    std::printf("time-sum       %.3f s\n", report.times.init_s + report.times.comp_s + report.times.final_s);
+    std::printf("time-sum       %.3f s\n",
+                report.times.init_s + report.times.comp_s + report.times.reconstruct_s + report.times.final_s);
     if (batch) std::printf("\n");
     std::fflush(stdout);
 }

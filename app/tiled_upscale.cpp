@@ -115,9 +115,11 @@ OptimizeStats upscaleTile(Job& job, const Tile& tile, uint32_t index, uint32_t t
     const OptimizeStats stats = job.backend.optimize();
     // The model follows the whole image's factors; each crop is reconstructed on its own, and
     // the overlap keeps the crop's border out of the core's output (test/test_tiling.cpp).
-    if (job.reconstruct)
+    if (job.reconstruct) {
+        job.step(index, total, TilePhase::Reconstruct);
         job.backend.reconstruct(
             degradationFor(double(job.out.width) / job.image.width, double(job.out.height) / job.image.height));
+    }
     job.step(index, total, TilePhase::Render);
 
     RenderWindow window;

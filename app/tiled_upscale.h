@@ -22,8 +22,9 @@ const uint32_t kDefaultOverlap = 16;
 // Smaller tiles would be mostly overlap; below this the device is hopeless.
 const uint32_t kMinTileSide = 64;
 
-// Where upscaleRows is: about to prepare and optimise tile k of n, or to render it.
-enum class TilePhase { Optimize, Render };
+// Where upscaleRows is: about to prepare and optimise tile k of n, to reconstruct its
+// surface, or to render it.
+enum class TilePhase { Optimize, Reconstruct, Render };
 struct TileStep {
     uint32_t tile = 0;
     uint32_t tiles = 1;

@@ -125,15 +125,21 @@ void ImageJob::process(Backend& backend) {
             state_->writer->writeRows(y_begin, y_end, rows);
     };
     // Time spent in each phase, for --stats: optimize (with building and uploading each
-    // tile's mesh) and render.
+    // tile's mesh), reconstruct and render.
     auto mark = std::chrono::steady_clock::now();
     TilePhase phase = TilePhase::Optimize;
+    auto timeOf = [&](TilePhase p) -> double& {
+        return p == TilePhase::Optimize      ? report_.times.comp_s
+               : p == TilePhase::Reconstruct ? report_.times.reconstruct_s
+                                             : report_.times.final_s;
+    };
     bool told_tiles = false;
     auto on_step = [&](const TileStep& step) {
-        (phase == TilePhase::Optimize ? report_.times.comp_s : report_.times.final_s) += secondsSince(mark);
+        timeOf(phase) += secondsSince(mark);
         mark = std::chrono::steady_clock::now();
         phase = step.phase;
-        reporter_.stage(index_, task_.input, phase == TilePhase::Optimize ? Stage::Optimize : Stage::Render, step.tile,
+        // Progress shows the reconstruction as part of optimizing: both shape the surface.
+        reporter_.stage(index_, task_.input, phase == TilePhase::Render ? Stage::Render : Stage::Optimize, step.tile,
                         step.tiles);
         if (step.tiles > 1 && !told_tiles && !settings_.tile) {
             reporter_.notice(task_.input, inputName(task_.input) + ": too large for the device's memory in one piece; " +
@@ -149,7 +155,7 @@ void ImageJob::process(Backend& backend) {
     } catch (const UserError& error) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }
-    (phase == TilePhase::Optimize ? report_.times.comp_s : report_.times.final_s) += secondsSince(mark);
+    timeOf(phase) += secondsSince(mark);
     state_->image.pixels = {};  // the next image may need the memory
 }
 

@@ -20,6 +20,7 @@ namespace ddt {
 struct StageTimes {
     double init_s = 0.0;   // read the header and decode
     double comp_s = 0.0;   // build the mesh, upload, optimize (per tile when tiled)
+    double reconstruct_s = 0.0;  // the consistent reconstruction (per tile when tiled)
     double final_s = 0.0;  // render + write (the paper's time-final saved the mesh instead)
 };
 
