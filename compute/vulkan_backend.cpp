@@ -106,8 +106,9 @@ struct VulkanBackend::State {
         uint64_t bytes = 0;
         std::string problem;  // "" or the per-buffer limit the job breaks
     };
-    MemoryNeed memoryNeed(uint32_t w, uint32_t h) const;
-    void checkMemory(uint32_t w, uint32_t h);
+    // With `reconstruction`, the consistent reconstruction's arrays too.
+    MemoryNeed memoryNeed(uint32_t w, uint32_t h, bool reconstruction) const;
+    void checkMemory(uint32_t w, uint32_t h, bool reconstruction);
     void createBuffers(const Image& image);
     void writeDescriptors();
     void resetOptimisation();
@@ -165,8 +166,13 @@ uint32_t VulkanBackend::validationMessages() const { return state_->context->val
 // with the default rule, 240 with the round-based ones), beyond the heap, though each array
 // fits; an 8192² input has 201 M edges, beyond the texel-buffer elements (and its 3.2 GB
 // edge arrays beyond the largest allocation). maxStorageBufferRange (128 MiB) does not
-// bite: the big arrays are texel buffers. Automatic tiling picks 2816-pixel tiles there.
-VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h) const {
+// bite: the big arrays are texel buffers. The consistent reconstruction adds about 708 bytes
+// per pixel (compute/reconstruct/surface_buffers.h: 3 × 3 supersamples with their hits, sums
+// per half-edge); its supersample arrays reach the texel-buffer elements at 3862² pixels.
+// prepare checks the plain need and reconstruct the whole; memoryNeeded, which sizes
+// automatic tiles without knowing which surface is wanted, gives the whole, so tiles are
+// smaller than the 2816 pixels a plain upscale alone would allow there.
+VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h, bool reconstruction) const {
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &maintenance;
@@ -175,29 +181,28 @@ VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, ui
     const uint64_t edges = gridEdgeCount(w, h), vertices = uint64_t(w) * h;
     const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 4 + (options.active_set ? 2 * 4 : 0) +
                               (rule.single_round ? 0 : 2 * 4);
-    const uint64_t largest = edges * 16;
+    // The reconstruction's largest arrays are its 3 × 3 supersamples per pixel.
+    const uint64_t elements = reconstruction ? std::max(edges, surfaceBufferLargestElements(vertices, edges)) : edges;
+    const uint64_t largest = elements * 16;
     MemoryNeed need;
     // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels.
-    // The reconstruction's arrays are counted too: a tiled upscale must fit either surface.
-    need.bytes = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes + surfaceBufferBytes(vertices, edges);
-    const uint64_t supersample_elements = surfaceBufferLargestElements(vertices, edges);
+    need.bytes = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes +
+                 (reconstruction ? surfaceBufferBytes(vertices, edges) : 0);
     if (edges >= kCopyEntry) need.problem = "more edges than the kernels can index";
-    else if (supersample_elements > context->properties.limits.maxTexelBufferElements)
-        need.problem = std::to_string(supersample_elements) + " supersamples, more than the device's " +
-                       std::to_string(context->properties.limits.maxTexelBufferElements) + " texel-buffer elements";
-    else if (edges > context->properties.limits.maxTexelBufferElements)
-        need.problem = std::to_string(edges) + " edges, more than the device's " +
+    else if (elements > context->properties.limits.maxTexelBufferElements)
+        need.problem = std::to_string(elements) + (elements == edges ? " edges" : " supersamples") +
+                       ", more than the device's " +
                        std::to_string(context->properties.limits.maxTexelBufferElements) + " texel-buffer elements";
     else if (largest > maintenance.maxMemoryAllocationSize)
-        need.problem = "its edge arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
+        need.problem = "its largest arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
                        mebibytes(maintenance.maxMemoryAllocationSize);
     return need;
 }
 
 // Refuses, before allocating anything, a job the device cannot hold: as an out-of-memory
 // error, so that a tiled upscale retries with smaller tiles.
-void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h) {
-    const MemoryNeed need = memoryNeed(w, h);
+void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h, bool reconstruction) {
+    const MemoryNeed need = memoryNeed(w, h, reconstruction);
     std::string problem = need.problem;
     const uint64_t available = ddt::memoryAvailable(*context);
     if (problem.empty() && need.bytes > available)
@@ -209,7 +214,8 @@ void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h) {
 }
 
 uint64_t VulkanBackend::memoryNeeded(uint32_t width, uint32_t height, uint32_t) const {
-    const State::MemoryNeed need = state_->memoryNeed(width, height);
+    // Whether the upscale reconstructs is not known here: a tile must fit either surface.
+    const State::MemoryNeed need = state_->memoryNeed(width, height, true);
     return need.problem.empty() ? need.bytes : UINT64_MAX;
 }
 
@@ -307,7 +313,7 @@ void VulkanBackend::prepare(const Image& image) {
     s.height = image.height;
     const uint64_t edges = gridEdgeCount(image.width, image.height);
     s.edge_count = uint32_t(std::min<uint64_t>(edges, UINT32_MAX));
-    s.checkMemory(image.width, image.height);
+    s.checkMemory(image.width, image.height, false);
 
     const Mesh mesh = buildGridMesh(image.width, image.height);
     const CostField field = costFieldOf(image);
@@ -610,6 +616,7 @@ void VulkanBackend::reconstruct(const DegradationModel& model) {
                   "glsl/layout.h follows core/reconstruct.h");
     State& s = *state_;
     VulkanContext& c = *s.context;
+    s.checkMemory(s.width, s.height, true);
     if (s.spans.empty()) s.computeRowSpans();
     // The taps are a few numbers from core's own formula: computed here and uploaded.
     const std::vector<float> taps_x = degradationTaps(model.sigma_x), taps_y = degradationTaps(model.sigma_y);

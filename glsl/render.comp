@@ -21,12 +21,7 @@ vec4 vertexValue(uint id) { return push.quadratic != 0 ? imageLoad(surface_value
 // The quadratic surface, clamped as core's MeshRenderer::renderWindow.
 vec4 clampedQuadratic(vec3 l, vec4 z[3], vec4 b[3]) {
     vec4 value = quadraticSurface(l, z[0], z[1], z[2], b[0], b[1], b[2]);
-    value = clamp(value, min(min(z[0], z[1]), z[2]), max(max(z[0], z[1]), z[2]));
-    if (push.has_alpha != 0) {
-        const float a = value[push.channels - 1];
-        for (uint k = 0; k + 1 < push.channels; ++k) value[k] = min(value[k], a);
-    }
-    return value;
+    return colourAtMostAlpha(clamp(value, min(min(z[0], z[1]), z[2]), max(max(z[0], z[1]), z[2])));
 }
 
 // Triangle `slot` (see reconstruct/surface.glsl) with vertices i0, i1, i2.

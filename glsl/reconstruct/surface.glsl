@@ -38,6 +38,14 @@ vec4 quadraticSurface(vec3 l, vec4 z0, vec4 z1, vec4 z2, vec4 b0, vec4 b1, vec4 
     return l.x * z0 + l.y * z1 + l.z * z2 + (4 * l.y * l.z) * b0 + (4 * l.z * l.x) * b1 + (4 * l.x * l.y) * b2;
 }
 
+// Premultiplied colour capped at alpha (the last channel), without a loop: loops count
+// against lavapipe's per-invocation budget (kItemsPerInvocation).
+vec4 colourAtMostAlpha(vec4 value) {
+    if (push.has_alpha == 0) return value;
+    const float a = value[push.channels - 1];
+    return push.channels == 2 ? vec4(min(value.x, a), value.yzw) : vec4(min(value.xyz, vec3(a)), value.w);
+}
+
 // The supersampled grid: (3w) × (3h), row-major.
 uint supersampledWidth() { return kSupersamplingFactor * push.width; }
 uint supersampledHeight() { return kSupersamplingFactor * push.height; }

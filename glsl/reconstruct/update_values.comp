@@ -69,12 +69,8 @@ void main() {
             imageStore(value_weights, int(i), sum);
             continue;
         }
-        vec4 value = imageLoad(surface_values, int(i)) + sum / imageLoad(value_weights, int(i));
-        value = clamp(value, imageLoad(value_low, int(i)), imageLoad(value_high, int(i)));
-        if (push.has_alpha != 0) {
-            const float a = value[push.channels - 1];
-            for (uint k = 0; k + 1 < push.channels; ++k) value[k] = min(value[k], a);
-        }
-        imageStore(surface_values, int(i), value);
+        const vec4 value = imageLoad(surface_values, int(i)) + sum / imageLoad(value_weights, int(i));
+        imageStore(surface_values, int(i),
+                   colourAtMostAlpha(clamp(value, imageLoad(value_low, int(i)), imageLoad(value_high, int(i)))));
     }
 }
