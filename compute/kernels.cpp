@@ -7,6 +7,18 @@
 
 // SPIR-V written by glslangValidator at build time (see CMakeLists.txt).
 #include "spirv/candidates.h"
+#include "spirv/degrade_x.h"
+#include "spirv/degrade_y.h"
+#include "spirv/evaluate_surface.h"
+#include "spirv/initial_bubbles.h"
+#include "spirv/locate_samples.h"
+#include "spirv/project_triangles.h"
+#include "spirv/star_starts.h"
+#include "spirv/transpose_x.h"
+#include "spirv/transpose_y.h"
+#include "spirv/update_bubbles.h"
+#include "spirv/update_values.h"
+#include "spirv/value_bounds.h"
 #include "spirv/edge_cost.h"
 #include "spirv/flip.h"
 #include "spirv/plan.h"
@@ -76,6 +88,19 @@ Kernels createKernels(VulkanContext& context, const SelectRule& rule) {
         k.edge_cost = createKernel(context, k.layout, kSpirvEdgeCost, rule);
         k.row_spans = createKernel(context, k.layout, kSpirvRowSpans, rule);
         k.render = createKernel(context, k.layout, kSpirvRender, rule);
+        ReconstructionKernels& r = k.reconstruction;
+        r.star_starts = createKernel(context, k.layout, kSpirvStarStarts, rule);
+        r.value_bounds = createKernel(context, k.layout, kSpirvValueBounds, rule);
+        r.initial_bubbles = createKernel(context, k.layout, kSpirvInitialBubbles, rule);
+        r.locate_samples = createKernel(context, k.layout, kSpirvLocateSamples, rule);
+        r.evaluate_surface = createKernel(context, k.layout, kSpirvEvaluateSurface, rule);
+        r.degrade_y = createKernel(context, k.layout, kSpirvDegradeY, rule);
+        r.degrade_x = createKernel(context, k.layout, kSpirvDegradeX, rule);
+        r.transpose_x = createKernel(context, k.layout, kSpirvTransposeX, rule);
+        r.transpose_y = createKernel(context, k.layout, kSpirvTransposeY, rule);
+        r.project_triangles = createKernel(context, k.layout, kSpirvProjectTriangles, rule);
+        r.update_values = createKernel(context, k.layout, kSpirvUpdateValues, rule);
+        r.update_bubbles = createKernel(context, k.layout, kSpirvUpdateBubbles, rule);
     } catch (...) {
         destroyKernels(context, k);
         throw;
@@ -84,7 +109,11 @@ Kernels createKernels(VulkanContext& context, const SelectRule& rule) {
 }
 
 void destroyKernels(VulkanContext& context, Kernels& k) {
-    for (VkPipeline pipeline : {k.plan, k.candidates, k.select, k.flip, k.edge_cost, k.row_spans, k.render})
+    const ReconstructionKernels& r = k.reconstruction;
+    for (VkPipeline pipeline : {k.plan, k.candidates, k.select, k.flip, k.edge_cost, k.row_spans, k.render,
+                                r.star_starts, r.value_bounds, r.initial_bubbles, r.locate_samples, r.evaluate_surface,
+                                r.degrade_y, r.degrade_x, r.transpose_x, r.transpose_y, r.project_triangles,
+                                r.update_values, r.update_bubbles})
         if (pipeline) vkDestroyPipeline(context.device, pipeline, nullptr);
     if (k.layout) vkDestroyPipelineLayout(context.device, k.layout, nullptr);
     if (k.set_layout) vkDestroyDescriptorSetLayout(context.device, k.set_layout, nullptr);

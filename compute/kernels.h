@@ -17,6 +17,22 @@ struct SelectRule {
     uint32_t single_round = 0;  // local-max: one round per iteration
 };
 
+// The consistent reconstruction's kernels (glsl/reconstruct/, driven by compute/reconstruct/).
+struct ReconstructionKernels {
+    VkPipeline star_starts = VK_NULL_HANDLE;
+    VkPipeline value_bounds = VK_NULL_HANDLE;
+    VkPipeline initial_bubbles = VK_NULL_HANDLE;
+    VkPipeline locate_samples = VK_NULL_HANDLE;
+    VkPipeline evaluate_surface = VK_NULL_HANDLE;
+    VkPipeline degrade_y = VK_NULL_HANDLE;
+    VkPipeline degrade_x = VK_NULL_HANDLE;
+    VkPipeline transpose_x = VK_NULL_HANDLE;
+    VkPipeline transpose_y = VK_NULL_HANDLE;
+    VkPipeline project_triangles = VK_NULL_HANDLE;
+    VkPipeline update_values = VK_NULL_HANDLE;
+    VkPipeline update_bubbles = VK_NULL_HANDLE;
+};
+
 struct Kernels {
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -27,6 +43,7 @@ struct Kernels {
     VkPipeline edge_cost = VK_NULL_HANDLE;
     VkPipeline row_spans = VK_NULL_HANDLE;
     VkPipeline render = VK_NULL_HANDLE;
+    ReconstructionKernels reconstruction;
 };
 
 Kernels createKernels(VulkanContext& context, const SelectRule& rule);

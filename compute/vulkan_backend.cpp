@@ -10,6 +10,8 @@
 #include "kernels.h"
 #include "layout.h"
 #include "raster.h"
+#include "reconstruct/surface_buffers.h"
+#include "reconstruct/surface_passes.h"
 #include "vulkan_error.h"
 
 namespace ddt {
@@ -58,6 +60,8 @@ struct VulkanBackend::State {
 
     Buffer edge_vertices, edge_neighbours, luma, alpha, gain, status[2], mark, active_list[2], candidate_list,
         round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans;
+    SurfaceBuffers surface;  // the consistent reconstruction's arrays (placeholders until it runs)
+    bool quadratic = false;  // render the reconstructed surface, not the input values
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
     std::vector<uint32_t> spans;  // row_spans downloaded; empty when stale
@@ -72,6 +76,8 @@ struct VulkanBackend::State {
 
     void releaseBuffers() {
         for (Buffer* buffer : buffers()) destroyBuffer(*context, *buffer);
+        destroySurfaceBuffers(*context, surface);
+        quadratic = false;
         if (descriptor_pool) vkDestroyDescriptorPool(context->device, descriptor_pool, nullptr);
         descriptor_pool = VK_NULL_HANDLE;
         descriptor_set = VK_NULL_HANDLE;
@@ -92,6 +98,7 @@ struct VulkanBackend::State {
         p.max_iterations = options.max_iterations;
         p.max_rounds = options.max_rounds;
         p.channels = image->channels;
+        p.quadratic = quadratic ? 1 : 0;
         return p;
     }
 
@@ -99,8 +106,9 @@ struct VulkanBackend::State {
         uint64_t bytes = 0;
         std::string problem;  // "" or the per-buffer limit the job breaks
     };
-    MemoryNeed memoryNeed(uint32_t w, uint32_t h) const;
-    void checkMemory(uint32_t w, uint32_t h);
+    // With `reconstruction`, the consistent reconstruction's arrays too.
+    MemoryNeed memoryNeed(uint32_t w, uint32_t h, bool reconstruction) const;
+    void checkMemory(uint32_t w, uint32_t h, bool reconstruction);
     void createBuffers(const Image& image);
     void writeDescriptors();
     void resetOptimisation();
@@ -112,6 +120,14 @@ struct VulkanBackend::State {
     void recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip);
     void recordControlReadback(VkCommandBuffer commands);
     void computeRowSpans();
+    // The part of a window one per-triangle dispatch covers: rows × columns keeping every
+    // invocation's loops within kRasterLoopBudget.
+    struct PartShape {
+        uint32_t rows, cols;
+    };
+    PartShape partShape(const RenderWindow& window) const;
+    void recordTrianglePart(VkCommandBuffer commands, VkPipeline kernel, const RenderWindow& window, uint32_t y_begin,
+                            uint32_t y_end, uint32_t x_begin, uint32_t x_end);
     void renderPart(const RenderWindow& window, uint32_t y_begin, uint32_t y_end, uint32_t x_begin, uint32_t x_end);
     OptimizeStats finishStats(const Control& control, double cost_init, uint64_t dispatches, double device_ns);
 };
@@ -150,8 +166,13 @@ uint32_t VulkanBackend::validationMessages() const { return state_->context->val
 // with the default rule, 240 with the round-based ones), beyond the heap, though each array
 // fits; an 8192² input has 201 M edges, beyond the texel-buffer elements (and its 3.2 GB
 // edge arrays beyond the largest allocation). maxStorageBufferRange (128 MiB) does not
-// bite: the big arrays are texel buffers. Automatic tiling picks 2816-pixel tiles there.
-VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h) const {
+// bite: the big arrays are texel buffers. The consistent reconstruction adds about 708 bytes
+// per pixel (compute/reconstruct/surface_buffers.h: 3 × 3 supersamples with their hits, sums
+// per half-edge); its supersample arrays reach the texel-buffer elements at 3862² pixels.
+// prepare checks the plain need and reconstruct the whole; memoryNeeded, which sizes
+// automatic tiles without knowing which surface is wanted, gives the whole, so tiles are
+// smaller than the 2816 pixels a plain upscale alone would allow there.
+VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h, bool reconstruction) const {
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &maintenance;
@@ -160,24 +181,28 @@ VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, ui
     const uint64_t edges = gridEdgeCount(w, h), vertices = uint64_t(w) * h;
     const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 4 + (options.active_set ? 2 * 4 : 0) +
                               (rule.single_round ? 0 : 2 * 4);
-    const uint64_t largest = edges * 16;
+    // The reconstruction's largest arrays are its 3 × 3 supersamples per pixel.
+    const uint64_t elements = reconstruction ? std::max(edges, surfaceBufferLargestElements(vertices, edges)) : edges;
+    const uint64_t largest = elements * 16;
     MemoryNeed need;
     // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels.
-    need.bytes = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes;
+    need.bytes = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes +
+                 (reconstruction ? surfaceBufferBytes(vertices, edges) : 0);
     if (edges >= kCopyEntry) need.problem = "more edges than the kernels can index";
-    else if (edges > context->properties.limits.maxTexelBufferElements)
-        need.problem = std::to_string(edges) + " edges, more than the device's " +
+    else if (elements > context->properties.limits.maxTexelBufferElements)
+        need.problem = std::to_string(elements) + (elements == edges ? " edges" : " supersamples") +
+                       ", more than the device's " +
                        std::to_string(context->properties.limits.maxTexelBufferElements) + " texel-buffer elements";
     else if (largest > maintenance.maxMemoryAllocationSize)
-        need.problem = "its edge arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
+        need.problem = "its largest arrays need " + mebibytes(largest) + " each, more than the largest allocation of " +
                        mebibytes(maintenance.maxMemoryAllocationSize);
     return need;
 }
 
 // Refuses, before allocating anything, a job the device cannot hold: as an out-of-memory
 // error, so that a tiled upscale retries with smaller tiles.
-void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h) {
-    const MemoryNeed need = memoryNeed(w, h);
+void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h, bool reconstruction) {
+    const MemoryNeed need = memoryNeed(w, h, reconstruction);
     std::string problem = need.problem;
     const uint64_t available = ddt::memoryAvailable(*context);
     if (problem.empty() && need.bytes > available)
@@ -189,7 +214,8 @@ void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h) {
 }
 
 uint64_t VulkanBackend::memoryNeeded(uint32_t width, uint32_t height, uint32_t) const {
-    const State::MemoryNeed need = state_->memoryNeed(width, height);
+    // Whether the upscale reconstructs is not known here: a tile must fit either surface.
+    const State::MemoryNeed need = state_->memoryNeed(width, height, true);
     return need.problem.empty() ? need.bytes : UINT64_MAX;
 }
 
@@ -219,6 +245,7 @@ void VulkanBackend::State::createBuffers(const Image& img) {
     row_spans = createBuffer(c, uint64_t(height) * 8 + 4, device, VK_FORMAT_R32_UINT);
     // A placeholder until the first render sizes it.
     band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32G32B32A32_SFLOAT);
+    surface = createSurfacePlaceholders(c);
 
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, kBindingCount},
                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount}};
@@ -257,6 +284,8 @@ void VulkanBackend::State::writeDescriptors() {
     by_binding[kBindingPartialSums] = &partial_sums;
     by_binding[kBindingControl] = &control;
     by_binding[kBindingArgs] = &args;
+    for (uint32_t i = 0; i < kBindingCount; ++i)
+        if (const Buffer* b = surface.atBinding(i)) by_binding[i] = b;
 
     VkWriteDescriptorSet writes[kBindingCount];
     VkDescriptorBufferInfo buffer_infos[kBindingCount];
@@ -284,7 +313,7 @@ void VulkanBackend::prepare(const Image& image) {
     s.height = image.height;
     const uint64_t edges = gridEdgeCount(image.width, image.height);
     s.edge_count = uint32_t(std::min<uint64_t>(edges, UINT32_MAX));
-    s.checkMemory(image.width, image.height);
+    s.checkMemory(image.width, image.height, false);
 
     const Mesh mesh = buildGridMesh(image.width, image.height);
     const CostField field = costFieldOf(image);
@@ -309,6 +338,7 @@ void VulkanBackend::State::resetOptimisation() {
     computeBarrier(commands.buffer());
     commands.submitAndWait();
     spans.clear();
+    quadratic = false;
 }
 
 double VulkanBackend::State::meshCost() {
@@ -400,10 +430,6 @@ OptimizeStats VulkanBackend::State::finishStats(const Control& c, double cost_in
     stats.capped = c.capped != 0 || c.phase != kPhaseDone;
     spans.clear();
     return stats;
-}
-
-void VulkanBackend::reconstruct(const DegradationModel&) {
-    throw UserError("--reconstruct consistent is not implemented on the Vulkan backend yet; use --backend cpu");
 }
 
 OptimizeStats VulkanBackend::optimize() {
@@ -528,10 +554,11 @@ void VulkanBackend::State::computeRowSpans() {
     downloadFromBuffer(*context, row_spans, spans.data(), spans.size() * 4);
 }
 
-// Renders output rows [y_begin, y_end), columns [x_begin, x_end) of the window into the
-// band buffer, which holds rows of the window's width from y_begin on.
-void VulkanBackend::State::renderPart(const RenderWindow& window, uint32_t y_begin, uint32_t y_end, uint32_t x_begin,
-                                      uint32_t x_end) {
+// Records `kernel`, a per-triangle pass (render.comp's frame), over output rows
+// [y_begin, y_end) and columns [x_begin, x_end) of the window: 2D dispatches over the edge
+// rows whose triangles may touch them.
+void VulkanBackend::State::recordTrianglePart(VkCommandBuffer commands, VkPipeline kernel, const RenderWindow& window,
+                                              uint32_t y_begin, uint32_t y_end, uint32_t x_begin, uint32_t x_end) {
     // Crop rows the part samples, and the edge rows whose triangles touch them.
     const OutputSize out = window.out;
     const int64_t unit = vertexCoord(1, out.height);
@@ -559,33 +586,85 @@ void VulkanBackend::State::renderPart(const RenderWindow& window, uint32_t y_beg
     p.crop_y = window.crop_y;
     p.band_first_col = window.x_begin;
     p.band_width = window.width();
-    CommandBatch commands(*context);
     const uint32_t groups_per_row = (3 * width - 2 + kGroupSize - 1) / kGroupSize;
     for (uint32_t row = first_row; row <= last_row && first_row <= last_row; row += kMaxGroups) {
         p.first_edge_row = row;
-        dispatch2D(commands.buffer(), kernels.render, bindings(), p, groups_per_row,
-                   std::min(last_row - row + 1, kMaxGroups));
+        dispatch2D(commands, kernel, bindings(), p, groups_per_row, std::min(last_row - row + 1, kMaxGroups));
     }
+}
+
+// Renders output rows [y_begin, y_end), columns [x_begin, x_end) of the window into the
+// band buffer, which holds rows of the window's width from y_begin on.
+void VulkanBackend::State::renderPart(const RenderWindow& window, uint32_t y_begin, uint32_t y_end, uint32_t x_begin,
+                                      uint32_t x_end) {
+    CommandBatch commands(*context);
+    recordTrianglePart(commands.buffer(), kernels.render, window, y_begin, y_end, x_begin, x_end);
     commands.submitAndWait();
+}
+
+// An invocation rasterises two triangles, each looping over its rows and columns within the
+// part; keep that below lavapipe's loop budget (kItemsPerInvocation).
+VulkanBackend::State::PartShape VulkanBackend::State::partShape(const RenderWindow& window) const {
+    const uint32_t widest =
+        uint32_t(std::ceil(double(spans[2 * height] + 1) * window.out.width / window.input_width)) + 2;
+    const uint32_t cols = std::min(window.width(), kRasterLoopBudget / 4);
+    return {std::max(1u, kRasterLoopBudget / (std::min(widest, cols) + 2) - 1), cols};
+}
+
+void VulkanBackend::reconstruct(const DegradationModel& model) {
+    static_assert(kSupersamplingFactor == kSupersampling && kValueBoundsMargin == kOvershootMargin,
+                  "glsl/layout.h follows core/reconstruct.h");
+    State& s = *state_;
+    VulkanContext& c = *s.context;
+    s.checkMemory(s.width, s.height, true);
+    if (s.spans.empty()) s.computeRowSpans();
+    // The taps are a few numbers from core's own formula: computed here and uploaded.
+    const std::vector<float> taps_x = degradationTaps(model.sigma_x), taps_y = degradationTaps(model.sigma_y);
+    std::vector<float> taps = taps_x;
+    taps.insert(taps.end(), taps_y.begin(), taps_y.end());
+    destroySurfaceBuffers(c, s.surface);
+    s.surface = createSurfaceBuffers(c, s.width, s.height, s.edge_count, uint32_t(taps.size()));
+    s.writeDescriptors();
+    uploadToBuffer(c, s.surface.taps, taps.data(), taps.size() * 4);
+
+    // The supersampled grid as a window of the renderer: an output of 3w × 3h, crop 0.
+    const RenderWindow grid = wholeRows(s.width, s.height, {kSupersampling * s.width, kSupersampling * s.height}, 0,
+                                        kSupersampling * s.height);
+    const State::PartShape part = s.partShape(grid);
+    CommandBatch batch(c);
+    SurfacePassJob job;
+    job.commands = batch.buffer();
+    job.kernels = &s.kernels.reconstruction;
+    job.bindings = s.bindings();
+    job.push = s.push();
+    job.push.taps_x_radius = uint32_t(taps_x.size() / 2);
+    job.push.taps_y_radius = uint32_t(taps_y.size() / 2);
+    const SampleType type = s.image->sample_type;
+    job.push.integer_samples = type == SampleType::UInt8 || type == SampleType::UInt16 ? 1 : 0;
+    job.pixels = &s.pixels;
+    job.triangle_pass = [&](VkPipeline kernel) {
+        for (uint32_t y = 0; y < grid.y_end; y += part.rows)
+            for (uint32_t x = 0; x < grid.x_end; x += part.cols)
+                s.recordTrianglePart(batch.buffer(), kernel, grid, y, std::min(grid.y_end, y + part.rows), x,
+                                     std::min(grid.x_end, x + part.cols));
+    };
+    recordInitialSurface(job, s.surface);
+    if (!model.identity()) recordSartSteps(job, s.surface, kReconstructIterations);
+    batch.submitAndWait();
+    s.quadratic = true;
 }
 
 void VulkanBackend::renderWindow(const RenderWindow& window, float* rows) {
     State& s = *state_;
     if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return;
     if (s.spans.empty()) s.computeRowSpans();
-    const OutputSize out = window.out;
     const uint32_t window_w = window.width();
-    // Part size: an invocation rasterises two triangles, each looping over its rows and
-    // columns within the part; keep that below lavapipe's loop budget (kItemsPerInvocation).
-    const uint32_t widest =
-        uint32_t(std::ceil(double(s.spans[2 * s.height] + 1) * out.width / window.input_width)) + 2;
-    const uint32_t part_cols = std::min(window_w, kRasterLoopBudget / 4);
-    const uint32_t loop_rows = std::max(1u, kRasterLoopBudget / (std::min(widest, part_cols) + 2) - 1);
+    const State::PartShape part = s.partShape(window);
     const VkDeviceSize row_bytes = VkDeviceSize(window_w) * 16;  // an rgba32f texel per pixel
     const VkDeviceSize band_bytes =
         std::min<VkDeviceSize>(kBandBytes, VkDeviceSize(s.context->properties.limits.maxTexelBufferElements) * 16);
     const uint32_t band_rows =
-        uint32_t(std::min<VkDeviceSize>(loop_rows, std::max<VkDeviceSize>(1, band_bytes / row_bytes)));
+        uint32_t(std::min<VkDeviceSize>(part.rows, std::max<VkDeviceSize>(1, band_bytes / row_bytes)));
     const VkDeviceSize band_needed = std::min<VkDeviceSize>(window.height(), band_rows) * row_bytes;
     if (s.band.size < band_needed) {
         destroyBuffer(*s.context, s.band);
@@ -596,8 +675,8 @@ void VulkanBackend::renderWindow(const RenderWindow& window, float* rows) {
     const uint32_t c = s.image->channels;
     for (uint32_t y = window.y_begin; y < window.y_end; y += band_rows) {
         const uint32_t band_end = std::min(window.y_end, y + band_rows);
-        for (uint32_t x = window.x_begin; x < window.x_end; x += part_cols)
-            s.renderPart(window, y, band_end, x, std::min(window.x_end, x + part_cols));
+        for (uint32_t x = window.x_begin; x < window.x_end; x += part.cols)
+            s.renderPart(window, y, band_end, x, std::min(window.x_end, x + part.cols));
         // The band holds four floats per pixel; the caller wants `channels`.
         const size_t pixels = size_t(band_end - y) * window_w;
         float* band_rows_out = rows + size_t(y - window.y_begin) * window_w * c;

@@ -30,6 +30,17 @@ const uint kMaxGroups = 65535;
 // inner iterations per item, so 16 items stay far below; a 2048² ExpROI round handled with
 // 823 items per invocation lost decisions and corrupted the mesh.
 const uint kItemsPerInvocation = 16;
+// Pixels are supersampled kSupersampling × kSupersampling by the reconstruction (as
+// core/reconstruct.h, which the host checks against).
+const uint kSupersamplingFactor = 3;
+// core/reconstruct.h's kOvershootMargin: a value may leave its 3 × 3 input range by this
+// fraction of it.
+#ifdef __cplusplus
+constexpr  // a float const is not a C++ constant expression
+#else
+const
+#endif
+float kValueBoundsMargin = 0.25;
 
 // Candidate status of an edge during one iteration.
 const uint kStatusNone = 0;       // not a candidate
@@ -73,7 +84,24 @@ const uint kBindingRowSpans = 15;       // per edge row: first and last vertex r
 const uint kBindingPartialSums = 16;    // per workgroup of edge_cost
 const uint kBindingControl = 17;        // storage buffer: Control
 const uint kBindingArgs = 18;           // storage buffer: kArgsCount indirect dispatch arguments
-const uint kBindingCount = 19;
+// The consistent reconstruction (glsl/reconstruct/). Supersamples: kSupersampling² per input
+// pixel, (3w) × (3h) row-major. A half-edge 2e + side is edge e seen from its left (0) or
+// right (1) triangle; each triangle owns the three half-edges facing it.
+const uint kBindingHits = 19;               // per supersample, rgba32ui: triangle slot, then λ0..λ2 as float bits
+const uint kBindingSupersamples = 20;       // per supersample: the surface, later Dᵀ of the residual
+const uint kBindingBetweenAxes = 21;        // (3w) × h: the separable passes' intermediate
+const uint kBindingResidual = 22;           // per input pixel: y − D(S) (or 1 for the weights)
+const uint kBindingTaps = 23;               // r32f: the x taps, then the y taps
+const uint kBindingHalfEdgeValueSums = 24;  // per half-edge: its triangle's ⟨λ of the vertex facing it, ρ⟩
+const uint kBindingHalfEdgeBubbleSums = 25; // per half-edge: its triangle's ⟨4 λp λq of its edge, ρ⟩
+const uint kBindingSurfaceValues = 26;      // per vertex: the reconstructed values
+const uint kBindingValueLow = 27;           // per vertex: the bounds of the values
+const uint kBindingValueHigh = 28;
+const uint kBindingValueWeights = 29;       // per vertex: SART's normaliser ⟨φ, Dᵀ1⟩
+const uint kBindingBubbles = 30;            // per edge
+const uint kBindingBubbleWeights = 31;      // per edge: ⟨φ, Dᵀ1⟩
+const uint kBindingStarStart = 32;          // r32ui per vertex: its lowest-id edge, where its star walk starts
+const uint kBindingCount = 33;
 
 // Counters and state of the optimisation, written by the kernels, read by the host after
 // each submit. Counters that kernels append to are updated with atomics.
@@ -104,7 +132,8 @@ struct PushConstants {
     uint max_iterations;       // safety caps, reported when reached
     uint max_rounds;
     uint channels;
-    uint step;                 // plan: which step to plan (kArgs…); edge_cost: 1 stores every cost
+    uint step;                 // plan: which step to plan (kArgs…); edge_cost: 1 stores every cost;
+                               // reconstruction updates: 0 stores the weights, 1 applies a SART step
     uint first_edge_row;       // render: the first edge row of the dispatch (its y dimension)
     uint first_row;            // render: the band's output rows
     uint row_count;
@@ -118,6 +147,10 @@ struct PushConstants {
     uint crop_y;
     uint band_first_col;       // render: the band's first output column and its width in pixels
     uint band_width;
+    uint quadratic;            // render: 1 renders the reconstructed surface (values and bubbles)
+    uint taps_x_radius;        // reconstruction: the degradation's taps per axis, 2r + 1 each
+    uint taps_y_radius;
+    uint integer_samples;      // reconstruction: 1 bounds the values to [0, 1] (8- and 16-bit input)
 };
 
 // Workgroups for `count` items: kItemsPerInvocation per invocation, more only past
@@ -132,7 +165,7 @@ uint groupsFor(uint count) {
 
 #ifdef __cplusplus
 static_assert(sizeof(Control) == 16 * 4, "Control layout");
-static_assert(sizeof(PushConstants) == 23 * 4, "PushConstants layout");
+static_assert(sizeof(PushConstants) == 27 * 4, "PushConstants layout");
 }  // namespace ddt
 #endif
 #endif

@@ -9,24 +9,42 @@
 // window so that no invocation loops more than lavapipe allows (see kItemsPerInvocation).
 // The mesh may be a tile's: the crop at (crop_x, crop_y) of the whole input, whose vertices
 // are placed at whole-input coordinates so that sampling is the untiled image's.
+// With push.quadratic it renders the consistent reconstruction (glsl/reconstruct/): the
+// reconstructed vertex values plus the edge bubbles, each sample clamped to its triangle's
+// vertex range and premultiplied colour to at most alpha, as core's MeshRenderer.
 #include "common.glsl"
 #include "raster.h"
+#include "reconstruct/surface.glsl"
 
-void renderTriangle(uint i0, uint i1, uint i2) {
+vec4 vertexValue(uint id) { return push.quadratic != 0 ? imageLoad(surface_values, int(id)) : imageLoad(pixels, int(id)); }
+
+// The quadratic surface, clamped as core's MeshRenderer::renderWindow.
+vec4 clampedQuadratic(vec3 l, vec4 z[3], vec4 b[3]) {
+    vec4 value = quadraticSurface(l, z[0], z[1], z[2], b[0], b[1], b[2]);
+    return colourAtMostAlpha(clamp(value, min(min(z[0], z[1]), z[2]), max(max(z[0], z[1]), z[2])));
+}
+
+// Triangle `slot` (see reconstruct/surface.glsl) with vertices i0, i1, i2.
+void renderTriangle(uint slot, uint i0, uint i1, uint i2) {
     const uint w = push.width;  // the crop's width, which vertex ids count in
     const uint in_w = push.input_width, in_h = push.input_height;
     const uint out_w = push.out_width, out_h = push.out_height;
     const uint ids[3] = uint[3](i0, i1, i2);
     int64_t px[3], py[3];
     vec4 z[3];  // premultiplied vertex values
+    vec4 b[3];  // bubbles of the edges opposite them (quadratic only)
     uint x0 = in_w, x1 = 0, y0 = in_h, y1 = 0;
     for (int k = 0; k < 3; ++k) {
         const uint x = ids[k] % w + push.crop_x, y = ids[k] / w + push.crop_y;
         px[k] = vertexCoord(x, out_w);
         py[k] = vertexCoord(y, out_h);
-        z[k] = imageLoad(pixels, int(ids[k]));
+        z[k] = vertexValue(ids[k]);
         x0 = min(x0, x); x1 = max(x1, x);
         y0 = min(y0, y); y1 = max(y1, y);
+    }
+    if (push.quadratic != 0) {
+        const uvec3 edges = slotEdges(slot);
+        for (int k = 0; k < 3; ++k) b[k] = imageLoad(bubbles, int(edges[k]));
     }
     const uint band_end = push.first_row + push.row_count;
     const uint x_lo = max(firstSampleAtOrAfter(x0, in_w, out_w), push.first_col);
@@ -49,7 +67,8 @@ void renderTriangle(uint i0, uint i1, uint i2) {
             if (!inside) continue;
             const float total = float(weight[0] + weight[1] + weight[2]);
             const vec3 lambda = vec3(float(weight[0]), float(weight[1]), float(weight[2])) / total;
-            const vec4 value = lambda.x * z[0] + lambda.y * z[1] + lambda.z * z[2];
+            const vec4 value = push.quadratic != 0 ? clampedQuadratic(lambda, z, b)
+                                                   : lambda.x * z[0] + lambda.y * z[1] + lambda.z * z[2];
             imageStore(band, int((y - push.first_row) * push.band_width + x - push.band_first_col), value);
         }
     }
@@ -62,6 +81,6 @@ void main() {
     if (row >= push.height || gl_GlobalInvocationID.x >= row_length || e >= push.edge_count) return;
     const uvec4 v = verticesOf(e);
     const uvec4 n = neighboursOf(e);
-    if (v.z != kNone && e < n.x && e < n.y) renderTriangle(v.x, v.y, v.z);
-    if (v.w != kNone && e < n.z && e < n.w) renderTriangle(v.y, v.x, v.w);
+    if (v.z != kNone && e < n.x && e < n.y) renderTriangle(2 * e, v.x, v.y, v.z);
+    if (v.w != kNone && e < n.z && e < n.w) renderTriangle(2 * e + 1, v.y, v.x, v.w);
 }
