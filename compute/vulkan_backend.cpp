@@ -612,8 +612,7 @@ VulkanBackend::State::PartShape VulkanBackend::State::partShape(const RenderWind
 }
 
 void VulkanBackend::reconstruct(const DegradationModel& model) {
-    static_assert(kSupersamplingFactor == kSupersampling && kValueBoundsMargin == kOvershootMargin,
-                  "glsl/layout.h follows core/reconstruct.h");
+    static_assert(kSupersamplingFactor == kSupersampling, "glsl/layout.h follows core/reconstruct.h");
     State& s = *state_;
     VulkanContext& c = *s.context;
     s.checkMemory(s.width, s.height, true);
@@ -641,6 +640,7 @@ void VulkanBackend::reconstruct(const DegradationModel& model) {
     job.push.taps_y_radius = uint32_t(taps_y.size() / 2);
     const SampleType type = s.image->sample_type;
     job.push.integer_samples = type == SampleType::UInt8 || type == SampleType::UInt16 ? 1 : 0;
+    job.push.quantisation_tolerance = quantisationTolerance(type);
     job.pixels = &s.pixels;
     job.triangle_pass = [&](VkPipeline kernel) {
         for (uint32_t y = 0; y < grid.y_end; y += part.rows)

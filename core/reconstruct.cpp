@@ -18,18 +18,6 @@ double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * st
 
 int clampIndex(int i, int size) { return std::clamp(i, 0, size - 1); }
 
-// Half a quantisation step of the sample type: how far a stored value may be from the value
-// it stands for. Float samples are taken as exact.
-float quantisationTolerance(SampleType type) {
-    switch (type) {
-    case SampleType::UInt8: return 0.5f / 255.0f;
-    case SampleType::UInt16: return 0.5f / 65535.0f;
-    case SampleType::Half:
-    case SampleType::Float: return 0.0f;
-    }
-    return 0.0f;
-}
-
 // The part of a residual beyond the tolerance: a surface whose degraded value lies within the
 // input's quantisation interval is consistent with it, and chasing the rest would only
 // sharpen the rounding noise.
@@ -293,6 +281,16 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
 }
 
 }  // namespace
+
+float quantisationTolerance(SampleType type) {
+    switch (type) {
+    case SampleType::UInt8: return 0.5f / 255.0f;
+    case SampleType::UInt16: return 0.5f / 65535.0f;
+    case SampleType::Half:
+    case SampleType::Float: return 0.0f;
+    }
+    return 0.0f;
+}
 
 DegradationModel degradationFor(double scale_x, double scale_y) { return {sigmaFor(scale_x), sigmaFor(scale_y)}; }
 

@@ -64,6 +64,10 @@ struct DegradationModel {
 };
 DegradationModel degradationFor(double scale_x, double scale_y);
 
+// Half a quantisation step of the sample type: how far a stored value may be from the value it
+// stands for (float samples are taken as exact). Residuals count only beyond it.
+float quantisationTolerance(SampleType type);
+
 // The model's taps on the supersampling: weight of offset t / kSupersampling for t in
 // [−radius, radius], normalised; {1} for sigma 0.
 std::vector<float> degradationTaps(double sigma);

@@ -33,14 +33,6 @@ const uint kItemsPerInvocation = 16;
 // Pixels are supersampled kSupersampling × kSupersampling by the reconstruction (as
 // core/reconstruct.h, which the host checks against).
 const uint kSupersamplingFactor = 3;
-// core/reconstruct.h's kOvershootMargin: a value may leave its 3 × 3 input range by this
-// fraction of it.
-#ifdef __cplusplus
-constexpr  // a float const is not a C++ constant expression
-#else
-const
-#endif
-float kValueBoundsMargin = 0.25;
 
 // Candidate status of an edge during one iteration.
 const uint kStatusNone = 0;       // not a candidate
@@ -151,6 +143,7 @@ struct PushConstants {
     uint taps_x_radius;        // reconstruction: the degradation's taps per axis, 2r + 1 each
     uint taps_y_radius;
     uint integer_samples;      // reconstruction: 1 bounds the values to [0, 1] (8- and 16-bit input)
+    float quantisation_tolerance;  // reconstruction: residuals count beyond this (core/reconstruct.h)
 };
 
 // Workgroups for `count` items: kItemsPerInvocation per invocation, more only past
@@ -165,7 +158,7 @@ uint groupsFor(uint count) {
 
 #ifdef __cplusplus
 static_assert(sizeof(Control) == 16 * 4, "Control layout");
-static_assert(sizeof(PushConstants) == 27 * 4, "PushConstants layout");
+static_assert(sizeof(PushConstants) == 28 * 4, "PushConstants layout");
 }  // namespace ddt
 #endif
 #endif

@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// D along x, then the residual: residual[y][x] = input[y][x] − Σ_t tap_x(t) · between_axes[y][3x + 1 + t].
+// D along x, then the residual: residual[y][x] = input[y][x] − Σ_t tap_x(t) · between_axes[y][3x + 1 + t],
+// counted only beyond the quantisation tolerance, as core's beyondTolerance.
 #include "../common.glsl"
 #include "surface.glsl"
 #include "degradation.glsl"
@@ -13,6 +14,8 @@ void main() {
         vec4 sum = vec4(0);
         for (int t = -radius; t <= radius; ++t)
             sum += tapX(t) * imageLoad(between_axes, int(y * sub_w) + tapSample(int(x), t, sub_w));
-        imageStore(residual, int(i), imageLoad(pixels, int(i)) - sum);
+        const vec4 difference = imageLoad(pixels, int(i)) - sum;
+        const vec4 beyond = max(abs(difference) - push.quantisation_tolerance, vec4(0));
+        imageStore(residual, int(i), sign(difference) * beyond);
     }
 }

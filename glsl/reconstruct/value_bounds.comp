@@ -1,8 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Once per reconstruction: the range each vertex value must stay in, as core's boundsOf: its
-// 3 × 3 input neighbourhood's, widened by kValueBoundsMargin of it, within [0, 1] for integer
-// sample types.
+// 3 × 3 input neighbourhood's, within [0, 1] for integer sample types.
 #include "../common.glsl"
 #include "surface.glsl"
 
@@ -17,9 +16,6 @@ void main() {
                 lo = min(lo, value);
                 hi = max(hi, value);
             }
-        const vec4 margin = kValueBoundsMargin * (hi - lo);
-        lo -= margin;
-        hi += margin;
         if (push.integer_samples != 0) {
             lo = max(lo, vec4(0));
             hi = min(hi, vec4(1));
