@@ -33,9 +33,10 @@ public:
     // The current mesh (for tests and checks).
     virtual Mesh mesh() = 0;
 
-    // Bytes prepare, optimize and render need for a width × height input (UINT64_MAX when
-    // one of its buffers exceeds a per-buffer limit of the device), and the bytes available.
-    virtual uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const = 0;
+    // Bytes prepare, optimize, render and, with `reconstruction`, reconstruct need for a
+    // width × height input (UINT64_MAX when one of its buffers exceeds a per-buffer limit of
+    // the device), and the bytes available.
+    virtual uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const = 0;
     virtual uint64_t memoryAvailable() const = 0;
 
     // The image given to prepare.

@@ -47,10 +47,10 @@ public:
     // the sweeps' per-edge state (about 16 bytes per edge, ~3 edges per vertex); then the
     // reconstruction's: per vertex 9 sample hits (16 bytes) and 9 supersamples, bubbles and
     // double sums per value (edges counted three per vertex).
-    uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const override {
+    uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t reconstruction = 9 * 16 + channels * (9 * 4 * 2 + 4 * 4 * 4 + 4 * 16 * 2);
-        return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + reconstruction);
+        const uint64_t surface = reconstruction ? 9 * 16 + channels * (9 * 4 * 2 + 4 * 4 * 4 + 4 * 16 * 2) : 0;
+        return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + surface);
     }
 
     // Half the machine's memory: the input, the output bands and the rest of the process

@@ -30,7 +30,7 @@ struct Settings {
     uint32_t tile = 0;        // tile side in input pixels; 0 = automatic
     std::string backend = "vulkan";
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
-    std::string reconstruct = "plain";  // the surface: "consistent" or "plain" (core/reconstruct.h)
+    std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/reconstruct.h)
     int device = -1;           // Vulkan device index; -1 = choose
     bool active_set = true;    // Vulkan: re-test only edges a flip may have changed
     bool list_devices = false;

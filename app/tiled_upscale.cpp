@@ -69,8 +69,9 @@ void addStats(OptimizeStats& total, const OptimizeStats& tile) {
 
 // Whether a job fits with 1/8 of the available memory to spare: drivers round allocations
 // up and keep their own, and an estimate is only an estimate.
-bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels) {
-    const uint64_t needed = backend.memoryNeeded(width, height, channels), available = backend.memoryAvailable();
+bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) {
+    const uint64_t needed = backend.memoryNeeded(width, height, channels, reconstruction);
+    const uint64_t available = backend.memoryAvailable();
     return needed != UINT64_MAX && needed <= available - available / 8;
 }
 
@@ -171,10 +172,11 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
 }  // namespace
 
 uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
-                           uint32_t overlap) {
-    if (fits(backend, width, height, channels)) return 0;
+                           uint32_t overlap, bool reconstruction) {
+    if (fits(backend, width, height, channels, reconstruction)) return 0;
     auto crop_fits = [&](uint32_t side) {
-        return fits(backend, std::min(width, side + 2 * overlap), std::min(height, side + 2 * overlap), channels);
+        return fits(backend, std::min(width, side + 2 * overlap), std::min(height, side + 2 * overlap), channels,
+                    reconstruction);
     };
     for (uint32_t side = std::max(width, height) / 256 * 256; side >= 256; side -= 256)
         if (crop_fits(side)) return side;
@@ -189,7 +191,8 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
     const uint32_t overlap = std::max(1u, options.overlap);
     const uint32_t largest_side = std::max(image.width, image.height);
     uint32_t side =
-        options.tile ? options.tile : automaticTileSide(backend, image.width, image.height, image.channels, overlap);
+        options.tile ? options.tile : automaticTileSide(backend, image.width, image.height, image.channels, overlap,
+                                                     options.reconstruct);
     if (side == 0 || side > largest_side) side = largest_side;
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);

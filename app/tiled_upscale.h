@@ -38,11 +38,12 @@ struct TileOptions {
     bool reconstruct = false;            // each tile's surface: consistent (core/reconstruct.h) or plain
 };
 
-// The tile side automatic tiling picks for a width × height input with `channels`
-// channels: 0 when it fits the backend untiled, else the largest multiple of 256 (or 128,
-// then 64) whose crops fit; either with 1/8 of the backend's memory to spare.
+// The tile side automatic tiling picks for a width × height input with `channels` channels
+// (and the consistent surface, with `reconstruction`): 0 when it fits the backend untiled,
+// else the largest multiple of 256 (or 128, then 64) whose crops fit; either with 1/8 of the
+// backend's memory to spare.
 uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
-                           uint32_t overlap);
+                           uint32_t overlap, bool reconstruction);
 
 // Upscales `image` to `out` and hands the output rows to `sink` in order, each row exactly
 // once: sink(y_begin, y_end, rows) with out.width × channels floats per row. `on_step` is

@@ -139,6 +139,7 @@ void ImageJob::process(Backend& backend) {
         mark = std::chrono::steady_clock::now();
         phase = step.phase;
         // Progress shows the reconstruction as part of optimizing: both shape the surface.
+        if (phase == TilePhase::Reconstruct) return;
         reporter_.stage(index_, task_.input, phase == TilePhase::Render ? Stage::Render : Stage::Optimize, step.tile,
                         step.tiles);
         if (step.tiles > 1 && !told_tiles && !settings_.tile) {

@@ -169,9 +169,8 @@ uint32_t VulkanBackend::validationMessages() const { return state_->context->val
 // bite: the big arrays are texel buffers. The consistent reconstruction adds about 708 bytes
 // per pixel (compute/reconstruct/surface_buffers.h: 3 × 3 supersamples with their hits, sums
 // per half-edge); its supersample arrays reach the texel-buffer elements at 3862² pixels.
-// prepare checks the plain need and reconstruct the whole; memoryNeeded, which sizes
-// automatic tiles without knowing which surface is wanted, gives the whole, so tiles are
-// smaller than the 2816 pixels a plain upscale alone would allow there.
+// prepare checks the plain need and reconstruct the whole; automatic tiles are sized for the
+// surface the upscale asks for.
 VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h, bool reconstruction) const {
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -213,9 +212,8 @@ void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h, bool reconstructi
                                 context->info.name + ": " + problem + "; try --tile or --backend cpu");
 }
 
-uint64_t VulkanBackend::memoryNeeded(uint32_t width, uint32_t height, uint32_t) const {
-    // Whether the upscale reconstructs is not known here: a tile must fit either surface.
-    const State::MemoryNeed need = state_->memoryNeed(width, height, true);
+uint64_t VulkanBackend::memoryNeeded(uint32_t width, uint32_t height, uint32_t, bool reconstruction) const {
+    const State::MemoryNeed need = state_->memoryNeed(width, height, reconstruction);
     return need.problem.empty() ? need.bytes : UINT64_MAX;
 }
 

@@ -51,7 +51,7 @@ public:
     void reconstruct(const DegradationModel& model) override;
     void renderWindow(const RenderWindow& window, float* rows) override;
     Mesh mesh() override;
-    uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const override;
+    uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override;
     uint64_t memoryAvailable() const override;
     const Image& preparedImage() const override;
 

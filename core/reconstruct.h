@@ -1,4 +1,5 @@
-// Consistent reconstruction on the optimised mesh (`--reconstruct consistent`, the default).
+// Consistent reconstruction on the optimised mesh (`--reconstruct consistent`, the default;
+// `--reconstruct plain` renders the paper's surface).
 //
 // Plain DDT takes the input's pixel values as point samples of a surface that is linear on
 // each triangle. But a pixel of a downscaled picture or of a camera is an average over its

@@ -295,7 +295,7 @@ void checkLargeUpscale(uint32_t side_px) {
     VulkanOptions options;
     options.validation = true;
     VulkanBackend backend(options);
-    const uint32_t side = automaticTileSide(backend, image.width, image.height, image.channels, kDefaultOverlap);
+    const uint32_t side = automaticTileSide(backend, image.width, image.height, image.channels, kDefaultOverlap, false);
     CHECK(side > 0);
     const size_t row_floats = size_t(out.width) * image.channels;
     uint32_t next_row = 0, tiles = 0;
