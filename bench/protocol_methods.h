@@ -1,8 +1,7 @@
 // The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peer libvips'
-// Nohalo, and DDT plain and consistent on the CPU and on the Vulkan
-// backend's default variant. Availability is probed once, up front: a column that cannot
-// run here keeps its place as "n/a" with the reason, and runs as soon as it can (e.g. the
-// Vulkan backend's reconstruct, which throws "not implemented" today).
+// Nohalo, and DDT plain and consistent on the CPU and on the Vulkan backend's default
+// variant. Availability is probed once, up front: a column that cannot run here (no Vulkan
+// device, libvips misaligned) keeps its place as "n/a" with the reason.
 #pragma once
 
 #include <string>
