@@ -52,6 +52,25 @@ std::optional<double> meanQuality(const std::vector<const ImageResult*>& images,
     });
 }
 
+// The mean of `value` over protocol A's images at `factor` in `set` for the protocol-table
+// method `key`, or nothing if any lacks it.
+std::optional<double> meanProtocolAQuality(const BenchResults& results, uint32_t factor, const std::string& set,
+                                           const std::string& key, const QualityValue& value) {
+    double total = 0.0;
+    size_t count = 0;
+    for (const ProtocolImageResult& image : results.protocol_images) {
+        if (image.protocol != "A" || !(image.factor == Magnification{factor, 1}) ||
+            (set != kAllImages && image.set != set))
+            continue;
+        auto found = image.scores.find(key);
+        if (found == image.scores.end()) return std::nullopt;
+        total += value(found->second.quality);
+        ++count;
+    }
+    if (count == 0) return std::nullopt;
+    return total / double(count);
+}
+
 // Every run of a method gives the same mesh; the statistics are those of the first.
 const ddt::OptimizeStats& statsOf(const DdtMeasurement& m) { return m.runs.front().stats; }
 
@@ -175,6 +194,12 @@ Table qualityTable(const BenchResults& results) {
         {"UIQI", [](const ddt::QualityScores& q) { return q.uiqi; }},
         {"SSIM", [](const ddt::QualityScores& q) { return q.ssim; }},
     };
+    // The consistent surface's column comes from the protocol tables' protocol A, which is
+    // this table's protocol on the same originals (absent when they did not run).
+    const Upscaler* consistent = nullptr;
+    for (const Upscaler& u : results.upscalers)
+        if (u.kind == UpscalerKind::Ddt && u.consistent && u.ddt.backend == "cpu") consistent = &u;
+    if (consistent) table.columns.push_back(consistent->label + " (protocol tables)");
     std::vector<std::string> sets = results.set_names;
     sets.push_back(kAllImages);
     for (uint32_t factor : results.factors)
@@ -185,6 +210,7 @@ Table qualityTable(const BenchResults& results) {
             for (const auto& [label, value] : metrics) {
                 TableRow row{{std::to_string(factor), set}, section, label, {}, 4};
                 for (const std::string& key : keys_in_order) row.values.push_back(meanQuality(images, key, value));
+                if (consistent) row.values.push_back(meanProtocolAQuality(results, factor, set, consistent->key, value));
                 table.rows.push_back(row);
             }
         }
