@@ -610,7 +610,8 @@ VulkanBackend::State::PartShape VulkanBackend::State::partShape(const RenderWind
 }
 
 void VulkanBackend::reconstruct(const DegradationModel& model) {
-    static_assert(kSupersamplingFactor == kSupersampling, "glsl/layout.h follows core/reconstruct.h");
+    static_assert(kSupersamplingFactor == kSupersampling && kSartRelaxation == kRelaxation,
+                  "glsl/layout.h follows core/reconstruct.h");
     State& s = *state_;
     VulkanContext& c = *s.context;
     s.checkMemory(s.width, s.height, true);

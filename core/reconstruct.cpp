@@ -352,14 +352,14 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
         projectOnBasis(sub, c, layout, partial, vertex_step, edge_step);
         inParallel(v.size() / c, [&](size_t begin, size_t end) {
             for (size_t i = begin * c; i < end * c; ++i)
-                v[i] = std::clamp(v[i] + vertex_step[i] / vertex_weight[i], bounds.low[i], bounds.high[i]);
+                v[i] = std::clamp(v[i] + kRelaxation * vertex_step[i] / vertex_weight[i], bounds.low[i], bounds.high[i]);
             if (input.hasAlpha())
                 for (size_t p = begin * c; p < end * c; p += c)
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
         });
         inParallel(surface.bubbles.size(), [&](size_t begin, size_t end) {
             for (size_t i = begin; i < end; ++i)
-                if (edge_weight[i] > 0.0f) surface.bubbles[i] += edge_step[i] / edge_weight[i];
+                if (edge_weight[i] > 0.0f) surface.bubbles[i] += kRelaxation * edge_step[i] / edge_weight[i];
         });
     }
     return surface;

@@ -15,7 +15,9 @@
 //   values start as the input's.
 // - Then kReconstructIterations steps of SART (simultaneous algebraic reconstruction) make the
 //   degraded surface D(S) approach the input y: with the residual r = y − D(S), every unknown
-//   u (a vertex value or a bubble) moves by ⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩, φ_u its basis function.
+//   u (a vertex value or a bubble) moves by ω·⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩, φ_u its basis function,
+//   ω = kRelaxation. Measured on the bench's 20 images: 3 steps at ω = 1.5 score as 5 steps
+//   at ω = 1 (−0.01 to +0.09 dB, protocols A and B, ×2 to ×8) for 40 % less work.
 // - Regularisation: few steps (early stopping damps the frequencies D nearly removes, where
 //   noise and JPEG artefacts live), and a residual counts only beyond half a quantisation step
 //   of the input's sample type (1/510 for 8 bits, 0 for float): within it the surface already
@@ -54,7 +56,8 @@
 namespace ddt {
 
 constexpr double kFootprintSigma = 0.4;       // input pixels
-constexpr uint32_t kReconstructIterations = 5;
+constexpr uint32_t kReconstructIterations = 3;
+constexpr float kRelaxation = 1.5f;           // SART's relaxation, in (0, 2)
 constexpr uint32_t kSupersampling = 3;        // odd, so each pixel's centre is a sample
 
 // The degradation's Gaussian per axis for realised factors sx, sy (output / input size).

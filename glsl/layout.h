@@ -33,6 +33,13 @@ const uint kItemsPerInvocation = 16;
 // Pixels are supersampled kSupersampling × kSupersampling by the reconstruction (as
 // core/reconstruct.h, which the host checks against).
 const uint kSupersamplingFactor = 3;
+// core/reconstruct.h's kRelaxation: SART's step factor.
+#ifdef __cplusplus
+constexpr  // a float const is not a C++ constant expression
+#else
+const
+#endif
+float kSartRelaxation = 1.5;
 
 // Candidate status of an edge during one iteration.
 const uint kStatusNone = 0;       // not a candidate

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Per edge: the projection onto its bubble, the sums of its two half-edges (a hull edge's
 // missing side stays zero). push.step 0 stores it as the bubble's SART weight; 1 applies
-// the step b += Σ / weight where the weight is positive (as core).
+// the step b += ω·Σ / weight where the weight is positive (as core).
 #include "../common.glsl"
 #include "surface.glsl"
 
@@ -16,7 +16,7 @@ void main() {
         const vec4 weight = imageLoad(bubble_weights, int(e));
         vec4 bubble = imageLoad(bubbles, int(e));
         for (int k = 0; k < 4; ++k)
-            if (weight[k] > 0) bubble[k] += sum[k] / weight[k];
+            if (weight[k] > 0) bubble[k] += kSartRelaxation * sum[k] / weight[k];
         imageStore(bubbles, int(e), bubble);
     }
 }

@@ -4,7 +4,7 @@
 // around its star (each written by one triangle in project_triangles), in an order fixed by
 // the mesh: from its lowest-id edge one way round, then, at a vertex on the hull, the other
 // way. push.step 0 stores it as the vertex's SART weight; 1 applies the step
-// v += Σ / weight (every vertex has weight > 0: its own pixel centre is a supersample with
+// v += ω·Σ / weight (ω = kSartRelaxation; every vertex has weight > 0: its own pixel centre is a supersample with
 // λ = 1), clamps v to its bounds and premultiplied colour to at most alpha (as core).
 #include "../common.glsl"
 #include "surface.glsl"
@@ -69,7 +69,7 @@ void main() {
             imageStore(value_weights, int(i), sum);
             continue;
         }
-        const vec4 value = imageLoad(surface_values, int(i)) + sum / imageLoad(value_weights, int(i));
+        const vec4 value = imageLoad(surface_values, int(i)) + kSartRelaxation * sum / imageLoad(value_weights, int(i));
         imageStore(surface_values, int(i),
                    colourAtMostAlpha(clamp(value, imageLoad(value_low, int(i)), imageLoad(value_high, int(i)))));
     }
