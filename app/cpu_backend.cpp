@@ -45,11 +45,14 @@ public:
     // A rough count of the host arrays: the mesh's two records per edge (32 bytes), the
     // renderer's triangle list (about two 24-byte triangles per vertex), the cost field and
     // the sweeps' per-edge state (about 16 bytes per edge, ~3 edges per vertex); then the
-    // reconstruction's: per vertex 9 sample hits (16 bytes) and 9 supersamples, bubbles and
-    // double sums per value (edges counted three per vertex).
+    // reconstruction's (core/reconstruct.cpp, per pixel: 9 supersamples, 2 triangles, 3
+    // edges): the supersamples' triangles and weights, twice while they are grouped (288
+    // bytes), the triangle, corner and edge indices (about 70), and per channel 160 bytes of
+    // floats (the supersamples' values, the pass between the axes, each triangle's six sums,
+    // the values, bubbles, bounds, weights and steps).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t surface = reconstruction ? 9 * 16 + channels * (9 * 4 * 2 + 4 * 4 * 4 + 4 * 16 * 2) : 0;
+        const uint64_t surface = reconstruction ? 360 + 160 * channels : 0;
         return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + surface);
     }
 

@@ -2,6 +2,8 @@
 
 #include <functional>
 
+#include "protocol_tables.h"
+
 namespace bench {
 
 namespace {
@@ -50,25 +52,6 @@ std::optional<double> meanQuality(const std::vector<const ImageResult*>& images,
         if (found == image.quality.end()) return std::nullopt;
         return value(found->second);
     });
-}
-
-// The mean of `value` over protocol A's images at `factor` in `set` for the protocol-table
-// method `key`, or nothing if any lacks it.
-std::optional<double> meanProtocolAQuality(const BenchResults& results, uint32_t factor, const std::string& set,
-                                           const std::string& key, const QualityValue& value) {
-    double total = 0.0;
-    size_t count = 0;
-    for (const ProtocolImageResult& image : results.protocol_images) {
-        if (image.protocol != "A" || !(image.factor == Magnification{factor, 1}) ||
-            (set != kAllImages && image.set != set))
-            continue;
-        auto found = image.scores.find(key);
-        if (found == image.scores.end()) return std::nullopt;
-        total += value(found->second.quality);
-        ++count;
-    }
-    if (count == 0) return std::nullopt;
-    return total / double(count);
 }
 
 // Every run of a method gives the same mesh; the statistics are those of the first.
@@ -210,7 +193,9 @@ Table qualityTable(const BenchResults& results) {
             for (const auto& [label, value] : metrics) {
                 TableRow row{{std::to_string(factor), set}, section, label, {}, 4};
                 for (const std::string& key : keys_in_order) row.values.push_back(meanQuality(images, key, value));
-                if (consistent) row.values.push_back(meanProtocolAQuality(results, factor, set, consistent->key, value));
+                if (consistent)
+                    row.values.push_back(protocolMean(results, "A", Magnification{factor, 1}, set, consistent->key,
+                                                      [&](const MethodScores& s) { return value(s.quality); }));
                 table.rows.push_back(row);
             }
         }

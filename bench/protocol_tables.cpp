@@ -38,6 +38,15 @@ std::optional<double> meanOf(const std::vector<const ProtocolImageResult*>& imag
     return total / double(images.size());
 }
 
+}  // namespace
+
+std::optional<double> protocolMean(const BenchResults& results, const std::string& protocol, Magnification factor,
+                                   const std::string& set, const std::string& key, const ScoreValue& value) {
+    return meanOf(imagesOf(results, protocol, factor, set), key, value);
+}
+
+namespace {
+
 std::optional<double> difference(std::optional<double> a, std::optional<double> b) {
     if (!a || !b) return std::nullopt;
     return *a - *b;

@@ -638,7 +638,7 @@ void VulkanBackend::reconstruct(const DegradationModel& model) {
     job.push.taps_x_radius = uint32_t(taps_x.size() / 2);
     job.push.taps_y_radius = uint32_t(taps_y.size() / 2);
     const SampleType type = s.image->sample_type;
-    job.push.integer_samples = type == SampleType::UInt8 || type == SampleType::UInt16 ? 1 : 0;
+    job.push.integer_samples = boundedToUnit(type) ? 1 : 0;
     job.push.quantisation_tolerance = quantisationTolerance(type);
     job.pixels = &s.pixels;
     job.triangle_pass = [&](VkPipeline kernel) {

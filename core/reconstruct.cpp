@@ -41,7 +41,7 @@ struct Bounds {
 
 Bounds boundsOf(const Image& input) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
-    const bool integer = input.sample_type == SampleType::UInt8 || input.sample_type == SampleType::UInt16;
+    const bool integer = boundedToUnit(input.sample_type);
     Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
     inParallel(h, [&](size_t begin, size_t end) {
         for (size_t y = begin; y < end; ++y)
@@ -64,7 +64,6 @@ Bounds boundsOf(const Image& input) {
     });
     return bounds;
 }
-
 
 // The degradation D and its transpose between the supersampled grid (sub_w × sub_h, the
 // input's size × kSupersampling) and the input grid. Separable; taps past the border land on
@@ -155,7 +154,7 @@ private:
 // every pass below is a gather: each output is written by one task, in a fixed order, and
 // the result does not depend on how the work is split across threads.
 struct SampleLayout {
-    std::vector<Triangle> triangles;
+    const std::vector<Triangle>& triangles;  // the locating renderer's
     std::vector<uint32_t> first_sample;  // per triangle, + end: its range in `samples`
     std::vector<uint32_t> samples;       // supersample indices, grouped by triangle
     std::vector<std::array<float, 3>> weights;
@@ -165,8 +164,7 @@ struct SampleLayout {
 };
 
 SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize sub_size) {
-    SampleLayout layout;
-    layout.triangles = renderer.triangles();
+    SampleLayout layout{renderer.triangles(), {}, {}, {}, {}, {}, {}};
     const size_t triangles = layout.triangles.size();
     std::vector<SampleHit> hits(size_t(sub_size.width) * sub_size.height);
     inParallel(sub_size.height, [&](size_t begin, size_t end) {
@@ -201,7 +199,6 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
     }
     return layout;
 }
-
 
 // Calls f(std::integral_constant<uint32_t, channels>) so that the per-channel loops of the
 // hot passes have a constant trip count the compiler unrolls.
@@ -282,6 +279,8 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
 
 }  // namespace
 
+bool boundedToUnit(SampleType type) { return type == SampleType::UInt8 || type == SampleType::UInt16; }
+
 float quantisationTolerance(SampleType type) {
     switch (type) {
     case SampleType::UInt8: return 0.5f / 255.0f;
@@ -329,7 +328,8 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     if (model.identity() || iterations == 0) return surface;  // D is the identity: already consistent
     const uint32_t c = input.channels;
     Degradation degradation(input.width, input.height, c, model);
-    const SampleLayout layout = layoutOf(mesh, MeshRenderer(mesh, input), {degradation.subWidth(), degradation.subHeight()});
+    const MeshRenderer locator(mesh, input);
+    const SampleLayout layout = layoutOf(mesh, locator, {degradation.subWidth(), degradation.subHeight()});
     const Bounds bounds = boundsOf(input);
     const float tolerance = quantisationTolerance(input.sample_type);
 

@@ -68,6 +68,10 @@ struct DegradationModel {
 };
 DegradationModel degradationFor(double scale_x, double scale_y);
 
+// Whether stored values of the sample type are limited to [0, 1] (8 and 16 bits), so that the
+// reconstruction's values are too.
+bool boundedToUnit(SampleType type);
+
 // Half a quantisation step of the sample type: how far a stored value may be from the value it
 // stands for (float samples are taken as exact). Residuals count only beyond it.
 float quantisationTolerance(SampleType type);

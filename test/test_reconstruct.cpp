@@ -177,9 +177,8 @@ TEST_CASE("reconstruct: s = 1 is the identity, and the surface moves continuousl
             largest = std::max(largest, std::abs(s.values.pixels[i] - input.pixels[i]));
         return largest;
     };
-    const float d_1001 = distance(1.001), d_101 = distance(1.01), d_11 = distance(1.1), d_2 = distance(2.0);
-    CAPTURE(d_1001, d_101, d_11, d_2);
-    CHECK(d_1001 <= d_101);
+    const float d_101 = distance(1.01), d_11 = distance(1.1), d_2 = distance(2.0);
+    CAPTURE(d_101, d_11, d_2);
     CHECK(d_101 <= d_11);
     CHECK(d_11 < d_2);
     CHECK(d_101 < 0.01f);  // σ(1.01) = 0.056 pixels: the footprint is nearly a point
@@ -229,6 +228,9 @@ TEST_CASE("reconstruct: tiled and untiled consistent upscales agree (CPU)") {
     const test::Agreement a = test::compareSamples(upscale(64), upscale(0));
     std::printf("reconstruct: tiled (64, overlap %u) vs untiled, x2.5: max difference %.5f (%.2f/255), %.4f %% within 1/255\n",
                 kDefaultOverlap, a.max_difference, a.max_difference * 255.0f, 100.0 * a.within_one_level);
-    // Measured: the corrections' reach is a few pixels, far inside the 16-pixel overlap.
-    CHECK(a.within_one_level >= 0.999);
+    // Each crop is reconstructed on its own, but the corrections' reach (about a pixel per
+    // step) ends far inside the 16-pixel overlap: what is left is float summation order in the
+    // sums around each vertex, whose triangles are listed from other edge ids. Measured: at
+    // most 4e-5; 1e-4 is a fortieth of an 8-bit level, while a seam moves samples by 1e-2.
+    CHECK(a.max_difference <= 1e-4f);
 }

@@ -20,13 +20,13 @@ namespace {
 
 using namespace ddt;
 
-// Vulkan vs core on the same mesh. The two sum in different orders and precisions: core
-// projects onto the basis in fp64 in supersample order, the kernels in fp32 per triangle and
-// then around each star, and Dᵀ is a scatter there and a gather here; the renderer's weights
-// are fp64 on the host and fp32 on the device. Measured on these cases (13 images, every
-// channel count and sample type, and the photo): at most 3.0e-7, a few ulps of values below
-// 1. SART's steps divide by weights of order 1 and are clamped, so rounding is not amplified
-// over five steps. 1e-5 leaves a 30× margin and stays below a 16-bit level (1.5e-5): a wrong
+// Vulkan vs core on the same mesh. The two sum in different orders: both project onto the
+// basis per triangle and then per vertex and edge, but core adds a vertex's triangles in
+// their list order and the kernels walk its star; Dᵀ along x is a scatter in core and a
+// gather here; the renderer's weights are fp64 on the host and fp32 on the device. Measured
+// on these cases (13 images, every channel count and sample type, and the photo): at most
+// 3.6e-7, a few ulps of values below 1. SART's steps divide by weights of order 1 and are
+// clamped, so rounding is not amplified over three steps. 1e-5 leaves a 30× margin and stays below a 16-bit level (1.5e-5): a wrong
 // tap, a missed triangle or a wrong half-edge moves samples by 1e-3 and more.
 const float kCoreTolerance = 1e-5f;
 // Tiled vs untiled (photo ×2, 64-pixel tiles, overlap 16): each crop is reconstructed on its
