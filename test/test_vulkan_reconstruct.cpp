@@ -26,8 +26,9 @@ using namespace ddt;
 // gather here; the renderer's weights are fp64 on the host and fp32 on the device. Measured
 // on these cases (13 images, every channel count and sample type, and the photo): at most
 // 3.6e-7, a few ulps of values below 1. SART's steps divide by weights of order 1 and are
-// clamped, so rounding is not amplified over three steps. 1e-5 leaves a 30× margin and stays below a 16-bit level (1.5e-5): a wrong
-// tap, a missed triangle or a wrong half-edge moves samples by 1e-3 and more.
+// clamped, so rounding is not amplified over three steps. 1e-5 leaves a 28× margin and stays
+// below a 16-bit level (1.5e-5): a wrong tap, a missed triangle or a wrong half-edge moves
+// samples by 1e-3 and more.
 const float kCoreTolerance = 1e-5f;
 // Tiled vs untiled (photo ×2, 64-pixel tiles, overlap 16): each crop is reconstructed on its
 // own, its star walks start from other edge ids and SART's reach from the crop's border
