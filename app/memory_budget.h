@@ -3,11 +3,11 @@
 // room before decoding. An image larger than the whole budget still runs, alone.
 #pragma once
 
-#include <unistd.h>
-
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
+
+#include "physical_memory.h"
 
 namespace ddt {
 
@@ -55,12 +55,6 @@ private:
     uint64_t limit_;
     uint64_t held_ = 0;
 };
-
-// The machine's physical memory in bytes (4 GiB when the system does not say).
-inline uint64_t physicalMemory() {
-    const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page_size > 0 ? uint64_t(pages) * uint64_t(page_size) : uint64_t(4) << 30;
-}
 
 // What the pipeline's images may hold: half the physical memory; the rest is for the device
 // (lavapipe's buffers live in host memory too) and everything else.

@@ -12,6 +12,7 @@
 #include "memory_budget.h"
 #include "reporter.h"
 #include "settings.h"
+#include "image_file.h"
 
 namespace ddt {
 

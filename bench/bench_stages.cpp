@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "backend.h"
-#include "image.h"
+#include "image_file.h"
 
 namespace {
 

@@ -16,6 +16,7 @@
 #include "backend.h"
 #include "flip_rule.h"
 #include "vulkan_backend.h"
+#include "image_file.h"
 
 namespace {
 

@@ -1,6 +1,7 @@
 #include "jpeg_roundtrip.h"
 
 #include "temp_files.h"
+#include "image_file.h"
 
 namespace bench {
 

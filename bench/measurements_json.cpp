@@ -2,6 +2,7 @@
 
 #include "json_writer.h"
 #include "scaling.h"
+#include "image_file.h"
 
 namespace bench {
 

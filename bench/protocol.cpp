@@ -1,4 +1,5 @@
 #include "protocol.h"
+#include "image_file.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>

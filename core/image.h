@@ -1,4 +1,4 @@
-// Images in memory and on disk. All file I/O goes through OpenImageIO.
+// Images in memory; core/io/image_file.h reads and writes them.
 //
 // Pixels are floats, interleaved, in the file's stored encoding (sRGB-encoded values for
 // 8/16-bit files, linear for EXR), scaled to [0, 1] for integer formats. Images with alpha
@@ -47,80 +47,5 @@ struct Image {
     const float* row(uint32_t y) const { return pixels.data() + y * rowFloats(); }
     float* row(uint32_t y) { return pixels.data() + y * rowFloats(); }
 };
-
-// Opens an image file and reads its header; the pixels follow with read(). Splitting the two
-// lets a caller check sizes and open the output before the expensive decode.
-// Any format OpenImageIO reads, recognised by content; "-" reads standard input (copied to a
-// temporary file first: codecs seek). Throws UserError("PATH: reason") for a missing, empty or
-// non-image file, a folder, a channel layout other than the four above, or more than
-// kMaxInputPixels pixels. The image is made upright by its EXIF orientation; of a file with
-// several images (pages, frames) the first is used, with a note.
-class ImageReader {
-public:
-    explicit ImageReader(const std::string& path);
-    ~ImageReader();
-    ImageReader(const ImageReader&) = delete;
-    ImageReader& operator=(const ImageReader&) = delete;
-
-    // The upright size, layout, sample type and metadata; `pixels` is empty.
-    const Image& header() const { return header_; }
-    // Decodes the pixels (premultiplied when there is alpha). Throws UserError for a truncated
-    // or corrupt file, or NaN or infinite samples. Call once.
-    Image read();
-    // One-line remarks for the user ("PATH: has more than one image (pages or frames); using the first").
-    const std::vector<std::string>& notes() const { return notes_; }
-
-private:
-    struct State;
-    std::unique_ptr<State> state_;
-    Image header_;
-    std::vector<std::string> notes_;
-};
-
-// Reads a whole image through ImageReader.
-Image readImage(const std::string& path);
-
-// How an image is written; the defaults follow the input.
-struct WriteOptions {
-    int quality = 95;                 // 1..100, for the lossy formats (JPEG, WebP)
-    std::optional<SampleType> depth;  // the sample type to write; default: the input's
-    std::string format;               // a file extension ("png") that overrides the path's;
-                                      // required when writing standard output
-};
-
-// "" if the format named by `format` (an extension), else by `path`'s extension, can hold a
-// width × height image, else the reason. Some codecs fail only after all the work, or end
-// the process (libjpeg), so the known limits are checked before anything is opened.
-std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height,
-                              const std::string& format = "");
-
-// Writes an image in bands of rows, to a temporary file in the output's folder that is
-// renamed over the output only by commit(): a failed, interrupted or abandoned write leaves
-// nothing. "-" writes standard output (through a temporary file in $TMPDIR, as codecs seek).
-// The sample type follows options.depth, else `like`, where the format can hold it, else the
-// nearest it supports (reported in notes()). `like` may be a header without pixels; its size
-// scales the resolution (dots per inch) metadata. Every write is checked: a full disk is a
-// UserError("PATH: No space left on device").
-class ImageWriter {
-public:
-    ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like,
-                const WriteOptions& options = {});
-    ~ImageWriter();
-    ImageWriter(const ImageWriter&) = delete;
-    ImageWriter& operator=(const ImageWriter&) = delete;
-
-    // Rows [y_begin, y_end) in order, `like.channels` floats per pixel, premultiplied like Image.
-    void writeRows(uint32_t y_begin, uint32_t y_end, const float* rows);
-    void commit();
-    const std::vector<std::string>& notes() const { return notes_; }
-
-private:
-    struct State;
-    std::unique_ptr<State> state_;
-    std::vector<std::string> notes_;
-};
-
-// Writes a whole image through ImageWriter; returns its notes.
-std::vector<std::string> writeImage(const std::string& path, const Image& image, const WriteOptions& options = {});
 
 }  // namespace ddt

@@ -1,18 +1,20 @@
 #include "reconstruct.h"
 
-#include <OpenImageIO/parallel.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <type_traits>
 
+#include "parallel.h"
 #include "render.h"
 
 namespace ddt {
 
 namespace {
+
+// Items are whole rows or runs of triangles: even a few are worth a thread each.
+const size_t kGrain = 8;
 
 double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * std::sqrt(1.0 - 1.0 / (scale * scale)); }
 
@@ -25,14 +27,6 @@ float beyondTolerance(float residual, float tolerance) {
     return residual > tolerance ? residual - tolerance : residual < -tolerance ? residual + tolerance : 0.0f;
 }
 
-// Runs task(begin, end) over [0, count) on OIIO's thread pool. Items may be whole rows, so
-// even a few of them are worth splitting (OIIO's default keeps 1024 together).
-void inParallel(size_t count, const std::function<void(size_t, size_t)>& task) {
-    const OIIO::paropt options(0, OIIO::paropt::SplitDir::Y, 8);
-    OIIO::parallel_for_range(uint64_t(0), uint64_t(count), [&](uint64_t begin, uint64_t end) { task(begin, end); },
-                             options);
-}
-
 // The range each vertex value must stay in: its 3 × 3 input neighbourhood's, within [0, 1]
 // for integer sample types.
 struct Bounds {
@@ -43,7 +37,7 @@ Bounds boundsOf(const Image& input) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
     const bool integer = boundedToUnit(input.sample_type);
     Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
-    inParallel(h, [&](size_t begin, size_t end) {
+    parallelFor(h, kGrain, [&](size_t begin, size_t end) {
         for (size_t y = begin; y < end; ++y)
             for (uint32_t x = 0; x < w; ++x)
                 for (uint32_t k = 0; k < c; ++k) {
@@ -83,7 +77,7 @@ public:
         const size_t sub_row = size_t(sub_w_) * c_;
         columns_.assign(sub_row * h_, 0.0f);
         degraded.assign(size_t(w_) * h_ * c_, 0.0f);
-        inParallel(h_, [&](size_t begin, size_t end) {
+        parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
             for (size_t y = begin; y < end; ++y) {
                 float* column_row = columns_.data() + y * sub_row;
                 for (int t = -ry; t <= ry; ++t) {
@@ -109,7 +103,7 @@ public:
         const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2);
         const size_t sub_row = size_t(sub_w_) * c_;
         columns_.assign(sub_row * h_, 0.0f);
-        inParallel(h_, [&](size_t begin, size_t end) {
+        parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
             for (size_t y = begin; y < end; ++y)
                 for (uint32_t x = 0; x < w_; ++x) {
                     const float* in = residual.data() + (y * w_ + x) * c_;
@@ -122,7 +116,7 @@ public:
         });
         sub.assign(sub_row * sub_h_, 0.0f);
         const int q = int(kSupersampling);
-        inParallel(sub_h_, [&](size_t begin, size_t end) {
+        parallelFor(sub_h_, kGrain, [&](size_t begin, size_t end) {
             for (size_t row = begin; row < end; ++row) {
                 float* out = sub.data() + row * sub_row;
                 // Input rows whose taps can land on this row, the border's clamped ones included.
@@ -167,7 +161,7 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
     SampleLayout layout{renderer.triangles(), {}, {}, {}, {}, {}, {}};
     const size_t triangles = layout.triangles.size();
     std::vector<SampleHit> hits(size_t(sub_size.width) * sub_size.height);
-    inParallel(sub_size.height, [&](size_t begin, size_t end) {
+    parallelFor(sub_size.height, kGrain, [&](size_t begin, size_t end) {
         renderer.locateSamples(sub_size, uint32_t(begin), uint32_t(end), hits.data() + begin * sub_size.width);
     });
     layout.first_sample.assign(triangles + 1, 0);
@@ -218,7 +212,7 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
         constexpr uint32_t c = decltype(channels)::value;
         const float* v = surface.values.pixels.data();
         const float* b = surface.bubbles.data();
-        inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
+        parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
             for (size_t ti = begin; ti < end; ++ti) {
                 const Triangle& t = layout.triangles[ti];
                 for (uint32_t j = layout.first_sample[ti]; j < layout.first_sample[ti + 1]; ++j) {
@@ -242,7 +236,7 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
     partial.resize(layout.triangles.size() * 6 * c);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
-        inParallel(layout.triangles.size(), [&](size_t begin, size_t end) {
+        parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
             for (size_t t = begin; t < end; ++t) {
                 float sums[6][cc] = {};
                 for (uint32_t j = layout.first_sample[t]; j < layout.first_sample[t + 1]; ++j) {
@@ -257,7 +251,7 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
         });
     });
     const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
-    inParallel(vertices, [&](size_t begin, size_t end) {
+    parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v)
             for (uint32_t k = 0; k < c; ++k) {
                 float sum = 0.0f;
@@ -266,7 +260,7 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
                 at_vertices[v * c + k] = sum;
             }
     });
-    inParallel(layout.edge_sides.size(), [&](size_t begin, size_t end) {
+    parallelFor(layout.edge_sides.size(), kGrain, [&](size_t begin, size_t end) {
         for (size_t e = begin; e < end; ++e)
             for (uint32_t k = 0; k < c; ++k) {
                 float sum = 0.0f;
@@ -345,19 +339,19 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     for (uint32_t step = 0; step < iterations; ++step) {
         evaluate(surface, layout, sub);
         degradation.apply(sub, degraded);
-        inParallel(residual.size(), [&](size_t begin, size_t end) {
+        parallelFor(residual.size(), kGrain, [&](size_t begin, size_t end) {
             for (size_t i = begin; i < end; ++i) residual[i] = beyondTolerance(input.pixels[i] - degraded[i], tolerance);
         });
         degradation.transpose(residual, sub);
         projectOnBasis(sub, c, layout, partial, vertex_step, edge_step);
-        inParallel(v.size() / c, [&](size_t begin, size_t end) {
+        parallelFor(v.size() / c, kGrain, [&](size_t begin, size_t end) {
             for (size_t i = begin * c; i < end * c; ++i)
                 v[i] = std::clamp(v[i] + kRelaxation * vertex_step[i] / vertex_weight[i], bounds.low[i], bounds.high[i]);
             if (input.hasAlpha())
                 for (size_t p = begin * c; p < end * c; p += c)
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
         });
-        inParallel(surface.bubbles.size(), [&](size_t begin, size_t end) {
+        parallelFor(surface.bubbles.size(), kGrain, [&](size_t begin, size_t end) {
             for (size_t i = begin; i < end; ++i)
                 if (edge_weight[i] > 0.0f) surface.bubbles[i] += kRelaxation * edge_step[i] / edge_weight[i];
         });

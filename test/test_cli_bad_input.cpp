@@ -18,7 +18,7 @@
 #include <random>
 #include <thread>
 
-#include "image.h"
+#include "image_file.h"
 #include "png_bytes.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"

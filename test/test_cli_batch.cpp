@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "image.h"
+#include "image_file.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "test_support.h"

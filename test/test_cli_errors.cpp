@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "image.h"
+#include "image_file.h"
 #include "run_ddtup.h"
 #include "test_support.h"
 #include "temp_folder.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "image.h"
+#include "image_file.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "test_support.h"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "flat_json.h"
-#include "image.h"
+#include "image_file.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "test_support.h"

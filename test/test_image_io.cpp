@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "image.h"
+#include "image_file.h"
 #include "png_bytes.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"

@@ -10,6 +10,7 @@
 #include "mesh.h"
 #include "render.h"
 #include "test_support.h"
+#include "image_file.h"
 
 using ddt::kNone;
 using ddt::test::edgeBetween;

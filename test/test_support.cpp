@@ -1,4 +1,5 @@
 #include "test_support.h"
+#include "image_file.h"
 
 #include <catch2/catch.hpp>
 

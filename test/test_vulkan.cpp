@@ -17,6 +17,7 @@
 #include "context.h"
 #include "layout.h"
 #include "vulkan_backend.h"
+#include "image_file.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 #include <optional>
 
 #include "backend.h"
-#include "memory_budget.h"
+#include "physical_memory.h"
 
 namespace ddt {
 
