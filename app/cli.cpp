@@ -131,13 +131,20 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_option("--tile", settings.tile,
                    "Tile side in input pixels for images too large for the device; 0 = automatic")
         ->capture_default_str();
-    app.add_option("--backend", settings.backend, "Optimizer: vulkan (parallel flips on the GPU) or cpu (the serial reference)")
-        ->check(CLI::IsMember({"vulkan", "cpu"}))
+    app.add_option("--backend", settings.backend,
+                   "auto (Vulkan on a GPU; the CPU backend where the only Vulkan device runs on the CPU, such as "
+                   "lavapipe, or where there is none, with a note saying which and why), vulkan (parallel flips "
+                   "on a Vulkan device, exit code 3 without one) or cpu")
+        ->check(CLI::IsMember({"auto", "vulkan", "cpu"}))
         ->capture_default_str();
+    app.add_option("--threads", settings.threads,
+                   "CPU threads for everything the run does on the CPU: decoding, optimizing, rendering, encoding")
+        ->check(CLI::Range(1u, 1024u))
+        ->default_str("the processors ddtup may use (CPU affinity and cgroup quota)");
     app.add_option("--variant", settings.variant,
                    "Vulkan flip rule: basic, exproi, exproi-N-maxgain, maxgain, exproi-maxgain, localmax, exproi-localmax")
-        ->default_str(kDefaultFlipRule);
-    app.add_option("--device", settings.device, "Vulkan device index from --list-devices")
+        ->default_str(std::string(kDefaultFlipRule) + "; ignored when the CPU backend runs");
+    app.add_option("--device", settings.device, "Vulkan device index from --list-devices; asks for the Vulkan backend")
         ->default_str("the first discrete GPU, then integrated, then CPU devices");
     app.add_flag("--list-devices", settings.list_devices, "List the Vulkan devices and exit");
     app.add_flag("!--no-active-set", settings.active_set,

@@ -1,12 +1,17 @@
 // ddtup: magnify images by data-dependent triangulation.
+#include <OpenImageIO/imageio.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
+#include <string>
 
 #include "backend_factory.h"
 #include "batch_plan.h"
 #include "cli.h"
 #include "context.h"
 #include "exit_codes.h"
+#include "parallel.h"
 #include "pipeline.h"
 #include "reporter.h"
 #include "temp_files.h"
@@ -47,6 +52,17 @@ void printDevices() {
     }
 }
 
+// One thread count for every pool in the process: ddtup's own (optimizing, rendering,
+// encoding), OIIO's (decoding) and lavapipe's, unless its LP_NUM_THREADS is set. They work
+// in turn on one image, so together they keep the processors busy without oversubscribing
+// them; a batch script running several ddtup processes divides the processors with --threads.
+void sizeThreadPools(unsigned threads) {
+    ddt::setThreadCount(threads);
+    const int count = int(ddt::threadCount());
+    OIIO::attribute("threads", count);
+    ::setenv("LP_NUM_THREADS", std::to_string(count).c_str(), 0);
+}
+
 int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
     std::vector<ddt::ImageTask> tasks;
     try {
@@ -72,7 +88,7 @@ int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
             reporter.fatal(error.what(), ddt::kExitNoDevice);
             return nullptr;
         }
-        if (!chosen.device_name.empty()) reporter.device(chosen.device_name, chosen.device_type);
+        reporter.backend(chosen.choice);
         return chosen.backend.get();
     };
     std::mutex stats_mutex;
@@ -92,6 +108,7 @@ int main(int argc, char** argv) {
     int exit_code = 0;
     std::optional<ddt::Settings> settings = ddt::parseCommandLine(argc, argv, exit_code);
     if (!settings) return exit_code;
+    sizeThreadPools(settings->threads);
     if (settings->list_devices) {
         try {
             printDevices();

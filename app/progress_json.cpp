@@ -17,8 +17,13 @@ public:
 
     void start(size_t images) override { emit(JsonLine().field("event", "start").field("images", uint64_t(images))); }
 
-    void device(const std::string& name, const std::string& type) override {
-        emit(JsonLine().field("event", "device").field("name", name).field("type", type));
+    void backend(const BackendChoice& choice) override {
+        JsonLine event;
+        event.field("event", "device").field("backend", choice.backend);
+        if (choice.backend == "vulkan") event.field("name", choice.device_name).field("type", choice.device_type);
+        else event.field("threads", uint64_t(choice.threads));
+        if (!choice.reason.empty()) event.field("reason", choice.reason);
+        emit(event);
     }
 
     void stage(const RunCounts& counts, size_t index, const std::string& input, Stage stage, uint32_t tile,

@@ -49,12 +49,18 @@ public:
 
     void start(size_t images) override { batch_ = images > 1; }
 
-    void device(const std::string& name, const std::string& type) override {
-        if (type == "cpu" && verbosity_ != Verbosity::Quiet)
+    void backend(const BackendChoice& choice) override {
+        if (verbosity_ == Verbosity::Quiet) return;
+        const std::string what = choice.backend == "cpu"
+                                     ? "the CPU backend (" + std::to_string(choice.threads) + (choice.threads == 1 ? " thread)" : " threads)")
+                                     : choice.device_name + " (" + choice.device_type + ")";
+        // --backend auto always says what it picked: a user who expected a GPU learns why not.
+        if (!choice.reason.empty()) line("note: using " + what + ": " + choice.reason);
+        else if (choice.device_type == "cpu")
             // Users of other Vulkan upscalers were silently given a software device and thought it hung.
-            line("note: running on " + name + ", a CPU Vulkan device (no GPU found); expect it to be slower than a GPU");
+            line("note: running on " + choice.device_name + ", a CPU Vulkan device; expect it to be slower than a GPU");
         else if (verbosity_ == Verbosity::Verbose)
-            line("device: " + name + " (" + type + ")");
+            line("using " + what);
     }
 
     void stage(const RunCounts& counts, size_t index, const std::string& input, Stage stage, uint32_t tile,

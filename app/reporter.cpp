@@ -76,9 +76,9 @@ void Reporter::start(size_t images) {
     sink_->start(images);
 }
 
-void Reporter::device(const std::string& name, const std::string& type) {
+void Reporter::backend(const BackendChoice& choice) {
     std::lock_guard lock(mutex_);
-    sink_->device(name, type);
+    sink_->backend(choice);
 }
 
 void Reporter::stage(size_t index, const std::string& input, Stage stage, uint32_t tile, uint32_t tiles) {

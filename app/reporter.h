@@ -20,6 +20,16 @@
 namespace ddt {
 
 enum class Stage { Read, Optimize, Render, Write };
+
+// Which backend a run uses, told once per run: the Vulkan device, or the CPU backend and its
+// threads; `reason` says why --backend auto chose it ("" when the user named the backend).
+struct BackendChoice {
+    std::string backend;      // "vulkan" or "cpu"
+    std::string device_name;  // Vulkan: the device
+    std::string device_type;  // Vulkan: "discrete", "integrated", "virtual", "cpu" or "other"
+    unsigned threads = 0;     // CPU: worker threads
+    std::string reason;
+};
 const char* stageName(Stage stage);
 
 struct RunCounts {
@@ -48,7 +58,7 @@ class ProgressSink {
 public:
     virtual ~ProgressSink() = default;
     virtual void start(size_t images) = 0;
-    virtual void device(const std::string& name, const std::string& type) = 0;
+    virtual void backend(const BackendChoice& choice) = 0;
     virtual void stage(const RunCounts& counts, size_t index, const std::string& input, Stage stage, uint32_t tile,
                        uint32_t tiles) = 0;
     virtual void done(const RunCounts& counts, size_t index, const ImageTask& task, OutputSize size, double seconds) = 0;
@@ -74,7 +84,7 @@ public:
     Reporter& operator=(const Reporter&) = delete;
 
     void start(size_t images);
-    void device(const std::string& name, const std::string& type);
+    void backend(const BackendChoice& choice);
     void stage(size_t index, const std::string& input, Stage stage, uint32_t tile = 0, uint32_t tiles = 0);
     void done(size_t index, const ImageTask& task, OutputSize size, double seconds);
     void skipped(size_t index, const ImageTask& task);

@@ -28,7 +28,8 @@ struct Settings {
     uint32_t width = 0;       // 0: not given
     uint32_t height = 0;      // 0: not given
     uint32_t tile = 0;        // tile side in input pixels; 0 = automatic
-    std::string backend = "vulkan";
+    std::string backend = "auto";  // "auto", "vulkan" or "cpu" (app/backend_factory.h)
+    unsigned threads = 0;          // CPU threads for the whole process; 0 = the processors it may use
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
     std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/reconstruct.h)
     int device = -1;           // Vulkan device index; -1 = choose

@@ -142,6 +142,8 @@ int typePreference(VkPhysicalDeviceType type) {
     }
 }
 
+}  // namespace
+
 uint32_t chooseDevice(const std::vector<DeviceInfo>& devices, int requested) {
     if (devices.empty()) throw UserError(std::string("Vulkan: no devices found; ") + kNoDeviceHint);
     if (requested >= 0) {
@@ -164,7 +166,6 @@ uint32_t chooseDevice(const std::vector<DeviceInfo>& devices, int requested) {
     return uint32_t(best);
 }
 
-}  // namespace
 
 const char* deviceTypeName(VkPhysicalDeviceType type) {
     switch (type) {

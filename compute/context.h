@@ -55,6 +55,9 @@ struct VulkanContext {
 // Every Vulkan device the loader reports, with why ddtup cannot use it where it cannot.
 // Throws UserError when no Vulkan driver is installed at all.
 std::vector<DeviceInfo> listDevices();
+// The index of the device to use: `requested` (an index, checked) or, for -1, the first
+// usable discrete GPU, then integrated, then the rest. Throws UserError when there is none.
+uint32_t chooseDevice(const std::vector<DeviceInfo>& devices, int requested);
 
 // Throws UserError naming the fix when no usable device exists.
 std::unique_ptr<VulkanContext> createContext(const ContextOptions& options);

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -237,4 +238,38 @@ TEST_CASE("ddtup-batch: bad usage exits 2 and does nothing") {
     const Run help = work.batch({"-h"});
     CHECK(help.exit_code == 0);
     CHECK_THAT(help.out, Catch::StartsWith("Usage: ddtup-batch"));
+}
+
+// A stand-in ddtup that records its arguments, one per line, and copies its input to its
+// output, so the arguments the script gives each process can be read back.
+TEST_CASE("ddtup-batch: -j N gives each process its share of the processors, and --threads wins") {
+    // What the script divides: the processors nproc counts.
+    unsigned cores = 0;
+    if (FILE* nproc = ::popen("nproc", "r")) {
+        if (std::fscanf(nproc, "%u", &cores) != 1) cores = 0;
+        ::pclose(nproc);
+    }
+    REQUIRE(cores >= 1);
+    for (const auto& [extra, expected] :
+         {std::pair{std::vector<std::string>{}, std::to_string(std::max(1u, cores / 2))},
+          std::pair{std::vector<std::string>{"--threads", "7"}, std::string("7")}}) {
+        Workspace work;
+        const std::string log = work.folder / "arguments", fake = work.folder / "fake-ddtup";
+        std::ofstream(fake) << "#!/bin/sh\nprintf '%s\\n' \"$@\" >>" << quoted(log) << "\ncp \"$1\" \"$2\"\n";
+        fs::permissions(fake, fs::perms::owner_all);
+        std::vector<std::string> args = {"-j", "2", work.in, work.out, "--", "-s", "2"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        work.batch(args, {"DDTUP=" + fake, "DDTUP_BATCH_NO_PARALLEL=1"});
+        std::ifstream lines(log);
+        std::vector<std::string> arguments;
+        for (std::string line; std::getline(lines, line);) arguments.push_back(line);
+        size_t runs = 0;
+        for (size_t i = 0; i + 1 < arguments.size(); ++i)
+            if (arguments[i] == "--threads") {
+                ++runs;
+                CHECK(arguments[i + 1] == expected);
+            }
+        // One --threads per process: the four images, the bad file among them.
+        CHECK(runs == kGoodInputs.size() + 1);
+    }
 }

@@ -184,7 +184,7 @@ TEST_CASE("batch: the device is started once for the whole batch") {
         fs::copy_file(kSample, folder / name);
         args.push_back(folder / name);
     }
-    args.insert(args.end(), {"-o", folder / "out", "-v"});
+    args.insert(args.end(), {"-o", folder / "out", "-v", "--backend", "vulkan"});
     const Run run = runDdtup(args);
     INFO("stderr: " << run.err);
     CHECK(run.exit_code == 0);

@@ -70,8 +70,8 @@ TEST_CASE("tiling cli: a device out of memory leads to smaller tiles, never a pa
     // for the 64-pixel tiles to fit; the plain one fits 1 MiB.
     for (const auto& [mode, limit] : {std::pair{"plain", "1048576"}, std::pair{"consistent", "4194304"}}) {
         INFO(mode);
-        REQUIRE(runDdtup({input, whole, "-s", "2", "-q", "--reconstruct", mode}).exit_code == 0);
-        const Run run = runDdtup({input, retried, "-s", "2", "-q", "--reconstruct", mode},
+        REQUIRE(runDdtup({input, whole, "-s", "2", "-q", "--reconstruct", mode, "--backend", "vulkan"}).exit_code == 0);
+        const Run run = runDdtup({input, retried, "-s", "2", "-q", "--reconstruct", mode, "--backend", "vulkan"},
                                  {std::string("DDTUP_TEST_DEVICE_MEMORY=") + limit});
         INFO("stderr: " << run.err);
         REQUIRE(run.exit_code == 0);
@@ -79,7 +79,8 @@ TEST_CASE("tiling cli: a device out of memory leads to smaller tiles, never a pa
     }
 
     // With too little memory for even the smallest tile: one line, no file.
-    const Run hopeless = runDdtup({input, folder / "none.png", "-s", "2", "-q"}, {"DDTUP_TEST_DEVICE_MEMORY=1000"});
+    const Run hopeless =
+        runDdtup({input, folder / "none.png", "-s", "2", "-q", "--backend", "vulkan"}, {"DDTUP_TEST_DEVICE_MEMORY=1000"});
     requireOneLineError(hopeless, 1, input, "not enough device memory even for 64×64 tiles");
     CHECK(!fs::exists(folder / "none.png"));
 }

@@ -1,9 +1,11 @@
-// The command line with the Vulkan backend: device choice and its messages, the statistics
-// both backends report, and results that do not depend on lavapipe's thread count.
+// The command line's backends: what --backend auto picks and says, the Vulkan device and its
+// messages, the statistics both backends report, and results that do not depend on
+// lavapipe's thread count.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <algorithm>
+#include <set>
 
 #include "run_ddtup.h"
 #include "temp_folder.h"
@@ -13,15 +15,57 @@ namespace {
 
 std::string fixture(const std::string& name) { return ddt::test::testDataPath(name); }
 
+// The loader finds no driver when pointed at a file that does not exist. (Validation, on for
+// the rest of the suite, would report the loader's own complaints about that.)
+const std::vector<std::string> kNoVulkanDevice = {"VK_DRIVER_FILES=/nonexistent/icd.json",
+                                                  "VK_ICD_FILENAMES=/nonexistent/icd.json", "DDTUP_VALIDATION=0"};
+
+// The loader sees lavapipe alone: its manifest, whatever the machine's architecture.
+std::vector<std::string> onlyLavapipe() {
+    for (const auto& entry : std::filesystem::directory_iterator("/usr/share/vulkan/icd.d"))
+        if (entry.path().filename().string().starts_with("lvp_icd"))
+            return {"VK_DRIVER_FILES=" + entry.path().string(), "VK_ICD_FILENAMES=" + entry.path().string()};
+    FAIL("no lavapipe manifest in /usr/share/vulkan/icd.d (mesa-vulkan-drivers)");
+    return {};
+}
+
 }  // namespace
 
-TEST_CASE("cli: without a usable Vulkan device the error names the fix") {
+TEST_CASE("cli: --backend auto without any Vulkan device runs the CPU backend and says so once") {
     TempFolder folder;
-    // The loader finds no driver when pointed at a file that does not exist. (Validation, on
-    // for the rest of the suite, would report the loader's own complaints about that.)
-    const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png"},
-                             {"VK_DRIVER_FILES=/nonexistent/icd.json", "VK_ICD_FILENAMES=/nonexistent/icd.json",
-                              "DDTUP_VALIDATION=0"});
+    const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--backend", "auto"}, kNoVulkanDevice);
+    CHECK(run.exit_code == 0);
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+    CHECK_THAT(run.err, Catch::Contains("CPU backend") && Catch::Contains("no usable Vulkan device"));
+    CHECK(folder.names() == std::set<std::string>{"out.png"});
+    const Run quiet =
+        runDdtup({fixture("crop32_astronaut.png"), folder / "quiet.png", "--backend", "auto", "-q"}, kNoVulkanDevice);
+    CHECK(quiet.exit_code == 0);
+    CHECK(quiet.err.empty());
+}
+
+TEST_CASE("cli: --backend auto with only lavapipe runs the CPU backend and names the device") {
+    TempFolder folder;
+    const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--backend", "auto"}, onlyLavapipe());
+    CHECK(run.exit_code == 0);
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+    CHECK_THAT(run.err, Catch::Contains("CPU backend") && Catch::Contains("llvmpipe") && Catch::Contains("--backend vulkan"));
+    // The CPU backend's output is the one --backend cpu writes.
+    REQUIRE(runDdtup({fixture("crop32_astronaut.png"), folder / "cpu.png", "--backend", "cpu", "-q"}).exit_code == 0);
+    CHECK(readFile(folder / "out.png") == readFile(folder / "cpu.png"));
+}
+
+TEST_CASE("cli: --device asks for Vulkan under --backend auto") {
+    TempFolder folder;
+    const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--backend", "auto", "--device", "0"},
+                             onlyLavapipe());
+    CHECK(run.exit_code == 0);
+    CHECK_THAT(run.err, Catch::Contains("CPU Vulkan device"));
+}
+
+TEST_CASE("cli: --backend vulkan without a usable Vulkan device is an error that names the fix") {
+    TempFolder folder;
+    const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--backend", "vulkan"}, kNoVulkanDevice);
     requireOneLineError(run, 3, "Vulkan", "mesa-vulkan-drivers");
     CHECK_THAT(run.err, Catch::Contains("--backend cpu"));
     CHECK(folder.names().empty());
@@ -29,11 +73,11 @@ TEST_CASE("cli: without a usable Vulkan device the error names the fix") {
 
 TEST_CASE("cli: a CPU Vulkan device is announced once, and -q silences it") {
     TempFolder folder;
-    const Run loud = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png"});
+    const Run loud = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--backend", "vulkan"});
     CHECK(loud.exit_code == 0);
     CHECK(std::count(loud.err.begin(), loud.err.end(), '\n') == 1);
     CHECK_THAT(loud.err, Catch::Contains("CPU Vulkan device"));
-    const Run quiet = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "-q"});
+    const Run quiet = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "-q", "--backend", "vulkan"});
     CHECK(quiet.exit_code == 0);
     CHECK(quiet.err.empty());
 }
@@ -73,7 +117,7 @@ TEST_CASE("cli: the output does not depend on lavapipe's thread count") {
         INFO(variant);
         for (const char* threads : {"1", "2"}) {
             const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / (std::string("out") + threads + ".png"),
-                                      "-s", "3", "-q", "--variant", variant},
+                                      "-s", "3", "-q", "--variant", variant, "--backend", "vulkan"},
                                      {std::string("LP_NUM_THREADS=") + threads});
             CHECK(run.exit_code == 0);
         }

@@ -1,0 +1,39 @@
+// --threads and the default thread count: the output does not depend on them, and the
+// default follows the processors the process may use.
+#include <catch2/catch.hpp>
+
+#include "run_ddtup.h"
+#include "temp_folder.h"
+#include "test_support.h"
+
+TEST_CASE("threads: --threads 1 writes the same bytes as the default, on both backends' paths") {
+    TempFolder folder;
+    const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
+    for (const char* mode : {"consistent", "plain"}) {
+        INFO(mode);
+        const Run one = runDdtup({input, folder / "one.png", "-s", "3", "-q", "--backend", "cpu", "--threads", "1",
+                                  "--reconstruct", mode});
+        const Run many = runDdtup({input, folder / "many.png", "-s", "3", "-q", "--backend", "cpu", "--threads", "3",
+                                   "--reconstruct", mode});
+        const Run automatic = runDdtup({input, folder / "auto.png", "-s", "3", "-q", "--backend", "cpu", "--reconstruct", mode});
+        REQUIRE(one.exit_code == 0);
+        REQUIRE(many.exit_code == 0);
+        REQUIRE(automatic.exit_code == 0);
+        CHECK(readFile(folder / "one.png") == readFile(folder / "many.png"));
+        CHECK(readFile(folder / "one.png") == readFile(folder / "auto.png"));
+    }
+}
+
+TEST_CASE("threads: the default thread count follows the CPU affinity") {
+    TempFolder folder;
+    // taskset (util-linux, in every Debian) pins ddtup to one processor; -v names the count.
+    const Run run = runShell("taskset -c 0 \"$DDTUP\" " + shellQuoted(ddt::test::testDataPath("crop32_astronaut.png")) +
+                             " " + shellQuoted(folder / "out.png") + " --backend cpu -v");
+    INFO(run.err);
+    CHECK(run.exit_code == 0);
+    CHECK_THAT(run.err, Catch::Contains("the CPU backend (1 thread)"));
+}
+
+TEST_CASE("threads: --threads must be a positive count") {
+    requireOneLineError(runDdtup({"a.png", "b.png", "--threads", "0"}), 2, "--threads", "not in range");
+}
