@@ -1,12 +1,17 @@
-// The serial reference backend: core's mesh, Lawson sweeps and rasteriser on the host.
+// The CPU backend: core's mesh and serial Lawson sweeps (the reference), the reconstruction
+// and the rasteriser on the host, the last two on the shared thread pool.
 #include <optional>
 
 #include "backend.h"
+#include "parallel.h"
 #include "physical_memory.h"
 
 namespace ddt {
 
 namespace {
+
+// Rows a rendering task takes at least: enough to amortise finding the band's triangles.
+const size_t kRowsPerBand = 16;
 
 class CpuBackend final : public Backend {
 public:
@@ -36,7 +41,15 @@ public:
             else
                 renderer_.emplace(mesh_, *image_);
         }
-        renderer_->renderWindow(window, rows);
+        // Bands of rows in parallel: each writes only its own rows, so the result does not
+        // depend on the split.
+        const size_t row_floats = size_t(window.width()) * image_->channels;
+        parallelFor(window.height(), kRowsPerBand, [&](size_t begin, size_t end) {
+            RenderWindow band = window;
+            band.y_begin = window.y_begin + uint32_t(begin);
+            band.y_end = window.y_begin + uint32_t(end);
+            renderer_->renderWindow(band, rows + begin * row_floats);
+        });
     }
 
     Mesh mesh() override { return mesh_; }

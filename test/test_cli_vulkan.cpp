@@ -124,3 +124,17 @@ TEST_CASE("cli: the output does not depend on lavapipe's thread count") {
         CHECK(readFile(folder / "out1.png") == readFile(folder / "out2.png"));
     }
 }
+
+TEST_CASE("cli: --backend auto on a machine without a GPU device node does not load Vulkan drivers") {
+    std::error_code error;
+    const bool gpu_nodes = std::filesystem::exists("/dev/dri", error) || std::filesystem::exists("/dev/nvidiactl", error);
+    if (gpu_nodes) {
+        WARN("this machine has GPU device nodes: the check without them is not run here");
+        return;
+    }
+    TempFolder folder;
+    // The note names the reason: no device node, so no driver was asked.
+    const Run run = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--backend", "auto"});
+    CHECK(run.exit_code == 0);
+    CHECK_THAT(run.err, Catch::Contains("CPU backend") && Catch::Contains("no GPU device"));
+}
