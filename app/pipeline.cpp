@@ -17,6 +17,8 @@ bool runStage(ImageJob& job, Reporter& reporter, Stage stage) {
     try {
         stage();
         return true;
+    } catch (const OutputClosed&) {
+        // The other stage failed and said so.
     } catch (const UserError& error) {
         reporter.failed(input, error.what());
     } catch (const std::bad_alloc&) {
@@ -32,10 +34,13 @@ bool runStage(ImageJob& job, Reporter& reporter, Stage stage) {
 void runPipeline(const std::vector<ImageTask>& tasks, const Settings& settings,
                  const std::function<Backend*()>& backend, Reporter& reporter,
                  const std::function<void(const ImageJob&)>& on_done) {
-    // One image waits between each pair of stages: at most four are in memory at once.
-    BoundedQueue<std::unique_ptr<ImageJob>> decoded(1), processed(1);
+    // One image waits between each pair of stages: at most four are in memory at once. The
+    // writer takes an image as soon as it is being processed, and encodes its bands as they come.
+    BoundedQueue<std::unique_ptr<ImageJob>> decoded(1);
+    BoundedQueue<std::shared_ptr<ImageJob>> processed(1);
     std::atomic<bool> stopped = false;
     MemoryBudget budget(defaultHostBudget());
+    MemoryBudget bands(kBandBudgetBytes);
 
     std::thread reader([&] {
         for (size_t i = 0; i < tasks.size() && !stopped; ++i) {
@@ -48,18 +53,23 @@ void runPipeline(const std::vector<ImageTask>& tasks, const Settings& settings,
         decoded.close();
     });
     std::thread writer([&] {
-        while (std::optional<std::unique_ptr<ImageJob>> job = processed.pop())
-            if (runStage(**job, reporter, [&] { (*job)->write(); }) && on_done) on_done(**job);
+        while (std::optional<std::shared_ptr<ImageJob>> job = processed.pop()) {
+            bool written = false;
+            if (runStage(**job, reporter, [&] { written = (*job)->write(); }) && written && on_done) on_done(**job);
+        }
     });
 
     Backend* device = nullptr;
-    while (std::optional<std::unique_ptr<ImageJob>> job = decoded.pop()) {
+    while (std::optional<std::unique_ptr<ImageJob>> decoded_job = decoded.pop()) {
         if (!device && !stopped) device = backend();
         if (!device) {
             stopped = true;  // drop the decoded images: their temporary outputs go with them
             continue;
         }
-        if (runStage(**job, reporter, [&] { (*job)->process(*device); })) processed.push(std::move(*job));
+        std::shared_ptr<ImageJob> job = std::move(*decoded_job);
+        job->streamOutput(bands);
+        processed.push(job);
+        runStage(*job, reporter, [&] { job->process(*device); });
     }
     processed.close();
     reader.join();

@@ -1,6 +1,7 @@
 // Runs a batch with its three stages overlapped, like the other upscalers' -j load:proc:save:
 // one thread decodes the next image while the device works on the current one and another
-// thread encodes the previous one. The device is used from the calling thread only.
+// thread encodes the rows already rendered, of this image or the previous one. The device is
+// used from the calling thread only.
 #pragma once
 
 #include <functional>
@@ -13,6 +14,12 @@
 #include "upscale_job.h"
 
 namespace ddt {
+
+// Rendered rows in flight between the process and write stages, over all images: enough for
+// several bands (core's render bands are far smaller), and a small image's whole output, so
+// that the next image's optimization overlaps its encoding; not enough to matter beside the
+// process's own size.
+inline constexpr uint64_t kBandBudgetBytes = uint64_t(48) << 20;
 
 // Magnifies every Ready task; failures are reported and the batch goes on. `backend` is called
 // when the first image has been read (so that a bad input is reported without starting a

@@ -14,7 +14,7 @@ namespace {
 
 // Output rows are rendered in bands of at most this many floats, which keeps the host's
 // memory flat whatever the output size.
-const size_t kBandFloats = size_t(16) << 20;
+const size_t kBandFloats = size_t(2) << 20;  // 8 MiB
 // A strip of several tiles is assembled on the host before its rows go out: strips are cut
 // thinner than the tile side where a strip of square tiles would exceed this.
 const size_t kStripFloats = size_t(128) << 20;  // 512 MiB

@@ -48,7 +48,8 @@ struct ImageJob::State {
     uint32_t channels = 0;
     Image image;
     std::optional<ImageWriter> writer;
-    std::vector<float> rendered;  // the whole output, or empty when it was streamed
+    std::optional<BandStream> bands;  // from process() to write()
+    std::chrono::steady_clock::time_point rendered;  // when process() sent the last band
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
 
@@ -95,13 +96,9 @@ void ImageJob::open() {
 uint64_t ImageJob::hostMemory() const {
     const Image& header = state_->reader->header();
     const uint64_t input_floats = uint64_t(header.width) * header.height * header.channels;
-    const uint64_t output_floats = uint64_t(report_.out.width) * report_.out.height * header.channels;
-    // The image, a tile's crop of it at most as large, and the output when it is held whole.
-    return sizeof(float) * (2 * input_floats + (bufferedOutput() ? output_floats : 0));
-}
-
-bool ImageJob::bufferedOutput() const {
-    return uint64_t(report_.out.width) * report_.out.height * state_->channels <= kMaxBufferedOutputFloats;
+    // The image and a tile's crop of it at most as large; the output's bands have a budget
+    // of their own.
+    return sizeof(float) * 2 * input_floats;
 }
 
 void ImageJob::decode() {
@@ -112,17 +109,24 @@ void ImageJob::decode() {
     report_.times.init_s += secondsSince(start);
 }
 
+void ImageJob::streamOutput(MemoryBudget& budget) { state_->bands.emplace(budget); }
+
 void ImageJob::process(Backend& backend) {
+    try {
+        render(backend);
+    } catch (...) {
+        state_->bands->abandon();
+        throw;
+    }
+    state_->rendered = std::chrono::steady_clock::now();
+    state_->bands->finish();  // publishes `rendered` to the writer
+}
+
+void ImageJob::render(Backend& backend) {
     const OutputSize out = report_.out;
     const size_t row_floats = size_t(out.width) * state_->image.channels;
-    // A large output is written while it is rendered rather than held for the write stage.
-    const bool buffered = bufferedOutput();
-    if (buffered) state_->rendered.resize(row_floats * out.height);
     auto sink = [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-        if (buffered)
-            std::copy_n(rows, size_t(y_end - y_begin) * row_floats, state_->rendered.data() + y_begin * row_floats);
-        else
-            state_->writer->writeRows(y_begin, y_end, rows);
+        state_->bands->send(y_begin, y_end, rows, size_t(y_end - y_begin) * row_floats);
     };
     // Time spent in each phase, for --stats: optimize (with building and uploading each
     // tile's mesh), reconstruct and render.
@@ -160,15 +164,23 @@ void ImageJob::process(Backend& backend) {
     state_->image.pixels = {};  // the next image may need the memory
 }
 
-void ImageJob::write() {
+bool ImageJob::write() {
+    try {
+        while (std::optional<Band> band = state_->bands->receive())
+            state_->writer->writeRows(band->y_begin, band->y_end, band->rows.data());
+    } catch (...) {
+        state_->bands->refuse();
+        throw;
+    }
+    if (!state_->bands->complete()) return false;
+    // The last rows are encoded: what is left is finishing and renaming the file.
     reporter_.stage(index_, task_.input, Stage::Write);
-    const auto start = std::chrono::steady_clock::now();
-    if (!state_->rendered.empty()) state_->writer->writeRows(0, report_.out.height, state_->rendered.data());
-    state_->rendered = {};
     state_->writer->commit();
-    report_.times.final_s += secondsSince(start);
+    // Encoding overlaps rendering, which process() timed: add what came after it.
+    report_.times.final_s += secondsSince(state_->rendered);
     for (const std::string& note : state_->writer->notes()) reporter_.notice(task_.input, note);
     reporter_.done(index_, task_, report_.out, secondsSince(state_->started));
+    return true;
 }
 
 }  // namespace ddt

@@ -1,6 +1,7 @@
 // One image's way through a run, in the three stages the pipeline overlaps: read (decode, and
 // open the output so that a bad output fails before the long part), process (triangulate,
-// optimize, render) and write (encode, then rename into place).
+// optimize, render) and write (encode, then rename into place). Process and write run at the
+// same time on one image: rendered bands go to the encoder through a BandStream.
 #pragma once
 
 #include <memory>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "backend.h"
+#include "band_stream.h"
 #include "batch_plan.h"
 #include "memory_budget.h"
 #include "reporter.h"
@@ -31,9 +33,6 @@ struct JobReport {
     OutputSize out;
 };
 
-// Largest output held in memory between the process and write stages (floats). A larger one
-// is written while it is rendered, without overlapping the next image.
-inline constexpr size_t kMaxBufferedOutputFloats = size_t(256) << 20;
 // Documented limit on output pixels: beyond it a run would take hours and files get unwieldy.
 inline constexpr uint64_t kMaxOutputPixels = uint64_t(1) << 32;
 
@@ -46,8 +45,14 @@ public:
     // and opens the output, decode() the pixels.
     void open();
     void decode();
+    // Before process(): the stream its rendered bands go through, within `budget`.
+    void streamOutput(MemoryBudget& budget);
+    // Renders into the stream; on failure the stream is abandoned. Throws OutputClosed when the
+    // writer gave up (it reported why).
     void process(Backend& backend);
-    void write();
+    // Encodes the stream's bands as they come and commits the file; false, without a word,
+    // when process() abandoned the image (it reported why).
+    bool write();
 
     // Host memory the job holds at most from decode() to its end (after open()).
     uint64_t hostMemory() const;
@@ -60,7 +65,7 @@ public:
 
 private:
     WriteOptions writeOptions() const;
-    bool bufferedOutput() const;
+    void render(Backend& backend);
 
     struct State;
     size_t index_;
