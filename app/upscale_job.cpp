@@ -147,7 +147,7 @@ void ImageJob::render(Backend& backend) {
         reporter_.stage(index_, task_.input, phase == TilePhase::Render ? Stage::Render : Stage::Optimize, step.tile,
                         step.tiles);
         if (step.tiles > 1 && !told_tiles && !settings_.tile) {
-            reporter_.notice(task_.input, inputName(task_.input) + ": too large for the device's memory in one piece; " +
+            reporter_.notice(task_.input, inputName(task_.input) + ": larger than the backend's memory in one piece; " +
                                               "processed in " + std::to_string(step.tiles) + " tiles");
             told_tiles = true;
         }

@@ -1,5 +1,6 @@
 // The CPU backend: core's mesh and serial Lawson sweeps (the reference), the reconstruction
 // and the rasteriser on the host, the last two on the shared thread pool.
+#include <algorithm>
 #include <optional>
 
 #include "backend.h"
@@ -12,6 +13,11 @@ namespace {
 
 // Rows a rendering task takes at least: enough to amortise finding the band's triangles.
 const size_t kRowsPerBand = 16;
+
+// What the CPU backend may hold at once: by memoryNeeded's estimate enough for a 512² RGB
+// input's consistent reconstruction in one piece (about 280 MB, with the 1/8 that tiling keeps
+// spare), where tiles would cost a quarter more work.
+const uint64_t kWorkingMemory = uint64_t(320) << 20;
 
 class CpuBackend final : public Backend {
 public:
@@ -69,9 +75,9 @@ public:
         return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + surface);
     }
 
-    // Half the machine's memory: the input, the output bands and the rest of the process
-    // need the other half.
-    uint64_t memoryAvailable() const override { return physicalMemory() / 2; }
+    // A fixed working set, at most half the machine's memory: larger inputs go in tiles
+    // (app/tiled_upscale.h), so the process's size does not grow with the input.
+    uint64_t memoryAvailable() const override { return std::min(kWorkingMemory, physicalMemory() / 2); }
 
 private:
     const Image* image_ = nullptr;
