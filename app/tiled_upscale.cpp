@@ -1,10 +1,13 @@
 #include "tiled_upscale.h"
 
 #include <algorithm>
+#include <memory>
+#include <mutex>
 #include <new>
 #include <string>
 #include <vector>
 
+#include "parallel.h"
 #include "tiling.h"
 #include "user_error.h"
 
@@ -67,13 +70,17 @@ void addStats(OptimizeStats& total, const OptimizeStats& tile) {
     total.capped = total.capped || tile.capped;
 }
 
-// Whether a job fits with 1/8 of the available memory to spare: drivers round allocations
-// up and keep their own, and an estimate is only an estimate.
-bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) {
+// Whether a job fits its share of the available memory (1/`sharers` of it) with 1/8 to
+// spare: drivers round allocations up and keep their own, and an estimate is only an estimate.
+bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels, bool reconstruction,
+          uint32_t sharers = 1) {
     const uint64_t needed = backend.memoryNeeded(width, height, channels, reconstruction);
-    const uint64_t available = backend.memoryAvailable();
+    const uint64_t available = backend.memoryAvailable() / sharers;
     return needed != UINT64_MAX && needed <= available - available / 8;
 }
+
+// Tiles processed at once: one per thread where the backend has twins (the CPU), else one.
+uint32_t tilesAtOnce(const Backend& backend) { return backend.twin() ? std::max(1u, threadCount()) : 1; }
 
 // Input rows per strip: the tile side, or fewer where a strip of several tiles would not fit
 // kStripFloats (a strip of one tile streams its rows out).
@@ -91,34 +98,76 @@ uint32_t tilesFrom(uint32_t width, uint32_t height, uint32_t y0, uint32_t side, 
     return tiles;
 }
 
+// The backends a strip's tiles run on: the caller's, and where it has twins, one more per
+// thread, so that tiles are processed in parallel. A tile borrows one for its whole way.
+class BackendPool {
+public:
+    BackendPool(Backend& backend, uint32_t size) {
+        free_.push_back(&backend);
+        for (uint32_t i = 1; i < size; ++i) {
+            twins_.push_back(backend.twin());
+            free_.push_back(twins_.back().get());
+        }
+    }
+    uint32_t size() const { return uint32_t(twins_.size() + 1); }
+
+    template <typename Task>
+    auto withBackend(Task task) {
+        Backend* backend;
+        {
+            std::lock_guard lock(mutex_);
+            backend = free_.back();  // never empty: at most size() tasks run at once
+            free_.pop_back();
+        }
+        struct Return {
+            BackendPool& pool;
+            Backend* backend;
+            ~Return() {
+                std::lock_guard lock(pool.mutex_);
+                pool.free_.push_back(backend);
+            }
+        } give_back{*this, backend};
+        return task(*backend);
+    }
+
+private:
+    std::mutex mutex_;
+    std::vector<std::unique_ptr<Backend>> twins_;
+    std::vector<Backend*> free_;
+};
+
 struct Job {
-    Backend& backend;
+    BackendPool& backends;
     const Image& image;
     OutputSize out;
     bool reconstruct;
     const TileStepCallback& on_step;
     RowEmitter& rows;
+    std::mutex step_mutex;  // tiles in parallel report their steps one at a time
 
-    void step(uint32_t tile, uint32_t tiles, TilePhase phase) const {
+    void step(uint32_t tile, uint32_t tiles, TilePhase phase) {
+        std::lock_guard lock(step_mutex);
         if (on_step) on_step({tile, tiles, phase});
     }
 };
 
-// Optimises one tile's crop and renders `window` of it, in bands, to `deliver(y_begin, y_end, rows)`.
+// Optimises one tile's crop on `backend` and renders `window` of it, in bands, to
+// `deliver(y_begin, y_end, rows)`.
 template <typename Deliver>
-OptimizeStats upscaleTile(Job& job, const Tile& tile, uint32_t index, uint32_t total, Deliver deliver) {
+OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t index, uint32_t total,
+                          Deliver deliver) {
     if (tile.output.width() == 0 || tile.output.height() == 0) return {};  // a core between two samples
     job.step(index, total, TilePhase::Optimize);
     const bool whole = tile.crop.width() == job.image.width && tile.crop.height() == job.image.height;
     Image crop;
     if (!whole) crop = cropOf(job.image, tile.crop);
-    job.backend.prepare(whole ? job.image : crop);
-    const OptimizeStats stats = job.backend.optimize();
+    backend.prepare(whole ? job.image : crop);
+    const OptimizeStats stats = backend.optimize();
     // The model follows the whole image's factors; each crop is reconstructed on its own, and
     // the overlap keeps the crop's border out of the core's output (test/test_tiling.cpp).
     if (job.reconstruct) {
         job.step(index, total, TilePhase::Reconstruct);
-        job.backend.reconstruct(
+        backend.reconstruct(
             degradationFor(double(job.out.width) / job.image.width, double(job.out.height) / job.image.height));
     }
     job.step(index, total, TilePhase::Render);
@@ -137,7 +186,7 @@ OptimizeStats upscaleTile(Job& job, const Tile& tile, uint32_t index, uint32_t t
     for (uint32_t y = tile.output.y0; y < tile.output.y1; y += band_rows) {
         window.y_begin = y;
         window.y_end = std::min(tile.output.y1, y + band_rows);
-        job.backend.renderWindow(window, band.data());
+        backend.renderWindow(window, band.data());
         deliver(window.y_begin, window.y_end, band.data());
     }
     return stats;
@@ -149,22 +198,38 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
     const uint32_t c = job.image.channels;
     const size_t row_floats = size_t(job.out.width) * c;
     if (tiles.size() == 1) {
-        addStats(stats, upscaleTile(job, tiles[0], first_index, total, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-                     job.rows.emit(y_begin, y_end, rows);
-                 }));
+        addStats(stats, job.backends.withBackend([&](Backend& backend) {
+            return upscaleTile(job, backend, tiles[0], first_index, total,
+                               [&](uint32_t y_begin, uint32_t y_end, const float* rows) { job.rows.emit(y_begin, y_end, rows); });
+        }));
         return stats;
     }
     const PixelRect strip = {0, tiles[0].output.y0, job.out.width, tiles[0].output.y1};
     std::vector<float> strip_rows(size_t(strip.height()) * row_floats);
-    for (uint32_t i = 0; i < tiles.size(); ++i) {
+    std::mutex stats_mutex;
+    auto upscaleTileInStrip = [&](uint32_t i) {
         const Tile& tile = tiles[i];
         const size_t tile_row_floats = size_t(tile.output.width()) * c;
-        addStats(stats, upscaleTile(job, tile, first_index + i, total, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-                     for (uint32_t y = y_begin; y < y_end; ++y)
-                         std::copy_n(rows + (y - y_begin) * tile_row_floats, tile_row_floats,
-                                     strip_rows.data() + (y - strip.y0) * row_floats + size_t(tile.output.x0) * c);
-                 }));
-    }
+        const OptimizeStats tile_stats = job.backends.withBackend([&](Backend& backend) {
+            return upscaleTile(job, backend, tile, first_index + i, total,
+                               [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+                                   for (uint32_t y = y_begin; y < y_end; ++y)
+                                       std::copy_n(rows + (y - y_begin) * tile_row_floats, tile_row_floats,
+                                                   strip_rows.data() + (y - strip.y0) * row_floats +
+                                                       size_t(tile.output.x0) * c);
+                               });
+        });
+        std::lock_guard lock(stats_mutex);
+        addStats(stats, tile_stats);
+    };
+    // With twins the tiles run in parallel. Each writes its own columns of the strip, so the
+    // order they finish in does not matter: the bytes are those of serial tiles.
+    if (job.backends.size() > 1)
+        parallelFor(tiles.size(), 1, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) upscaleTileInStrip(uint32_t(i));
+        });
+    else
+        for (uint32_t i = 0; i < tiles.size(); ++i) upscaleTileInStrip(i);
     if (strip.height() > 0) job.rows.emit(strip.y0, strip.y1, strip_rows.data());
     return stats;
 }
@@ -174,9 +239,11 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
 uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
                            uint32_t overlap, bool reconstruction) {
     if (fits(backend, width, height, channels, reconstruction)) return 0;
+    // Tiles that run at once share the memory.
+    const uint32_t sharers = tilesAtOnce(backend);
     auto crop_fits = [&](uint32_t side) {
         return fits(backend, std::min(width, side + 2 * overlap), std::min(height, side + 2 * overlap), channels,
-                    reconstruction);
+                    reconstruction, sharers);
     };
     for (uint32_t side = std::max(width, height) / 256 * 256; side >= 256; side -= 256)
         if (crop_fits(side)) return side;
@@ -196,7 +263,8 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
     if (side == 0 || side > largest_side) side = largest_side;
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
-    Job job{backend, image, out, options.reconstruct, on_step, rows};
+    BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
+    Job job{backends, image, out, options.reconstruct, on_step, rows, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

@@ -1,7 +1,9 @@
 // Upscaling an image of any size on a backend of limited memory: untiled when the input
 // fits, else in tiles (core/tiling.h) whose seams do not show; when the device runs out of
 // memory anyway, the tile side is halved and the failed strip redone, so the caller gets
-// every output row once, in order, or an error, never a partial image.
+// every output row once, in order, or an error, never a partial image. A backend with twins
+// (the CPU) processes a strip's tiles in parallel, one per thread, each within its share of
+// the memory; the output is the same bytes as with serial tiles.
 #pragma once
 
 #include <cstdint>
@@ -48,7 +50,7 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
 // Upscales `image` to `out` and hands the output rows to `sink` in order, each row exactly
 // once: sink(y_begin, y_end, rows) with out.width × channels floats per row. `on_step` is
 // called before each tile is optimised and before it is rendered (the tile count may grow
-// after a retry with smaller tiles).
+// after a retry with smaller tiles); with tiles in parallel, from their threads in turn.
 // Returns the optimisation statistics summed over the tiles (overlaps counted in each tile).
 // Throws UserError when even kMinTileSide tiles do not fit the device.
 OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,

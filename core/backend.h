@@ -42,6 +42,10 @@ public:
     // The image given to prepare.
     virtual const Image& preparedImage() const = 0;
 
+    // Another backend of the same kind that can work at the same time as this one, so that
+    // tiles are processed in parallel (the CPU backend); null where one device does the work.
+    virtual std::unique_ptr<Backend> twin() const { return nullptr; }
+
     // Renders output rows [y_begin, y_end) of an untiled input (out.width × channels floats per row).
     void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) {
         const Image& image = preparedImage();

@@ -59,6 +59,7 @@ public:
     }
 
     Mesh mesh() override { return mesh_; }
+    std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(); }
     const Image& preparedImage() const override { return *image_; }
 
     // A rough count of the host arrays: the mesh's two records per edge (32 bytes), the

@@ -37,3 +37,20 @@ TEST_CASE("threads: the default thread count follows the CPU affinity") {
 TEST_CASE("threads: --threads must be a positive count") {
     requireOneLineError(runDdtup({"a.png", "b.png", "--threads", "0"}), 2, "--threads", "not in range");
 }
+
+TEST_CASE("threads: tiles in parallel write the same bytes as tiles one after another") {
+    TempFolder folder;
+    const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
+    // A 200-pixel photo crop in 64-pixel tiles: four strips of four tiles, each strip's tiles
+    // spread over the threads.
+    const std::string photo = folder / "photo.png";
+    REQUIRE(runDdtup({input, photo, "-s", "6.25", "-q", "--backend", "cpu", "--reconstruct", "plain"}).exit_code == 0);
+    for (const char* mode : {"consistent", "plain"}) {
+        INFO(mode);
+        for (const char* threads : {"1", "3"})
+            REQUIRE(runDdtup({photo, folder / (std::string("tiled") + threads + ".png"), "-s", "2", "-q", "--backend", "cpu",
+                              "--tile", "64", "--threads", threads, "--reconstruct", mode})
+                        .exit_code == 0);
+        CHECK(readFile(folder / "tiled1.png") == readFile(folder / "tiled3.png"));
+    }
+}
