@@ -79,18 +79,27 @@ Samples storedSamples(const std::string& path) {
     return samples;
 }
 
+struct Encoding {
+    size_t size = 0;
+    Timing time;
+    ddt::PngEncoder::Statistics statistics;
+};
+
 // The PNG's size and the best time to encode it into memory.
-std::pair<size_t, Timing> encode(const Samples& samples, const ddt::PngEncoder::Options& options, int runs) {
+Encoding encode(const Samples& samples, const ddt::PngEncoder::Options& options, int runs) {
     std::vector<uint8_t> out;
     out.reserve(samples.bytes.size() + samples.bytes.size() / 8);
-    const Timing seconds = bestTime(runs, [&] {
+    Encoding result;
+    result.time = bestTime(runs, [&] {
         out.clear();
         ddt::PngEncoder encoder(samples.format, {}, [&](const uint8_t* data, size_t size) { out.insert(out.end(), data, data + size); },
                                 options);
         encoder.addRows(samples.bytes.data(), samples.format.height);
         encoder.finish();
+        result.statistics = encoder.statistics();
     });
-    return {out.size(), seconds};
+    result.size = out.size();
+    return result;
 }
 
 // The image data as an unfiltered PNG holds it: each row after a filter byte 0 (none).
@@ -143,9 +152,13 @@ int main(int argc, char** argv) {
         std::printf("  %-36s %10zu bytes  %7.3f s wall %7.3f s cpu\n", "zlib 1, no filter", zlib1_size, zlib1_time.wall, zlib1_time.cpu);
 
         auto row = [&](const std::string& name, const ddt::PngEncoder::Options& options) {
-            const auto [size, seconds] = encode(samples, options, runs);
-            std::printf("  %-36s %10zu bytes  %7.3f s wall %7.3f s cpu  %5.1f %% of vips\n", name.c_str(), size, seconds.wall, seconds.cpu,
-                        100.0 * double(size) / double(vips_size));
+            const Encoding e = encode(samples, options, runs);
+            std::printf("  %-36s %10zu bytes  %7.3f s wall %7.3f s cpu  %5.1f %% of vips", name.c_str(), e.size, e.time.wall, e.time.cpu,
+                        100.0 * double(e.size) / double(vips_size));
+            if (options.zlib_for_flat)
+                std::printf("  (%zu pieces: %zu flat, %zu unfiltered, %zu deflated again)", e.statistics.pieces, e.statistics.flat,
+                            e.statistics.unfiltered, e.statistics.deflated_again);
+            std::printf("\n");
         };
         const ddt::PngEncoder::Options defaults;
         for (int level = 0; level <= 3; ++level)

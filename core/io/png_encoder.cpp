@@ -122,6 +122,7 @@ struct PngEncoder::State {
     uLong adler = 1;               // of the image data written so far
     bool started = false;          // the zlib header is written
     bool finished = false;
+    Statistics statistics;
 
     uint8_t* row(uint32_t index) { return rows.data() + size_t(index + 1) * row_bytes; }
 
@@ -224,8 +225,12 @@ struct PngEncoder::State {
                                                                      size, piece.stored(), piece.size, isLast(p), piece.compressed);
             }
         });
+        statistics.pieces += count;
+        statistics.deflated_again += again.size();
         for (uint32_t p = 0; p < count; ++p) {
             const Piece& piece = pieces[p];
+            statistics.flat += piece.flat;
+            statistics.unfiltered += piece.stores_unfiltered;
             adler = adler32_combine(adler, piece.adler, z_off_t(piece.size));
             uint8_t trailer[4];
             putBigEndian32(trailer, uint32_t(adler));
@@ -309,6 +314,8 @@ void PngEncoder::finish() {
     writePngChunk(s.sink, "IEND", "");
     s.finished = true;
 }
+
+const PngEncoder::Statistics& PngEncoder::statistics() const { return state_->statistics; }
 
 void writePngChunk(const PngEncoder::Sink& sink, const char* type, const std::string& data) {
     writeChunkParts(sink, type, {{reinterpret_cast<const uint8_t*>(data.data()), data.size()}});

@@ -65,6 +65,15 @@ public:
     // rows are missing.
     void finish();
 
+    // What became of the pieces so far, for tests and the bench.
+    struct Statistics {
+        size_t pieces = 0;
+        size_t flat = 0;            // deflated by zlib
+        size_t unfiltered = 0;      // of those, stored unfiltered
+        size_t deflated_again = 0;  // against the real dictionary, after the piece before chose otherwise
+    };
+    const Statistics& statistics() const;
+
 private:
     struct State;
     std::unique_ptr<State> state_;

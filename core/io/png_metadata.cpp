@@ -222,7 +222,9 @@ PngMetadata pngMetadata(const OIIO::ImageSpec& spec) {
     for (const OIIO::ParamValue& p : spec.extra_attribs) {
         const std::string name = p.name().string();
         if (storedApart(name) || p.type() != OIIO::TypeDesc::STRING) continue;
-        const char* text = *static_cast<const char* const*>(p.data());  // a ustring's characters
+        // A ustring's characters; OpenImageIO keeps "" as a null pointer.
+        const char* characters = *static_cast<const char* const*>(p.data());
+        const std::string text = characters ? characters : "";
         if (Strutil::iequals(name, "DateTime")) {
             time = timeChunk(text);
             continue;
