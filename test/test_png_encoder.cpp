@@ -393,8 +393,9 @@ TEST_CASE("png: rows past the height, and a finish before the last row, are refu
     CHECK_THROWS_AS(PngEncoder({0, 4, 3, 8}, {}, [](const uint8_t*, size_t) {}), std::invalid_argument);
 }
 
-// Values on either side of the rounding points, below 0 and above 1: ImageWriter's samples
-// are the ones OpenImageIO's PNG writer makes of the same floats.
+// Values on either side of the 8 and 16-bit rounding points, below 0 and above 1, in rows whose
+// length is not a multiple of 4 (OpenImageIO converts 4 values at a time, the rest otherwise):
+// ImageWriter's samples are the ones OpenImageIO's PNG writer made of the same floats.
 TEST_CASE("png: float samples become the 8 and 16-bit samples OpenImageIO's writer made of them") {
     TempFolder folder;
     std::vector<float> values = {-1.0f, -0.0f, 0.0f, 1.0f, 1.5f, 1e-9f, 0.999999f};
@@ -404,20 +405,26 @@ TEST_CASE("png: float samples become the 8 and 16-bit samples OpenImageIO's writ
             values.push_back((float(k) + 0.5f) / 255.0f + offset);
             values.push_back((float(k * 257) + 0.5f) / 65535.0f + offset);
         }
-    while (values.size() % 3) values.push_back(0.25f);
     for (ddt::SampleType type : {ddt::SampleType::UInt8, ddt::SampleType::UInt16})
-        for (uint32_t channels : {1u, 3u}) {
+        for (uint32_t channels : {1u, 3u, 4u}) {
             INFO(channels << " channels, " << ddt::sampleTypeName(type));
             ddt::Image image;
-            image.width = uint32_t(values.size() / 3);
-            image.height = 3 / channels;
+            image.width = 13;  // 13, 39 or 52 values a row: 1, 3 and 0 left after groups of 4
+            image.height = uint32_t(values.size() / (13 * channels)) + 1;
             image.channels = channels;
             image.sample_type = type;
-            image.pixels = values;
+            image.pixels.resize(size_t(image.width) * image.height * channels);
+            for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = values[i % values.size()];
+            if (channels == 4)  // opaque, so that no colour is divided by alpha
+                for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
             ddt::writeImage(folder / "ours.png", image);
             OIIO::ImageSpec spec(int(image.width), int(image.height), int(channels),
                                  type == ddt::SampleType::UInt8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
-            writeWithOiio(folder / "theirs.png", spec, values);
+            if (channels == 4) {
+                spec.alpha_channel = 3;
+                spec.attribute("oiio:UnassociatedAlpha", 1);  // as ImageWriter opened it
+            }
+            writeWithOiio(folder / "theirs.png", spec, image.pixels);
             requireSameSamples(decodeWithOiio(folder / "ours.png"), decodeWithOiio(folder / "theirs.png"));
         }
 }

@@ -37,13 +37,17 @@ void PngWriter::writeRows(const float* rows, uint32_t count) {
     for (uint32_t first = 0; first < count; first += slice_rows) {
         const uint32_t rows_here = std::min(slice_rows, count - first);
         parallelFor(rows_here, 16, [&](size_t begin, size_t end) {
-            const float* from = rows + (first + begin) * row_floats_;
-            uint8_t* to = samples_.data() + begin * row_bytes;
-            const size_t values = (end - begin) * row_floats_;
-            // OpenImageIO's own conversion (rounded, clamped), as its PNG writer used it.
-            OIIO::convert_pixel_values(OIIO::TypeDesc::FLOAT, from, type_, to, int(values));
-            if (sample_bytes == 2 && std::endian::native == std::endian::little)  // PNG is big-endian
-                for (size_t i = 0; i < values; ++i) std::swap(to[2 * i], to[2 * i + 1]);
+            for (size_t y = begin; y < end; ++y) {
+                uint8_t* to = samples_.data() + y * row_bytes;
+                // OpenImageIO's own conversion, a row a call as its PNG writer made it: it rounds
+                // 4 values at a time with roundf and the rest by adding 0.5, which differ for
+                // one float (the one whose product is the float just below 0.5). Its writer may
+                // also split a row among its threads (narrow rows, measured), so that value
+                // alone can round otherwise than it did.
+                OIIO::convert_pixel_values(OIIO::TypeDesc::FLOAT, rows + (first + y) * row_floats_, type_, to, int(row_floats_));
+                if (sample_bytes == 2 && std::endian::native == std::endian::little)  // PNG is big-endian
+                    for (size_t i = 0; i < row_floats_; ++i) std::swap(to[2 * i], to[2 * i + 1]);
+            }
         });
         encoder_->addRows(samples_.data(), rows_here);
     }
