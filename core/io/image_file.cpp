@@ -22,6 +22,8 @@
 #include "checked_file.h"
 #include "image_formats.h"
 #include "input_check.h"
+#include "parallel.h"
+#include "png_writer.h"
 #include "temp_files.h"
 
 namespace ddt {
@@ -599,7 +601,8 @@ struct ImageWriter::State {
     std::string name;  // for messages: the path, or "standard output"
     std::unique_ptr<TempFile> temp;
     std::unique_ptr<CheckedFile> file;  // null for the few codecs that cannot write through one
-    std::unique_ptr<OIIO::ImageOutput> output;
+    std::unique_ptr<OIIO::ImageOutput> output;  // OIIO's writer, for every format but PNG
+    std::unique_ptr<PngWriter> png;             // ddtup's own, for PNG
     uint32_t width = 0, height = 0;
     OutputLayout layout;
     uint32_t next_row = 0;
@@ -608,10 +611,20 @@ struct ImageWriter::State {
     // The reason a write failed: the file's own error where it saw one, since codecs that
     // ignore failed writes report something vaguer or nothing.
     UserError failure() {
-        std::string codec_reason = firstLine(codecError(*output));  // read either way: it clears it
+        std::string codec_reason = output ? firstLine(codecError(*output)) : "";  // read either way: it clears it
         if (file && file->failure()) return UserError(name + ": " + std::strerror(file->failure()));
         if (!file && noSpaceLeft(temp->path())) return UserError(name + ": " + std::strerror(ENOSPC));
         return UserError(name + ": cannot write (" + codec_reason + ")");
+    }
+
+    // Opens the temporary file as a CheckedFile, empty.
+    void openCheckedFile() {
+        file.reset();
+        try {
+            file = std::make_unique<CheckedFile>(temp->path());
+        } catch (const std::system_error& error) {
+            throw UserError(name + ": cannot write (" + std::strerror(error.code().value()) + ")");
+        }
     }
 
     ~State() {
@@ -632,6 +645,7 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         throw UserError(s.name + ": " + problem);
     s.output = OIIO::ImageOutput::create(formatOfExtension(outputExtension(path, options.format))->oiio_name);
     const std::string format = s.output->format_name();
+    const SampleType wanted_type = options.depth.value_or(like.sample_type);
 
     OutputLayout& layout = s.layout;
     layout.in_channels = layout.out_channels = like.channels;
@@ -647,31 +661,48 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
     layout.straight = layout.out_alpha && outputAlphaStorage(format, like) == AlphaStorage::Straight;
 
     s.temp = createTempFile(path);
-    // OIIO 2.4's TIFF writer loses the main directory when it writes EXIF data through a
-    // proxy (measured, with OIIO's own IOFile too); libtiff reports failed writes itself.
-    const bool checked = s.output->supports("ioproxy") && format != "tiff";
-    auto openAs = [&](OIIO::TypeDesc type) {
+    // The spec OIIO's writer gets, or for PNG the one ddtup's encoder takes its metadata from.
+    auto specFor = [&](OIIO::TypeDesc type) {
         OIIO::ImageSpec spec(int(width), int(height), int(layout.out_channels), type);
         if (like.metadata) copyMetadata(like, width, height, format, spec);
         spec.channelnames = channelNames(layout.out_channels);
         spec.alpha_channel = layout.out_alpha ? int(layout.out_channels) - 1 : -1;
         if (layout.straight) spec.attribute("oiio:UnassociatedAlpha", 1);
         setQuality(format, options.quality, spec);
+        return spec;
+    };
+
+    if (format == "png") {
+        // PNG holds grey and alpha, 8 or 16 bits: wider samples are written as 16 bits.
+        const SampleType written = wanted_type == SampleType::UInt8 ? SampleType::UInt8 : SampleType::UInt16;
+        s.output.reset();
+        s.openCheckedFile();
+        CheckedFile& file = *s.file;
+        State* state = &s;
+        s.png = std::make_unique<PngWriter>(specFor(typeDescOf(written)), [&file, state](const uint8_t* data, size_t size) {
+            if (file.write(data, size) != size) throw state->failure();
+        });
+        for (const std::string& missing : s.png->leftOut()) notes_.push_back(s.name + ": " + missing + " is left out");
+        if (written != wanted_type)
+            notes_.push_back(s.name + ": " + format + " cannot hold " + sampleTypeName(wanted_type) + " samples; written as " +
+                             sampleTypeName(written));
+        return;
+    }
+
+    // OIIO 2.4's TIFF writer loses the main directory when it writes EXIF data through a
+    // proxy (measured, with OIIO's own IOFile too); libtiff reports failed writes itself.
+    const bool checked = s.output->supports("ioproxy") && format != "tiff";
+    auto openAs = [&](OIIO::TypeDesc type) {
+        const OIIO::ImageSpec spec = specFor(type);
         if (checked) {
             // Each attempt starts an empty file: a refused one may have written a header.
-            s.file.reset();
-            try {
-                s.file = std::make_unique<CheckedFile>(s.temp->path());
-            } catch (const std::system_error& error) {
-                throw UserError(s.name + ": cannot write (" + std::strerror(error.code().value()) + ")");
-            }
+            s.openCheckedFile();
             s.output->set_ioproxy(s.file.get());
         }
         QuietStderr quiet;
         return s.output->open(s.temp->path(), spec);
     };
 
-    const SampleType wanted_type = options.depth.value_or(like.sample_type);
     const OIIO::TypeDesc wanted = typeDescOf(wanted_type);
     if (!openAs(wanted)) {
         // Some formats hold no grey (WebP, GIF, HDR) or no grey+alpha (BMP): try RGB(A).
@@ -710,8 +741,15 @@ void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows)
     if (needsConversion(s.layout)) {
         const size_t count = size_t(y_end - y_begin) * s.width;
         s.scratch.resize(count * s.layout.out_channels);
-        convertRows(s.layout, rows, count, s.scratch.data());
+        parallelFor(count, 1 << 14, [&](size_t begin, size_t end) {
+            convertRows(s.layout, rows + begin * s.layout.in_channels, end - begin, s.scratch.data() + begin * s.layout.out_channels);
+        });
         data = s.scratch.data();
+    }
+    if (s.png) {
+        s.png->writeRows(data, y_end - y_begin);  // throws at the first failed write
+        s.next_row = y_end;
+        return;
     }
     bool ok;
     {
@@ -725,14 +763,17 @@ void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows)
 void ImageWriter::commit() {
     State& s = *state_;
     if (s.next_row != s.height) throw std::logic_error("commit before all rows were written");
-    bool ok;
-    {
+    bool ok = true;
+    if (s.png) {
+        s.png->finish();
+    } else {
         QuietStderr quiet;
         ok = s.output->close();
     }
     if (s.file) s.file->close();
     if (!ok || (s.file && s.file->failure())) throw s.failure();
     s.output.reset();
+    s.png.reset();
     if (s.path == kStandardStream) {
         copyToStandardOutput(s.temp->path());
         return;
