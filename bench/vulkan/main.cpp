@@ -63,12 +63,17 @@ void printRow(const std::string& input, const std::string& backend, const StageT
         if (known) std::snprintf(text, sizeof text, format, value);
         return std::string(text);
     };
+    const std::string device = dash(gpu, "%.3f", s.device_ms * 1e-3);
+    const std::string recon = dash(reconstructed, "%.3f", t.reconstruct_s);
+    const std::string speed = dash(cpu, "%.2f", cpu ? t.optimize_s / cpu->optimize_s : 0.0);
+    const std::string rounds = dash(gpu, "%.0f", double(s.rounds));
+    const std::string most_rounds = dash(gpu, "%.0f", s.max_rounds_in_iteration);
+    const std::string dispatches = dash(gpu, "%.0f", double(s.dispatches));
+    const std::string cost = dash(cpu, "%.4f", cpu ? s.cost_final / cpu->stats.cost_final : 0.0);
     std::printf("%-11s %-16s %8.3f %8.3f %8s %8s %8.3f %8.3f %7s %6u %7s %8s %9s %10llu %8s%s\n", input.c_str(),
-                backend.c_str(), t.prepare_s, t.optimize_s, dash(gpu, "%.3f", s.device_ms * 1e-3).c_str(),
-                dash(reconstructed, "%.3f", t.reconstruct_s).c_str(), t.render_s, t.total_s(), dash(cpu, "%.2f", cpu ? t.optimize_s / cpu->optimize_s : 0).c_str(),
-                s.iterations, dash(gpu, "%.0f", double(s.rounds)).c_str(), dash(gpu, "%.0f", s.max_rounds_in_iteration).c_str(),
-                dash(gpu, "%.0f", double(s.dispatches)).c_str(), static_cast<unsigned long long>(s.flips),
-                dash(cpu, "%.4f", cpu ? s.cost_final / cpu->stats.cost_final : 0).c_str(), s.capped ? " (capped)" : "");
+                backend.c_str(), t.prepare_s, t.optimize_s, device.c_str(), recon.c_str(), t.render_s, t.total_s(),
+                speed.c_str(), s.iterations, rounds.c_str(), most_rounds.c_str(), dispatches.c_str(),
+                static_cast<unsigned long long>(s.flips), cost.c_str(), s.capped ? " (capped)" : "");
     std::fflush(stdout);
 }
 
@@ -105,7 +110,8 @@ int run(const Options& options, bool sizes_given) {
     std::printf("input: %s; x%g, %s surface, rendered in bands into memory; median of %d run(s) (cpu: 1 from 2048^2); "
                 "active set %s; times in s\n",
                 raw.width ? (options.raw_path + " " + options.raw_size).c_str() : "synthetic (synthetic_image.h)",
-                options.scale, reconstruct ? "consistent" : "plain", options.runs, options.no_active_set ? "off" : "on");
+                options.scale, reconstruct ? "consistent" : "plain", options.runs,
+                options.no_active_set ? "off" : "on");
 
     // Warm-up: the first dispatch of each kernel compiles it.
     const Image warm = syntheticImage(64, 64);

@@ -34,8 +34,8 @@ Image readRawImage(const std::string& path, RawSize size) {
     image.pixels.resize(expected);
     for (size_t i = 0; i < expected; ++i) image.pixels[i] = float(bytes[i]) / 255.0f;
     if (image.hasAlpha())
-        for (size_t pixel = 0; pixel < expected; pixel += size.channels)
-            for (uint32_t k = 0; k + 1 < size.channels; ++k) image.pixels[pixel + k] *= image.pixels[pixel + size.channels - 1];
+        for (float* pixel = image.pixels.data(); pixel < image.pixels.data() + expected; pixel += size.channels)
+            for (uint32_t k = 0; k + 1 < size.channels; ++k) pixel[k] *= pixel[size.channels - 1];
     return image;
 }
 
