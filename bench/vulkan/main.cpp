@@ -141,6 +141,13 @@ int run(const Options& options, bool sizes_given) {
                 std::printf("  %-18s %-12s %8llu dispatches %10.1f ms\n", rules[i].c_str(), kernel.c_str(),
                             static_cast<unsigned long long>(time.dispatches), time.ms);
     }
+    // With the validation layer on (DDTUP_VALIDATION=1, as the test suite runs), a message fails the run.
+    uint32_t messages = 0;
+    for (const auto& backend : backends) messages += backend->validationMessages();
+    if (messages > 0) {
+        std::fprintf(stderr, "ddtup-bench-vulkan: %u Vulkan validation message(s)\n", messages);
+        return 1;
+    }
     return 0;
 }
 
