@@ -11,8 +11,6 @@
 //   build/bench/ddtup_bench_stages [--runs N] [--sizes 256,1024] [--scale 8] [--json FILE]
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -21,15 +19,10 @@
 
 #include "backend.h"
 #include "image_file.h"
+#include "square_input.h"
+#include "stage_times.h"
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-// Same band size as the app's writer loop (16 Mi floats), so "final" renders like the app does.
-const size_t kBandFloats = size_t(16) << 20;
 
 struct Options {
     std::string image = DDTUP_BENCH_DATA "/real/astronaut.png";
@@ -37,11 +30,6 @@ struct Options {
     uint32_t runs = 3;
     double scale = 8.0;
     std::string json;
-};
-
-struct RunResult {
-    ddt::OptimizeStats stats;
-    double init_s = 0.0, comp_s = 0.0, final_s = 0.0;
 };
 
 struct CaseResult {
@@ -58,84 +46,29 @@ struct CaseResult {
     double edgesTestedPerSecond() const { return comp_s > 0 ? double(stats.iterations) * edges / comp_s : 0.0; }
 };
 
-// The centred size × size crop of `photo`, or its mirror tiling when size exceeds a side.
-ddt::Image benchInput(const ddt::Image& photo, uint32_t size) {
-    ddt::Image image;
-    image.width = image.height = size;
-    image.channels = photo.channels;
-    image.sample_type = photo.sample_type;
-    image.pixels.resize(size_t(size) * size * photo.channels);
-    auto source = [](uint32_t i, uint32_t size, uint32_t side) {
-        if (size <= side) return (side - size) / 2 + i;
-        const uint32_t period = 2 * side;  // reflect: 0 .. side−1, side−1 .. 0, ...
-        const uint32_t j = i % period;
-        return j < side ? j : period - 1 - j;
-    };
-    for (uint32_t y = 0; y < size; ++y) {
-        const uint32_t sy = source(y, size, photo.height);
-        for (uint32_t x = 0; x < size; ++x) {
-            const uint32_t sx = source(x, size, photo.width);
-            std::copy_n(photo.pixels.data() + (size_t(sy) * photo.width + sx) * photo.channels, photo.channels,
-                        image.pixels.data() + (size_t(y) * size + x) * photo.channels);
-        }
-    }
-    return image;
-}
-
-RunResult runOnce(const ddt::Image& image, ddt::OutputSize out, std::vector<float>& band) {
-    RunResult result;
-    std::unique_ptr<ddt::Backend> backend = ddt::makeCpuBackend();
-
-    Clock::time_point start = Clock::now();
-    backend->prepare(image);
-    result.init_s = secondsSince(start);
-
-    start = Clock::now();
-    result.stats = backend->optimize();
-    result.comp_s = secondsSince(start);
-
-    start = Clock::now();
-    const size_t row_floats = size_t(out.width) * image.channels;
-    const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
-    band.resize(size_t(std::min(band_rows, out.height)) * row_floats);
-    for (uint32_t y = 0; y < out.height; y += band_rows)
-        backend->renderRows(out, y, std::min(out.height, y + band_rows), band.data());
-    result.final_s = secondsSince(start);
-    return result;
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 bool sameStats(const ddt::OptimizeStats& a, const ddt::OptimizeStats& b) {
     return a.flips == b.flips && a.iterations == b.iterations && a.cost_init == b.cost_init &&
            a.cost_final == b.cost_final && a.capped == b.capped;
 }
 
 CaseResult runCase(const ddt::Image& photo, uint32_t size, const Options& options) {
-    const ddt::Image image = benchInput(photo, size);
+    const ddt::Image image = ddt::squareInput(photo, size);
     CaseResult result;
     result.name = "astronaut-" + std::to_string(size);
     result.width = image.width;
     result.height = image.height;
     result.edges = uint32_t(ddt::gridEdgeCount(image.width, image.height));
     result.out = ddt::scaledOutputSize(image.width, image.height, options.scale);
-    std::vector<float> band;
-    std::vector<double> init, comp, final;
+    std::vector<ddt::StageTimes> runs;
     for (uint32_t run = 0; run < options.runs; ++run) {
-        const RunResult r = runOnce(image, result.out, band);
-        if (run == 0) result.stats = r.stats;
-        result.deterministic = result.deterministic && sameStats(r.stats, result.stats);
-        init.push_back(r.init_s);
-        comp.push_back(r.comp_s);
-        final.push_back(r.final_s);
+        runs.push_back(ddt::timeStages(*ddt::makeCpuBackend(), image, result.out, false));
+        result.deterministic = result.deterministic && sameStats(runs.back().stats, runs.front().stats);
     }
-    result.init_s = median(init);
-    result.comp_s = median(comp);
-    result.final_s = median(final);
+    const ddt::StageTimes times = ddt::medianStages(runs);
+    result.stats = times.stats;
+    result.init_s = times.prepare_s;
+    result.comp_s = times.optimize_s;
+    result.final_s = times.render_s;
     return result;
 }
 
