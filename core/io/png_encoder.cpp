@@ -12,23 +12,26 @@
 #include "png_deflate.h"
 
 // Choices, measured with bench/bench_png.cpp on ddtup's outputs (astronaut ×8: 4096² RGB;
-// baboon ×4, camera ×8 (grey), fruits ×4 at 16 bits, the drawings monkey, rocket_clipart ×4
-// and ladybug ×4 with alpha, a ×2 of noise), against `vips copy` (zlib level 6, unfiltered):
+// baboon ×4, camera and coins ×8 (grey), fruits ×4 at 16 bits, the drawings monkey,
+// rocket_clipart ×4 and ladybug ×4 with alpha, noise ×1 and ×2), against `vips copy` (zlib
+// level 6, unfiltered), in processor time (the threads' sum):
 //
-// - Filter: per row, libpng's heuristic (PngFilter::Adaptive). With ISA-L it was within 5 % of
-//   the best single filter on every image, while each single filter was 3 to 9 % behind the
-//   best on some image (Average on fruits, Up on astronaut, Paeth on camera). It costs 0.1 s
-//   of processor time more than a single filter on a 4096² RGB image.
-// - Compressor: ISA-L at level 1. Levels 2 and 3 were no smaller (level 3 larger) and slower;
-//   level 0 was 15 % larger. On astronaut ×8 it takes 0.23 s of processor time (zlib at
-//   level 6: 1.0 s for the unfiltered rows) and gives 14.1 MB, 57 % of vips' 24.6 MB.
-// - Flat pieces: on drawings every ISA-L choice was 15 to 27 % larger than vips; zlib's
-//   deeper match search wins there, and whether filtering helps depends on the drawing
-//   (unfiltered was 3 % smaller on rocket_clipart, filtered 8 % on ladybug). So a piece whose
-//   filtered bytes are at least 70 % zeros is "flat" and deflated by zlib both filtered and
-//   unfiltered, the smaller kept. Every piece that ISA-L compressed worse than vips would had
-//   80 % zeros or more; photographs have few flat pieces (astronaut: 11 of 196).
-// - Piece size: 256 KiB. 64 KiB pieces were 0.2 to 1 % larger, 1 MiB ones no smaller.
+// - Filter: per row, libpng's heuristic (PngFilter::Adaptive). With ISA-L it came within 5 %
+//   of the best single filter on every image, while each single filter was 5 to 9 % behind the
+//   best on some image (Paeth on astronaut, Average on monkey, Up on baboon). It costs 0.09 s
+//   more than a single filter on astronaut ×8.
+// - Compressor: ISA-L at level 1. Level 2 was at most 0.2 % smaller and slower, level 3
+//   larger and slower, level 0 15 % larger. Astronaut ×8 takes 0.20 s (zlib at level 6: 0.9 s
+//   for the unfiltered rows alone) and gives 14.1 MB: 57 % of vips' 24.6 MB (OpenImageIO's
+//   writer, libpng's heuristic and zlib level 6: 12.5 MB in 3.3 s).
+// - Flat pieces: on drawings every ISA-L choice was 15 to 69 % larger than vips; zlib's deeper
+//   match search wins there, and whether filtering helps depends on the drawing (unfiltered
+//   was 3 % smaller on rocket_clipart, filtered 8 % on ladybug). So a piece whose filtered
+//   bytes are at least 80 % zeros is "flat" and deflated by zlib both filtered and unfiltered,
+//   the smaller kept: rocket_clipart ×4 takes 0.16 s and comes out 2 % under vips. Every piece
+//   ISA-L compressed worse than vips had 80 % zeros or more; photographs have few flat pieces
+//   (astronaut ×8: 1 of 196; camera ×8: 18 of 66, 0.28 s).
+// - Piece size: 256 KiB. 64 KiB pieces were 0.2 to 2.4 % larger, 1 MiB ones no smaller.
 
 namespace ddt {
 
@@ -84,8 +87,6 @@ size_t countZeros(const uint8_t* bytes, size_t size) {
     return zeros;
 }
 
-}  // namespace
-
 // One chunk of rows on its way through filtering and deflating; the vectors are reused
 // batch after batch.
 struct Piece {
@@ -105,6 +106,8 @@ struct Piece {
 
     const uint8_t* stored() const { return stores_unfiltered ? unfiltered.data() : filtered.data(); }
 };
+
+}  // namespace
 
 struct PngEncoder::State {
     PngFormat format;
@@ -149,12 +152,18 @@ struct PngEncoder::State {
         }
     }
 
-    // The dictionary for piece p if it and the piece before store their rows filtered, or
-    // both unfiltered: the bytes before it in the image data under that assumption. The
-    // first piece of a batch follows what was written, whatever the assumption.
+    // The last bytes of `piece` as stored (up to kWindow): the dictionary of the one after it.
+    static Bytes endOf(const Piece& piece) {
+        const size_t size = std::min(piece.size, kWindow);
+        return {piece.stored() + piece.size - size, size};
+    }
+
+    // The dictionary for piece p if the piece before stores its rows the way `unfiltered`
+    // says: the bytes before p in the image data under that assumption. The first piece of a
+    // batch follows what was written, whatever the assumption.
     Bytes dictionary(size_t p, bool unfiltered) {
         if (p == 0) return {history.data(), history.size()};
-        Piece& before = pieces[p - 1];
+        const Piece& before = pieces[p - 1];
         const size_t size = std::min(before.size, kWindow);
         if (!unfiltered) return {before.filtered.data() + before.size - size, size};
         if (before.flat) return {before.unfiltered.data() + before.size - size, size};
@@ -166,21 +175,19 @@ struct PngEncoder::State {
         return {piece.scratch.data() + piece.scratch.size() - size, size};
     }
 
-    // Deflates piece p as chosen, against its dictionary under the assumption that the piece
-    // before was stored the same way.
-    void deflatePiece(size_t p, bool last) {
-        Piece& piece = pieces[p];
-        const Bytes from = dictionary(p, piece.stores_unfiltered);
-        piece.compressed_size = piece.deflater_state.deflate(piece.deflater, options.isal_level, from.data, from.size, piece.stored(),
-                                                             piece.size, last, piece.compressed);
+    // Deflates `piece` as it is stored, with its deflater, after `dictionary`.
+    void deflatePiece(Piece& piece, const Bytes& dictionary, bool last) {
+        piece.compressed_size = piece.deflater_state.deflate(piece.deflater, options.isal_level, dictionary.data, dictionary.size,
+                                                             piece.stored(), piece.size, last, piece.compressed);
     }
 
     // Chooses how piece p is stored and deflates it: ISA-L on the filtered rows, or for a flat
-    // piece zlib on both forms, the smaller kept (ties: filtered).
+    // piece zlib on both forms, the smaller kept (ties: filtered). Each form is deflated as
+    // if the piece before were stored the same way.
     void choose(size_t p, bool last) {
         Piece& piece = pieces[p];
         piece.deflater = piece.flat ? Deflater::Zlib : Deflater::Isal;
-        deflatePiece(p, last);
+        deflatePiece(piece, dictionary(p, false), last);
         if (piece.flat) {
             const Bytes from = dictionary(p, true);
             const size_t size = piece.deflater_state.deflate(Deflater::Zlib, options.isal_level, from.data, from.size,
@@ -215,15 +222,7 @@ struct PngEncoder::State {
         for (size_t p = 1; p < count; ++p)
             if (pieces[p].stores_unfiltered != pieces[p - 1].stores_unfiltered) again.push_back(p);
         parallelFor(again.size(), 1, [&](size_t begin, size_t end) {
-            for (size_t i = begin; i < end; ++i) {
-                // The real dictionary: the piece before as stored.
-                const size_t p = again[i];
-                Piece& piece = pieces[p];
-                const Piece& before = pieces[p - 1];
-                const size_t size = std::min(before.size, kWindow);
-                piece.compressed_size = piece.deflater_state.deflate(piece.deflater, options.isal_level, before.stored() + before.size - size,
-                                                                     size, piece.stored(), piece.size, isLast(p), piece.compressed);
-            }
+            for (size_t i = begin; i < end; ++i) deflatePiece(pieces[again[i]], endOf(pieces[again[i] - 1]), isLast(again[i]));
         });
         statistics.pieces += count;
         statistics.deflated_again += again.size();
@@ -240,9 +239,8 @@ struct PngEncoder::State {
                              {trailer, isLast(p) ? sizeof trailer : 0u}});
             started = true;
         }
-        const Piece& final_piece = pieces[count - 1];
-        const size_t kept = std::min(final_piece.size, kWindow);
-        history.assign(final_piece.stored() + final_piece.size - kept, final_piece.stored() + final_piece.size);
+        const Bytes end = endOf(pieces[count - 1]);
+        history.assign(end.data, end.data + end.size);
         std::memcpy(rows.data(), row(buffered - 1), row_bytes);
         buffered = 0;
     }
