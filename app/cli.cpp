@@ -111,7 +111,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_flag("-r,--recursive", settings.recursive, "With -i: also the sub-folders, keeping their structure (default: off)");
     app.add_option("-f,--format", settings.format,
                    "Output format by extension: png, jpg, tif, exr, webp, bmp, gif, tga, ppm, pgm, hdr. PNG: 8 or 16 bits (half and "
-                   "float become 16), each row filtered, compressed in parallel (ISA-L; zlib where the image is flat)")
+                   "float become 16), rows filtered or not, whichever compresses better, deflated in parallel (ISA-L; zlib "
+                   "where the image is flat)")
         ->default_str("each input's own format");
     app.add_option("--quality", settings.quality, "Quality of lossy formats (jpg, webp), 1 to 100")
         ->check(CLI::Range(1, 100))

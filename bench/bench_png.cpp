@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
             const Encoding e = encode(samples, options, runs);
             std::printf("  %-36s %10zu bytes  %7.3f s wall %7.3f s cpu  %5.1f %% of vips", name.c_str(), e.size, e.time.wall, e.time.cpu,
                         100.0 * double(e.size) / double(vips_size));
-            if (options.zlib_for_flat)
+            if (options.zlib_for_flat || options.try_unfiltered)
                 std::printf("  (%zu pieces: %zu flat, %zu unfiltered, %zu deflated again)", e.statistics.pieces, e.statistics.flat,
                             e.statistics.unfiltered, e.statistics.deflated_again);
             std::printf("\n");
@@ -168,6 +168,7 @@ int main(int argc, char** argv) {
                 options.filter = filter;
                 options.isal_level = level;
                 options.zlib_for_flat = false;
+                options.try_unfiltered = false;
                 row(std::string("ISA-L only, ") + filterName(filter) + ", level " + std::to_string(level), options);
             }
         for (size_t kib : {64, 128, 256, 512, 1024}) {

@@ -677,10 +677,9 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         const SampleType written = wanted_type == SampleType::UInt8 ? SampleType::UInt8 : SampleType::UInt16;
         s.output.reset();
         s.openCheckedFile();
-        CheckedFile& file = *s.file;
-        State* state = &s;
-        s.png = std::make_unique<PngWriter>(specFor(typeDescOf(written)), [&file, state](const uint8_t* data, size_t size) {
-            if (file.write(data, size) != size) throw state->failure();
+        State* state = &s;  // owns the writer, so outlives it
+        s.png = std::make_unique<PngWriter>(specFor(typeDescOf(written)), [state](const uint8_t* data, size_t size) {
+            if (state->file->write(data, size) != size) throw state->failure();
         });
         for (const std::string& missing : s.png->leftOut()) notes_.push_back(s.name + ": " + missing + " is left out");
         if (written != wanted_type)

@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include <stdexcept>
+#include <utility>
 
 namespace ddt {
 
@@ -23,8 +24,21 @@ size_t isalLevelBufferSize(int level) {
     }
 }
 
-// Room for the compressed piece: incompressible data grows by a few bytes a block.
-size_t initialRoom(size_t size) { return size + size / 64 + 1024; }
+// Calls `step(to, room)`, one call of a compressor writing at most `room` bytes at `to` that
+// returns the room it left and whether it is done, until it is done, growing `out` as needed
+// (incompressible data grows by a few bytes a block). Returns the bytes written.
+template <class Step>
+size_t compressInto(std::vector<uint8_t>& out, size_t input_size, Step step) {
+    const size_t room = input_size + input_size / 64 + 1024;
+    if (out.size() < room) out.resize(room);
+    size_t produced = 0;
+    for (;;) {
+        const auto [left, done] = step(out.data() + produced, out.size() - produced);
+        produced = out.size() - left;
+        if (done) return produced;
+        out.resize(out.size() * 2);
+    }
+}
 
 }  // namespace
 
@@ -54,17 +68,14 @@ struct PieceDeflater::State {
             throw std::runtime_error("ISA-L refused a deflate dictionary");
         z.next_in = const_cast<uint8_t*>(in);
         z.avail_in = uint32_t(size);
-        if (out.size() < initialRoom(size)) out.resize(initialRoom(size));
-        size_t produced = 0;
-        for (;;) {
-            z.next_out = out.data() + produced;
-            z.avail_out = uint32_t(out.size() - produced);
+        return compressInto(out, size, [&](uint8_t* to, size_t room) {
+            z.next_out = to;
+            z.avail_out = uint32_t(room);
             if (isal_deflate(&z) != COMP_OK) throw std::runtime_error("ISA-L's deflate failed");
-            produced = out.size() - z.avail_out;
             // Input all taken and room left over: the flush, or the final block, is complete.
-            if (z.avail_in == 0 && z.avail_out > 0 && (!last || z.internal_state.state == ZSTATE_END)) return produced;
-            out.resize(out.size() * 2);
-        }
+            const bool done = z.avail_in == 0 && z.avail_out > 0 && (!last || z.internal_state.state == ZSTATE_END);
+            return std::pair{size_t(z.avail_out), done};
+        });
     }
 
     // zlib's level 6 with the lazy and "nice" match lengths of level 9 (258): 1 % smaller
@@ -83,18 +94,15 @@ struct PieceDeflater::State {
             throw std::runtime_error("zlib refused a deflate dictionary");
         zlib.next_in = const_cast<Bytef*>(in);
         zlib.avail_in = uInt(size);
-        if (out.size() < initialRoom(size)) out.resize(initialRoom(size));
-        size_t produced = 0;
-        for (;;) {
-            zlib.next_out = out.data() + produced;
-            zlib.avail_out = uInt(out.size() - produced);
+        return compressInto(out, size, [&](uint8_t* to, size_t room) {
+            zlib.next_out = to;
+            zlib.avail_out = uInt(room);
             const int result = ::deflate(&zlib, last ? Z_FINISH : Z_SYNC_FLUSH);
             if (result == Z_STREAM_ERROR) throw std::runtime_error("zlib's deflate failed");
-            produced = out.size() - zlib.avail_out;
             // As for ISA-L: done when deflate left room, or when it says the stream ended.
-            if (last ? result == Z_STREAM_END : zlib.avail_in == 0 && zlib.avail_out > 0) return produced;
-            out.resize(out.size() * 2);
-        }
+            const bool done = last ? result == Z_STREAM_END : zlib.avail_in == 0 && zlib.avail_out > 0;
+            return std::pair{size_t(zlib.avail_out), done};
+        });
     }
 };
 

@@ -12,23 +12,30 @@
 #include "png_deflate.h"
 
 // Choices, measured with bench/bench_png.cpp on ddtup's outputs (astronaut ×8: 4096² RGB;
-// baboon ×4, camera ×8 (grey), fruits ×4 at 16 bits, the drawings monkey, rocket_clipart ×4
-// and ladybug ×4 with alpha, a ×2 of noise), against `vips copy` (zlib level 6, unfiltered):
+// baboon ×4, camera and coins ×8 (grey), fruits ×4 at 16 bits, the drawings monkey,
+// rocket_clipart ×4 and ladybug ×4 with alpha, noise ×1 and ×2), against `vips copy` (zlib
+// level 6, unfiltered), in processor time (the threads' sum):
 //
-// - Filter: per row, libpng's heuristic (PngFilter::Adaptive). With ISA-L it was within 5 % of
-//   the best single filter on every image, while each single filter was 3 to 9 % behind the
-//   best on some image (Average on fruits, Up on astronaut, Paeth on camera). It costs 0.1 s
-//   of processor time more than a single filter on a 4096² RGB image.
-// - Compressor: ISA-L at level 1. Levels 2 and 3 were no smaller (level 3 larger) and slower;
-//   level 0 was 15 % larger. On astronaut ×8 it takes 0.23 s of processor time (zlib at
-//   level 6: 1.0 s for the unfiltered rows) and gives 14.1 MB, 57 % of vips' 24.6 MB.
-// - Flat pieces: on drawings every ISA-L choice was 15 to 27 % larger than vips; zlib's
-//   deeper match search wins there, and whether filtering helps depends on the drawing
-//   (unfiltered was 3 % smaller on rocket_clipart, filtered 8 % on ladybug). So a piece whose
-//   filtered bytes are at least 70 % zeros is "flat" and deflated by zlib both filtered and
-//   unfiltered, the smaller kept. Every piece that ISA-L compressed worse than vips would had
-//   80 % zeros or more; photographs have few flat pieces (astronaut: 11 of 196).
-// - Piece size: 256 KiB. 64 KiB pieces were 0.2 to 1 % larger, 1 MiB ones no smaller.
+// - Filter: per row, libpng's heuristic (PngFilter::Adaptive). With ISA-L it came within 5 %
+//   of the best single filter on every image, while each single filter was 5 to 9 % behind the
+//   best on some image (Paeth on astronaut, Average on monkey, Up on baboon). It costs 0.09 s
+//   more than a single filter on astronaut ×8.
+// - Compressor: ISA-L at level 1. Level 2 was at most 0.2 % smaller and slower, level 3
+//   larger and slower, level 0 15 % larger. Astronaut ×8 takes 0.20 s (zlib at level 6: 0.9 s
+//   for the unfiltered rows alone) and gives 14.1 MB: 57 % of vips' 24.6 MB (OpenImageIO's
+//   writer, libpng's heuristic and zlib level 6: 12.5 MB in 3.3 s).
+// - Flat pieces: on drawings every ISA-L choice was 15 to 69 % larger than vips; zlib's deeper
+//   match search wins there, and whether filtering helps depends on the drawing (unfiltered
+//   was 3 % smaller on rocket_clipart, filtered 8 % on ladybug). So a piece whose filtered
+//   bytes are at least 80 % zeros is "flat" and deflated by zlib both filtered and unfiltered,
+//   the smaller kept: rocket_clipart ×4 takes 0.16 s and comes out 2 % under vips. Every piece
+//   ISA-L compressed worse than vips had 80 % zeros or more; photographs have few flat pieces
+//   (astronaut ×8: 1 of 196; camera ×8: 18 of 66).
+// - Unfiltered too: every piece is also deflated unfiltered, the smaller kept. On noise about
+//   mid-grey (ImageMagick's Gaussian noise on grey, 1024² RGB) filtering made ISA-L's output
+//   3.5 % larger than vips', unfiltered 2 % smaller; on astronaut ×8, where filtering always
+//   wins, the second try costs 0.11 s (0.31 s in all).
+// - Piece size: 256 KiB. 64 KiB pieces were 0.2 to 2.4 % larger, 1 MiB ones no smaller.
 
 namespace ddt {
 
@@ -84,27 +91,26 @@ size_t countZeros(const uint8_t* bytes, size_t size) {
     return zeros;
 }
 
-}  // namespace
-
 // One chunk of rows on its way through filtering and deflating; the vectors are reused
 // batch after batch.
 struct Piece {
     uint32_t first_row = 0, end_row = 0;
     size_t size = 0;                   // the piece's bytes in the image data, filtered or not
     std::vector<uint8_t> filtered;     // with Options::filter
-    std::vector<uint8_t> unfiltered;   // flat pieces only: filter type 0 on every row
+    std::vector<uint8_t> unfiltered;   // filter type 0 on every row
     bool flat = false;
     bool stores_unfiltered = false;    // the choice
     Deflater deflater = Deflater::Isal;
     std::vector<uint8_t> compressed;
     size_t compressed_size = 0;
-    std::vector<uint8_t> other;        // a flat piece's second try
-    std::vector<uint8_t> scratch;      // the piece before's unfiltered end, for a dictionary
+    std::vector<uint8_t> other;        // the second form's try
     uint32_t adler = 1;                // of the stored bytes
     PieceDeflater deflater_state;
 
     const uint8_t* stored() const { return stores_unfiltered ? unfiltered.data() : filtered.data(); }
 };
+
+}  // namespace
 
 struct PngEncoder::State {
     PngFormat format;
@@ -143,55 +149,53 @@ struct PngEncoder::State {
                          piece.filtered.data() + size_t(y - piece.first_row) * stride);
         piece.flat = options.zlib_for_flat && countZeros(piece.filtered.data(), piece.size) * 100 >= kFlatZerosPercent * piece.size;
         piece.stores_unfiltered = false;
-        if (piece.flat) {
-            if (piece.unfiltered.size() < piece.size) piece.unfiltered.resize(piece.size);
-            unfilteredRows(piece.first_row, piece.end_row, piece.unfiltered.data());
-        }
+        if (piece.unfiltered.size() < piece.size) piece.unfiltered.resize(piece.size);
+        unfilteredRows(piece.first_row, piece.end_row, piece.unfiltered.data());
     }
 
-    // The dictionary for piece p if it and the piece before store their rows filtered, or
-    // both unfiltered: the bytes before it in the image data under that assumption. The
-    // first piece of a batch follows what was written, whatever the assumption.
+    // The last bytes of `piece` as stored (up to kWindow): the dictionary of the one after it.
+    static Bytes endOf(const Piece& piece) {
+        const size_t size = std::min(piece.size, kWindow);
+        return {piece.stored() + piece.size - size, size};
+    }
+
+    // The dictionary for piece p if the piece before stores its rows the way `unfiltered`
+    // says: the bytes before p in the image data under that assumption. The first piece of a
+    // batch follows what was written, whatever the assumption.
     Bytes dictionary(size_t p, bool unfiltered) {
         if (p == 0) return {history.data(), history.size()};
-        Piece& before = pieces[p - 1];
+        const Piece& before = pieces[p - 1];
         const size_t size = std::min(before.size, kWindow);
-        if (!unfiltered) return {before.filtered.data() + before.size - size, size};
-        if (before.flat) return {before.unfiltered.data() + before.size - size, size};
-        const size_t stride = row_bytes + 1;
-        const uint32_t rows_needed = uint32_t((size + stride - 1) / stride);
-        Piece& piece = pieces[p];
-        piece.scratch.resize(rows_needed * stride);
-        unfilteredRows(before.end_row - rows_needed, before.end_row, piece.scratch.data());
-        return {piece.scratch.data() + piece.scratch.size() - size, size};
+        return {(unfiltered ? before.unfiltered : before.filtered).data() + before.size - size, size};
     }
 
-    // Deflates piece p as chosen, against its dictionary under the assumption that the piece
-    // before was stored the same way.
-    void deflatePiece(size_t p, bool last) {
-        Piece& piece = pieces[p];
-        const Bytes from = dictionary(p, piece.stores_unfiltered);
-        piece.compressed_size = piece.deflater_state.deflate(piece.deflater, options.isal_level, from.data, from.size, piece.stored(),
-                                                             piece.size, last, piece.compressed);
+    // Deflates `piece` as it is stored, with its deflater, after `dictionary`.
+    void deflatePiece(Piece& piece, const Bytes& dictionary, bool last) {
+        piece.compressed_size = piece.deflater_state.deflate(piece.deflater, options.isal_level, dictionary.data, dictionary.size,
+                                                             piece.stored(), piece.size, last, piece.compressed);
     }
 
-    // Chooses how piece p is stored and deflates it: ISA-L on the filtered rows, or for a flat
-    // piece zlib on both forms, the smaller kept (ties: filtered).
+    // Chooses how piece p is stored and deflates it: filtered and unfiltered, by zlib if the
+    // piece is flat, else by ISA-L; the smaller kept (ties: filtered). Each form is deflated
+    // as if the piece before were stored the same way.
     void choose(size_t p, bool last) {
         Piece& piece = pieces[p];
         piece.deflater = piece.flat ? Deflater::Zlib : Deflater::Isal;
-        deflatePiece(p, last);
-        if (piece.flat) {
-            const Bytes from = dictionary(p, true);
-            const size_t size = piece.deflater_state.deflate(Deflater::Zlib, options.isal_level, from.data, from.size,
-                                                             piece.unfiltered.data(), piece.size, last, piece.other);
-            if (size < piece.compressed_size) {
-                piece.stores_unfiltered = true;
-                piece.compressed.swap(piece.other);
-                piece.compressed_size = size;
-            }
-        }
+        deflatePiece(piece, dictionary(p, false), last);
+        if (options.try_unfiltered) tryUnfiltered(p, last);
         piece.adler = isal_adler32(1, piece.stored(), piece.size);
+    }
+
+    void tryUnfiltered(size_t p, bool last) {
+        Piece& piece = pieces[p];
+        const Bytes from = dictionary(p, true);
+        const size_t size = piece.deflater_state.deflate(piece.deflater, options.isal_level, from.data, from.size,
+                                                         piece.unfiltered.data(), piece.size, last, piece.other);
+        if (size < piece.compressed_size) {
+            piece.stores_unfiltered = true;
+            piece.compressed.swap(piece.other);
+            piece.compressed_size = size;
+        }
     }
 
     // Filters and deflates the buffered rows in parallel and writes them as IDAT chunks. The
@@ -215,15 +219,7 @@ struct PngEncoder::State {
         for (size_t p = 1; p < count; ++p)
             if (pieces[p].stores_unfiltered != pieces[p - 1].stores_unfiltered) again.push_back(p);
         parallelFor(again.size(), 1, [&](size_t begin, size_t end) {
-            for (size_t i = begin; i < end; ++i) {
-                // The real dictionary: the piece before as stored.
-                const size_t p = again[i];
-                Piece& piece = pieces[p];
-                const Piece& before = pieces[p - 1];
-                const size_t size = std::min(before.size, kWindow);
-                piece.compressed_size = piece.deflater_state.deflate(piece.deflater, options.isal_level, before.stored() + before.size - size,
-                                                                     size, piece.stored(), piece.size, isLast(p), piece.compressed);
-            }
+            for (size_t i = begin; i < end; ++i) deflatePiece(pieces[again[i]], endOf(pieces[again[i] - 1]), isLast(again[i]));
         });
         statistics.pieces += count;
         statistics.deflated_again += again.size();
@@ -240,9 +236,8 @@ struct PngEncoder::State {
                              {trailer, isLast(p) ? sizeof trailer : 0u}});
             started = true;
         }
-        const Piece& final_piece = pieces[count - 1];
-        const size_t kept = std::min(final_piece.size, kWindow);
-        history.assign(final_piece.stored() + final_piece.size - kept, final_piece.stored() + final_piece.size);
+        const Bytes end = endOf(pieces[count - 1]);
+        history.assign(end.data, end.data + end.size);
         std::memcpy(rows.data(), row(buffered - 1), row_bytes);
         buffered = 0;
     }

@@ -46,14 +46,15 @@ struct ColourSpace {
 
 ColourSpace colourSpace(const OIIO::ImageSpec& spec, std::vector<std::string>& left_out) {
     ColourSpace result;
-    OIIO::string_view name = spec.get_string_attribute("oiio:ColorSpace");
+    const OIIO::string_view name = spec.get_string_attribute("oiio:ColorSpace");
     float display_gamma = 0;
     if (Strutil::iequals(name, "Linear")) {
         display_gamma = 1.0f;
     } else if (Strutil::istarts_with(name, "Gamma")) {
         display_gamma = spec.get_float_attribute("oiio:Gamma", 1.0f);
-        Strutil::parse_word(name);
-        const float stated = Strutil::from_string<float>(name);
+        OIIO::string_view number = name;
+        Strutil::parse_word(number);
+        const float stated = Strutil::from_string<float>(number);
         if (stated >= 0.01f && stated <= 10.0f) display_gamma = stated;
     } else if (Strutil::iequals(name, "sRGB")) {
         result.srgb = true;
