@@ -4,8 +4,8 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <type_traits>
 
+#include "channel_count.h"
 #include "parallel.h"
 #include "render.h"
 
@@ -192,18 +192,6 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
         }
     }
     return layout;
-}
-
-// Calls f(std::integral_constant<uint32_t, channels>) so that the per-channel loops of the
-// hot passes have a constant trip count the compiler unrolls.
-template <typename F>
-void withChannelCount(uint32_t channels, F f) {
-    switch (channels) {
-    case 1: f(std::integral_constant<uint32_t, 1>()); break;
-    case 2: f(std::integral_constant<uint32_t, 2>()); break;
-    case 3: f(std::integral_constant<uint32_t, 3>()); break;
-    default: f(std::integral_constant<uint32_t, 4>()); break;
-    }
 }
 
 // The surface at every supersample (no clamping: the model sees the surface the solver moves).
