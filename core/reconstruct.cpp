@@ -6,7 +6,9 @@
 #include <functional>
 
 #include "channel_count.h"
+#include "degradation.h"
 #include "parallel.h"
+#include "pixel_vector.h"
 #include "render.h"
 
 namespace ddt {
@@ -59,106 +61,30 @@ Bounds boundsOf(const Image& input) {
     return bounds;
 }
 
-// The degradation D and its transpose between the supersampled grid (sub_w × sub_h, the
-// input's size × kSupersampling) and the input grid. Separable; taps past the border land on
-// the nearest sample.
-class Degradation {
-public:
-    Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model)
-        : w_(width), h_(height), c_(channels), sub_w_(width * kSupersampling), sub_h_(height * kSupersampling),
-          taps_x_(degradationTaps(model.sigma_x)), taps_y_(degradationTaps(model.sigma_y)) {}
-
-    uint32_t subWidth() const { return sub_w_; }
-    uint32_t subHeight() const { return sub_h_; }
-
-    // degraded (w × h) = D(sub).
-    void apply(const std::vector<float>& sub, std::vector<float>& degraded) {
-        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2);
-        const size_t sub_row = size_t(sub_w_) * c_;
-        columns_.assign(sub_row * h_, 0.0f);
-        degraded.assign(size_t(w_) * h_ * c_, 0.0f);
-        parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
-            for (size_t y = begin; y < end; ++y) {
-                float* column_row = columns_.data() + y * sub_row;
-                for (int t = -ry; t <= ry; ++t) {
-                    const float g = taps_y_[t + ry];
-                    const float* in = sub.data() + centreSample(y, t, sub_h_) * sub_row;
-                    for (size_t i = 0; i < sub_row; ++i) column_row[i] += g * in[i];
-                }
-                for (uint32_t x = 0; x < w_; ++x) {
-                    float* out = degraded.data() + (y * w_ + x) * c_;
-                    for (int t = -rx; t <= rx; ++t) {
-                        const float g = taps_x_[t + rx];
-                        const float* in = column_row + centreSample(x, t, sub_w_) * c_;
-                        for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
-                    }
-                }
-            }
-        });
-    }
-
-    // sub (sub_w × sub_h) = Dᵀ(residual), each supersample gathering the pixels whose taps
-    // reach it.
-    void transpose(const std::vector<float>& residual, std::vector<float>& sub) {
-        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2);
-        const size_t sub_row = size_t(sub_w_) * c_;
-        columns_.assign(sub_row * h_, 0.0f);
-        parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
-            for (size_t y = begin; y < end; ++y)
-                for (uint32_t x = 0; x < w_; ++x) {
-                    const float* in = residual.data() + (y * w_ + x) * c_;
-                    for (int t = -rx; t <= rx; ++t) {
-                        const float g = taps_x_[t + rx];
-                        float* out = columns_.data() + y * sub_row + centreSample(x, t, sub_w_) * c_;
-                        for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
-                    }
-                }
-        });
-        sub.assign(sub_row * sub_h_, 0.0f);
-        const int q = int(kSupersampling);
-        parallelFor(sub_h_, kGrain, [&](size_t begin, size_t end) {
-            for (size_t row = begin; row < end; ++row) {
-                float* out = sub.data() + row * sub_row;
-                // Input rows whose taps can land on this row, the border's clamped ones included.
-                const int first = std::max(0, (int(row) - q / 2 - ry) / q - 1);
-                const int last = std::min(int(h_) - 1, (int(row) - q / 2 + ry) / q + 1);
-                for (int y = first; y <= last; ++y)
-                    for (int t = -ry; t <= ry; ++t) {
-                        if (centreSample(y, t, sub_h_) != row) continue;
-                        const float g = taps_y_[t + ry];
-                        const float* in = columns_.data() + y * sub_row;
-                        for (size_t i = 0; i < sub_row; ++i) out[i] += g * in[i];
-                    }
-            }
-        });
-    }
-
-private:
-    // The supersample t steps from the centre sample of pixel i, clamped into [0, size).
-    static size_t centreSample(size_t i, int t, uint32_t size) {
-        return size_t(clampIndex(int(i) * int(kSupersampling) + int(kSupersampling) / 2 + t, int(size)));
-    }
-
-    uint32_t w_, h_, c_, sub_w_, sub_h_;
-    std::vector<float> taps_x_, taps_y_;
-    std::vector<float> columns_;  // the pass between the two axes
+// A supersample and its barycentric weights in its triangle.
+struct Supersample {
+    uint32_t index;  // row-major in the supersampled grid
+    float weights[3];
 };
+
+// Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): six per channel, its corners' hat
+// functions φ_v0..φ_v2, then its edges' bubbles φ_e0..φ_e2. Slot 6 · triangle + n.
+constexpr uint32_t kSlotsPerTriangle = 6;
 
 // The supersamples grouped by triangle, and the triangles around each vertex and edge, so that
 // every pass below is a gather: each output is written by one task, in a fixed order, and
 // the result does not depend on how the work is split across threads.
 struct SampleLayout {
     const std::vector<Triangle>& triangles;  // the locating renderer's
-    std::vector<uint32_t> first_sample;  // per triangle, + end: its range in `samples`
-    std::vector<uint32_t> samples;       // supersample indices, grouped by triangle
-    std::vector<std::array<float, 3>> weights;
-    std::vector<uint32_t> first_corner;  // per vertex, + end: its range in `corners`
-    std::vector<uint32_t> corners;       // 3 · triangle + k, where the vertex is the triangle's v_k
-    std::vector<std::array<uint32_t, 2>> edge_sides;  // per edge: 3 · triangle + k for e_k, or kNone
+    std::vector<uint32_t> first_sample;      // per triangle, + end: its range in `samples`
+    std::vector<Supersample> samples;        // grouped by triangle, in row-major order within one
+    std::vector<uint32_t> first_corner;      // per vertex, + end: its range in `corner_slots`
+    std::vector<uint32_t> corner_slots;      // the partial-sum slots of the vertex's hat function
+    std::vector<std::array<uint32_t, 2>> edge_slots;  // per edge: the slots of its bubble, or kNone
 };
 
 SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize sub_size) {
-    SampleLayout layout{renderer.triangles(), {}, {}, {}, {}, {}, {}};
+    SampleLayout layout{renderer.triangles(), {}, {}, {}, {}, {}};
     const size_t triangles = layout.triangles.size();
     std::vector<SampleHit> hits(size_t(sub_size.width) * sub_size.height);
     parallelFor(sub_size.height, kGrain, [&](size_t begin, size_t end) {
@@ -168,27 +94,23 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
     for (const SampleHit& hit : hits) ++layout.first_sample[hit.triangle + 1];
     for (size_t t = 0; t < triangles; ++t) layout.first_sample[t + 1] += layout.first_sample[t];
     layout.samples.resize(hits.size());
-    layout.weights.resize(hits.size());
     std::vector<uint32_t> next(layout.first_sample.begin(), layout.first_sample.end() - 1);
-    for (size_t i = 0; i < hits.size(); ++i) {
-        const uint32_t slot = next[hits[i].triangle]++;
-        layout.samples[slot] = uint32_t(i);
-        layout.weights[slot] = {hits[i].weights[0], hits[i].weights[1], hits[i].weights[2]};
-    }
+    for (size_t i = 0; i < hits.size(); ++i)
+        layout.samples[next[hits[i].triangle]++] = {uint32_t(i), {hits[i].weights[0], hits[i].weights[1], hits[i].weights[2]}};
     layout.first_corner.assign(size_t(mesh.vertexCount()) + 1, 0);
-    layout.edge_sides.assign(mesh.edgeCount(), {kNone, kNone});
+    layout.edge_slots.assign(mesh.edgeCount(), {kNone, kNone});
     for (const Triangle& t : layout.triangles)
         for (uint32_t v : {t.v0, t.v1, t.v2}) ++layout.first_corner[v + 1];
     for (uint32_t v = 0; v < mesh.vertexCount(); ++v) layout.first_corner[v + 1] += layout.first_corner[v];
-    layout.corners.resize(3 * triangles);
+    layout.corner_slots.resize(3 * triangles);
     next.assign(layout.first_corner.begin(), layout.first_corner.end() - 1);
     for (uint32_t t = 0; t < triangles; ++t) {
         const Triangle& tri = layout.triangles[t];
         const uint32_t vertices[3] = {tri.v0, tri.v1, tri.v2}, edges[3] = {tri.e0, tri.e1, tri.e2};
         for (uint32_t k = 0; k < 3; ++k) {
-            layout.corners[next[vertices[k]]++] = 3 * t + k;
-            std::array<uint32_t, 2>& sides = layout.edge_sides[edges[k]];
-            sides[sides[0] == kNone ? 0 : 1] = 3 * t + k;
+            layout.corner_slots[next[vertices[k]]++] = kSlotsPerTriangle * t + k;
+            std::array<uint32_t, 2>& sides = layout.edge_slots[edges[k]];
+            sides[sides[0] == kNone ? 0 : 1] = kSlotsPerTriangle * t + 3 + k;
         }
     }
     return layout;
@@ -203,13 +125,14 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
         parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
             for (size_t ti = begin; ti < end; ++ti) {
                 const Triangle& t = layout.triangles[ti];
+                const PixelVector<c> v0 = loadPixel<c>(v + size_t(t.v0) * c), v1 = loadPixel<c>(v + size_t(t.v1) * c),
+                                     v2 = loadPixel<c>(v + size_t(t.v2) * c), b0 = loadPixel<c>(b + size_t(t.e0) * c),
+                                     b1 = loadPixel<c>(b + size_t(t.e1) * c), b2 = loadPixel<c>(b + size_t(t.e2) * c);
                 for (uint32_t j = layout.first_sample[ti]; j < layout.first_sample[ti + 1]; ++j) {
-                    const std::array<float, 3>& l = layout.weights[j];
+                    const float* l = layout.samples[j].weights;
                     const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
-                    float* out = sub.data() + size_t(layout.samples[j]) * c;
-                    for (uint32_t k = 0; k < c; ++k)
-                        out[k] = l[0] * v[t.v0 * c + k] + l[1] * v[t.v1 * c + k] + l[2] * v[t.v2 * c + k] +
-                                 q0 * b[t.e0 * c + k] + q1 * b[t.e1 * c + k] + q2 * b[t.e2 * c + k];
+                    storePixel<c>(sub.data() + size_t(layout.samples[j].index) * c,
+                                  l[0] * v0 + l[1] * v1 + l[2] * v2 + q0 * b0 + q1 * b1 + q2 * b2);
                 }
             }
         });
@@ -221,41 +144,40 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
 // those of its triangles.
 void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout,
                     std::vector<float>& partial, std::vector<float>& at_vertices, std::vector<float>& at_edges) {
-    partial.resize(layout.triangles.size() * 6 * c);
+    partial.resize(layout.triangles.size() * kSlotsPerTriangle * c);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
         parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
             for (size_t t = begin; t < end; ++t) {
-                float sums[6][cc] = {};
+                PixelVector<cc> sums[kSlotsPerTriangle] = {};
                 for (uint32_t j = layout.first_sample[t]; j < layout.first_sample[t + 1]; ++j) {
-                    const std::array<float, 3>& l = layout.weights[j];
-                    const float basis[6] = {l[0], l[1], l[2], 4 * l[1] * l[2], 4 * l[2] * l[0], 4 * l[0] * l[1]};
-                    const float* value = g.data() + size_t(layout.samples[j]) * cc;
-                    for (int n = 0; n < 6; ++n)
-                        for (uint32_t k = 0; k < cc; ++k) sums[n][k] += basis[n] * value[k];
+                    const float* l = layout.samples[j].weights;
+                    const float basis[kSlotsPerTriangle] = {l[0], l[1], l[2], 4 * l[1] * l[2], 4 * l[2] * l[0], 4 * l[0] * l[1]};
+                    const PixelVector<cc> value = loadPixel<cc>(g.data() + size_t(layout.samples[j].index) * cc);
+                    for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) sums[n] += basis[n] * value;
                 }
-                std::copy_n(&sums[0][0], 6 * cc, partial.data() + t * 6 * cc);
+                for (uint32_t n = 0; n < kSlotsPerTriangle; ++n)
+                    storePixel<cc>(partial.data() + (t * kSlotsPerTriangle + n) * cc, sums[n]);
             }
         });
-    });
-    const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
-    parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
-        for (size_t v = begin; v < end; ++v)
-            for (uint32_t k = 0; k < c; ++k) {
-                float sum = 0.0f;
+        const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
+        parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
+            for (size_t v = begin; v < end; ++v) {
+                float sum[cc] = {};
                 for (uint32_t j = layout.first_corner[v]; j < layout.first_corner[v + 1]; ++j)
-                    sum += partial[((layout.corners[j] / 3) * 6 + layout.corners[j] % 3) * c + k];
-                at_vertices[v * c + k] = sum;
+                    for (uint32_t k = 0; k < cc; ++k) sum[k] += partial[size_t(layout.corner_slots[j]) * cc + k];
+                std::copy_n(sum, cc, at_vertices.data() + v * cc);
             }
-    });
-    parallelFor(layout.edge_sides.size(), kGrain, [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e)
-            for (uint32_t k = 0; k < c; ++k) {
-                float sum = 0.0f;
-                for (uint32_t side : layout.edge_sides[e])
-                    if (side != kNone) sum += partial[((side / 3) * 6 + 3 + side % 3) * c + k];
-                at_edges[e * c + k] = sum;
+        });
+        parallelFor(layout.edge_slots.size(), kGrain, [&](size_t begin, size_t end) {
+            for (size_t e = begin; e < end; ++e) {
+                float sum[cc] = {};
+                for (uint32_t slot : layout.edge_slots[e])
+                    if (slot != kNone)
+                        for (uint32_t k = 0; k < cc; ++k) sum[k] += partial[size_t(slot) * cc + k];
+                std::copy_n(sum, cc, at_edges.data() + e * cc);
             }
+        });
     });
 }
 
