@@ -17,6 +17,8 @@ namespace {
 
 // Items are whole rows or runs of triangles: even a few are worth a thread each.
 const size_t kGrain = 8;
+// Locating samples sets up tables of the whole output's columns per call: runs of many triangles.
+const uint32_t kTrianglesPerRun = 16384;
 
 double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * std::sqrt(1.0 - 1.0 / (scale * scale)); }
 
@@ -61,42 +63,57 @@ Bounds boundsOf(const Image& input) {
     return bounds;
 }
 
-// A supersample and its barycentric weights in its triangle.
-struct Supersample {
-    uint32_t index;  // row-major in the supersampled grid
-    float weights[3];
-};
-
 // Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): six per channel, its corners' hat
 // functions φ_v0..φ_v2, then its edges' bubbles φ_e0..φ_e2. Slot 6 · triangle + n.
 constexpr uint32_t kSlotsPerTriangle = 6;
+
+// A run of consecutive triangles and their supersamples, located by one task.
+struct SampleRun {
+    uint32_t first_triangle = 0, end_triangle = 0;
+    std::vector<uint32_t> ends;      // per triangle of the run: where its samples end in `samples`
+    std::vector<SampleHit> samples;  // triangle by triangle, row-major within one
+};
 
 // The supersamples grouped by triangle, and the triangles around each vertex and edge, so that
 // every pass below is a gather: each output is written by one task, in a fixed order, and
 // the result does not depend on how the work is split across threads.
 struct SampleLayout {
     const std::vector<Triangle>& triangles;  // the locating renderer's
-    std::vector<uint32_t> first_sample;      // per triangle, + end: its range in `samples`
-    std::vector<Supersample> samples;        // grouped by triangle, in row-major order within one
+    std::vector<SampleRun> runs;             // the triangles in order, kTrianglesPerRun a run
     std::vector<uint32_t> first_corner;      // per vertex, + end: its range in `corner_slots`
     std::vector<uint32_t> corner_slots;      // the partial-sum slots of the vertex's hat function
     std::vector<std::array<uint32_t, 2>> edge_slots;  // per edge: the slots of its bubble, or kNone
+
+    // Calls f(triangle index, its samples' begin, end) for every triangle, a task per run.
+    template <typename F>
+    void forEachTriangle(F f) const {
+        parallelFor(runs.size(), 1, [&](size_t begin, size_t end) {
+            for (size_t r = begin; r < end; ++r) {
+                const SampleRun& run = runs[r];
+                const SampleHit* samples = run.samples.data();
+                for (uint32_t t = run.first_triangle; t < run.end_triangle; ++t) {
+                    const uint32_t i = t - run.first_triangle;
+                    f(t, samples + (i ? run.ends[i - 1] : 0), samples + run.ends[i]);
+                }
+            }
+        });
+    }
 };
 
 SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize sub_size) {
-    SampleLayout layout{renderer.triangles(), {}, {}, {}, {}, {}};
-    const size_t triangles = layout.triangles.size();
-    std::vector<SampleHit> hits(size_t(sub_size.width) * sub_size.height);
-    parallelFor(sub_size.height, kGrain, [&](size_t begin, size_t end) {
-        renderer.locateSamples(sub_size, uint32_t(begin), uint32_t(end), hits.data() + begin * sub_size.width);
+    SampleLayout layout{renderer.triangles(), {}, {}, {}, {}};
+    const uint32_t triangles = uint32_t(layout.triangles.size());
+    layout.runs.resize((triangles + kTrianglesPerRun - 1) / kTrianglesPerRun);
+    parallelFor(layout.runs.size(), 1, [&](size_t begin, size_t end) {
+        for (size_t r = begin; r < end; ++r) {
+            SampleRun& run = layout.runs[r];
+            run.first_triangle = uint32_t(r * kTrianglesPerRun);
+            run.end_triangle = std::min(triangles, run.first_triangle + kTrianglesPerRun);
+            run.ends.resize(run.end_triangle - run.first_triangle);
+            renderer.locateSamples(sub_size, run.first_triangle, run.end_triangle, run.samples, run.ends.data());
+        }
     });
-    layout.first_sample.assign(triangles + 1, 0);
-    for (const SampleHit& hit : hits) ++layout.first_sample[hit.triangle + 1];
-    for (size_t t = 0; t < triangles; ++t) layout.first_sample[t + 1] += layout.first_sample[t];
-    layout.samples.resize(hits.size());
-    std::vector<uint32_t> next(layout.first_sample.begin(), layout.first_sample.end() - 1);
-    for (size_t i = 0; i < hits.size(); ++i)
-        layout.samples[next[hits[i].triangle]++] = {uint32_t(i), {hits[i].weights[0], hits[i].weights[1], hits[i].weights[2]}};
+    std::vector<uint32_t> next;
     layout.first_corner.assign(size_t(mesh.vertexCount()) + 1, 0);
     layout.edge_slots.assign(mesh.edgeCount(), {kNone, kNone});
     for (const Triangle& t : layout.triangles)
@@ -122,18 +139,15 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
         constexpr uint32_t c = decltype(channels)::value;
         const float* v = surface.values.pixels.data();
         const float* b = surface.bubbles.data();
-        parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
-            for (size_t ti = begin; ti < end; ++ti) {
-                const Triangle& t = layout.triangles[ti];
-                const PixelVector<c> v0 = loadPixel<c>(v + size_t(t.v0) * c), v1 = loadPixel<c>(v + size_t(t.v1) * c),
-                                     v2 = loadPixel<c>(v + size_t(t.v2) * c), b0 = loadPixel<c>(b + size_t(t.e0) * c),
-                                     b1 = loadPixel<c>(b + size_t(t.e1) * c), b2 = loadPixel<c>(b + size_t(t.e2) * c);
-                for (uint32_t j = layout.first_sample[ti]; j < layout.first_sample[ti + 1]; ++j) {
-                    const float* l = layout.samples[j].weights;
-                    const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
-                    storePixel<c>(sub.data() + size_t(layout.samples[j].index) * c,
-                                  l[0] * v0 + l[1] * v1 + l[2] * v2 + q0 * b0 + q1 * b1 + q2 * b2);
-                }
+        layout.forEachTriangle([&](uint32_t ti, const SampleHit* begin, const SampleHit* end) {
+            const Triangle& t = layout.triangles[ti];
+            const PixelVector<c> v0 = loadPixel<c>(v + size_t(t.v0) * c), v1 = loadPixel<c>(v + size_t(t.v1) * c),
+                                 v2 = loadPixel<c>(v + size_t(t.v2) * c), b0 = loadPixel<c>(b + size_t(t.e0) * c),
+                                 b1 = loadPixel<c>(b + size_t(t.e1) * c), b2 = loadPixel<c>(b + size_t(t.e2) * c);
+            for (const SampleHit* s = begin; s != end; ++s) {
+                const float* l = s->weights;
+                const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
+                storePixel<c>(sub.data() + size_t(s->sample) * c, l[0] * v0 + l[1] * v1 + l[2] * v2 + q0 * b0 + q1 * b1 + q2 * b2);
             }
         });
     });
@@ -147,18 +161,16 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
     partial.resize(layout.triangles.size() * kSlotsPerTriangle * c);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
-        parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
-            for (size_t t = begin; t < end; ++t) {
-                PixelVector<cc> sums[kSlotsPerTriangle] = {};
-                for (uint32_t j = layout.first_sample[t]; j < layout.first_sample[t + 1]; ++j) {
-                    const float* l = layout.samples[j].weights;
-                    const float basis[kSlotsPerTriangle] = {l[0], l[1], l[2], 4 * l[1] * l[2], 4 * l[2] * l[0], 4 * l[0] * l[1]};
-                    const PixelVector<cc> value = loadPixel<cc>(g.data() + size_t(layout.samples[j].index) * cc);
-                    for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) sums[n] += basis[n] * value;
-                }
-                for (uint32_t n = 0; n < kSlotsPerTriangle; ++n)
-                    storePixel<cc>(partial.data() + (t * kSlotsPerTriangle + n) * cc, sums[n]);
+        layout.forEachTriangle([&](uint32_t t, const SampleHit* begin, const SampleHit* end) {
+            PixelVector<cc> sums[kSlotsPerTriangle] = {};
+            for (const SampleHit* s = begin; s != end; ++s) {
+                const float* l = s->weights;
+                const float basis[kSlotsPerTriangle] = {l[0], l[1], l[2], 4 * l[1] * l[2], 4 * l[2] * l[0], 4 * l[0] * l[1]};
+                const PixelVector<cc> value = loadPixel<cc>(g.data() + size_t(s->sample) * cc);
+                for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) sums[n] += basis[n] * value;
             }
+            for (uint32_t n = 0; n < kSlotsPerTriangle; ++n)
+                storePixel<cc>(partial.data() + (size_t(t) * kSlotsPerTriangle + n) * cc, sums[n]);
         });
         const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
         parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {

@@ -88,8 +88,8 @@ namespace {
 // crop column or row, clamped to the window. Tables, so that no division or clamp is left
 // for the triangles and samples.
 struct SampleGrid {
-    std::vector<int64_t> su;         // per window column
-    std::vector<int8_t> dir_u;       // per window column
+    std::vector<int64_t> su, sv;        // per window column / row
+    std::vector<int8_t> dir_u, dir_v;   // per window column / row
     std::vector<uint32_t> col_first, col_last;  // per crop column
     std::vector<uint32_t> row_first, row_last;  // per crop row in [row_base, row_base + size)
     uint32_t row_base = 0;
@@ -104,6 +104,12 @@ SampleGrid sampleGridOf(const RenderWindow& window, uint32_t crop_w, uint32_t ro
     for (uint32_t x = window.x_begin; x < window.x_end; ++x) {
         grid.su[x - window.x_begin] = sampleCoord(x, in_w, out_w);
         grid.dir_u[x - window.x_begin] = int8_t(sampleDirection(grid.su[x - window.x_begin], in_w, out_w));
+    }
+    grid.sv.resize(window.height());
+    grid.dir_v.resize(window.height());
+    for (uint32_t y = window.y_begin; y < window.y_end; ++y) {
+        grid.sv[y - window.y_begin] = sampleCoord(y, in_h, out_h);
+        grid.dir_v[y - window.y_begin] = int8_t(sampleDirection(grid.sv[y - window.y_begin], in_h, out_h));
     }
     grid.col_first.resize(crop_w);
     grid.col_last.resize(crop_w);
@@ -123,28 +129,36 @@ SampleGrid sampleGridOf(const RenderWindow& window, uint32_t crop_w, uint32_t ro
 
 }  // namespace
 
-// For every triangle with samples in the window, calls visit(triangle index) once; it returns
-// a callable that visitSamples calls as sample(x, y, l0, l1, l2) for each of them, each
-// sample of the window once.
-template <typename Visit>
-void MeshRenderer::visitSamples(const RenderWindow& window, Visit visit) const {
-    // w, h: the crop the mesh covers; in_w, in_h: the whole input, which sets the sampling.
-    const uint32_t w = image_.width, h = image_.height;
-    const uint32_t in_h = window.input_height;
-    const uint32_t out_w = window.out.width, out_h = window.out.height;
-    const uint32_t cx = window.crop_x, cy = window.crop_y;
-    assert(cx + w <= window.input_width && cy + h <= in_h && window.x_end <= out_w && window.y_end <= out_h);
-    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return;
-    // Crop rows the window's samples fall in, widened by the tallest triangle.
+// The triangles whose samples can fall in the window's rows: those whose top row lies in the
+// crop rows the window samples, widened upwards by the tallest triangle.
+std::pair<uint32_t, uint32_t> MeshRenderer::trianglesAround(const RenderWindow& window) const {
+    const uint32_t h = image_.height, in_h = window.input_height, out_h = window.out.height, cy = window.crop_y;
+    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return {0, 0};
     const int64_t unit = vertexCoord(1, out_h);
     const uint32_t v_first = uint32_t(sampleCoord(window.y_begin, in_h, out_h) / unit);
     const uint32_t v_last = uint32_t((sampleCoord(window.y_end - 1, in_h, out_h) + unit - 1) / unit);
     const uint32_t local_first = v_first > cy ? v_first - cy : 0;
     const uint32_t top_first = local_first > tallest_ ? local_first - tallest_ : 0;
     const uint32_t top_last = std::min(v_last > cy ? v_last - cy : 0, h - 1);
+    return {first_in_row_[top_first], first_in_row_[top_last + 1]};
+}
+
+// For every triangle of [first, end) with samples in the window, calls visit(triangle index)
+// once; it returns a callable that visitSamples calls as sample(x, y, l0, l1, l2) for each of
+// them, in row-major order. Each sample of the window lies in exactly one triangle.
+template <typename Visit>
+void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint32_t end, Visit visit) const {
+    // w, h: the crop the mesh covers; the whole input (window.input_*) sets the sampling.
+    const uint32_t w = image_.width, h = image_.height;
+    const uint32_t out_w = window.out.width, out_h = window.out.height;
+    const uint32_t cx = window.crop_x, cy = window.crop_y;
+    assert(cx + w <= window.input_width && cy + h <= window.input_height && window.x_end <= out_w && window.y_end <= out_h);
+    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end || first >= end) return;
+    // The crop rows these triangles span: sorted by top row, each at most tallest_ rows high.
+    const uint32_t top_first = topRow(triangles_[first], w), top_last = topRow(triangles_[end - 1], w);
     const SampleGrid grid = sampleGridOf(window, w, top_first, std::min(h, top_last + tallest_ + 1));
 
-    for (uint32_t i = first_in_row_[top_first]; i < first_in_row_[top_last + 1]; ++i) {
+    for (uint32_t i = first; i < end; ++i) {
         const Triangle& t = triangles_[i];
         const uint32_t xs[3] = {t.v0 % w, t.v1 % w, t.v2 % w}, ys[3] = {t.v0 / w, t.v1 / w, t.v2 / w};
         const uint32_t x_lo = grid.col_first[std::min({xs[0], xs[1], xs[2]})];
@@ -163,16 +177,24 @@ void MeshRenderer::visitSamples(const RenderWindow& window, Visit visit) const {
         // wrapping 64-bit arithmetic: the terms may pass 2^63, the sum is the exact value.
         int64_t edge_dx[3], edge_dy[3];
         uint64_t slope[3];
+        // Bit k of ties[v][u]: whether a sample on edge k's line counts as inside by the tie
+        // rule (raster.h's sampleSide), for a sample pushed along v backwards (v = 0) or
+        // forwards (1) and along u backwards (u = 0) or forwards (1).
+        uint32_t ties[2][2] = {};
         for (int k = 0; k < 3; ++k) {
             const int p = (k + 1) % 3, q = (k + 2) % 3;
             edge_dx[k] = px[q] - px[p];
             edge_dy[k] = py[q] - py[p];
             slope[k] = uint64_t(-edge_dy[k]);
+            for (int v = 0; v < 2; ++v) {
+                ties[v][1] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] < 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
+                ties[v][0] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] > 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
+            }
         }
         auto sample = visit(i);
         for (uint32_t y = y_lo; y <= y_hi; ++y) {
-            const int64_t sv = sampleCoord(y, in_h, out_h);
-            const int dir_v = sampleDirection(sv, in_h, out_h);
+            const int64_t sv = grid.sv[y - window.y_begin];
+            const uint32_t* row_ties = ties[grid.dir_v[y - window.y_begin] > 0];
             uint64_t offset[3];
             for (int k = 0; k < 3; ++k) {
                 const int p = (k + 1) % 3;
@@ -186,13 +208,9 @@ void MeshRenderer::visitSamples(const RenderWindow& window, Visit visit) const {
                 // The edge function opposite each vertex is its barycentric weight × 2·area.
                 int64_t weight[3];
                 for (int k = 0; k < 3; ++k) weight[k] = int64_t(slope[k] * uint64_t(su) + offset[k]);
-                bool inside = (weight[0] | weight[1] | weight[2]) >= 0;
-                if (inside && (weight[0] == 0 || weight[1] == 0 || weight[2] == 0)) {  // on an edge's line: the tie rule
-                    for (int k = 0; k < 3 && inside; ++k) {
-                        const int p = (k + 1) % 3, q = (k + 2) % 3;
-                        inside = sampleSide(px[p], py[p], px[q], py[q], su, sv, grid.dir_u[x - window.x_begin], dir_v) > 0;
-                    }
-                }
+                const uint32_t on_line = uint32_t(weight[0] == 0) | uint32_t(weight[1] == 0) << 1 | uint32_t(weight[2] == 0) << 2;
+                const bool inside = (weight[0] | weight[1] | weight[2]) >= 0 &&
+                                    (on_line & ~row_ties[grid.dir_u[x - window.x_begin] > 0]) == 0;
                 if (!inside) {
                     if (entered) break;
                     continue;
@@ -213,7 +231,8 @@ void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
         const float* values = image_.pixels.data();
         const float* bubbles = bubbles_ ? bubbles_->data() : nullptr;
         const bool alpha = image_.hasAlpha();
-        visitSamples(window, [&](uint32_t i) {
+        const auto [first, end] = trianglesAround(window);
+        visitSamples(window, first, end, [&](uint32_t i) {
             // The triangle's vertex values and bubbles per channel, and the range a sample keeps to.
             const Triangle& t = triangles_[i];
             // Doubles, converted once here rather than at every sample.
@@ -248,12 +267,20 @@ void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
     });
 }
 
-void MeshRenderer::locateSamples(OutputSize out, uint32_t y_begin, uint32_t y_end, SampleHit* hits) const {
-    visitSamples(wholeRows(image_.width, image_.height, out, y_begin, y_end), [&](uint32_t i) {
-        return [=](uint32_t x, uint32_t y, double l0, double l1, double l2) {
-            hits[size_t(y - y_begin) * out.width + x] = {i, {float(l0), float(l1), float(l2)}};
+void MeshRenderer::locateSamples(OutputSize out, uint32_t first, uint32_t end, std::vector<SampleHit>& hits,
+                                 uint32_t* ends) const {
+    const uint32_t start = uint32_t(hits.size());
+    // About as many samples in each triangle as on average.
+    hits.reserve(start + size_t(1.25 * double(out.width) * out.height / triangles_.size() * (end - first)) + 16);
+    std::fill(ends, ends + (end - first), 0);  // first each triangle's count
+    visitSamples(wholeRows(image_.width, image_.height, out, 0, out.height), first, end, [&](uint32_t i) {
+        return [&, count = ends + (i - first)](uint32_t x, uint32_t y, double l0, double l1, double l2) {
+            hits.push_back({y * out.width + x, {float(l0), float(l1), float(l2)}});
+            ++*count;
         };
     });
+    uint32_t total = start;
+    for (uint32_t i = 0; i < end - first; ++i) ends[i] = total += ends[i];
 }
 
 Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles) {

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "image.h"
@@ -51,10 +52,10 @@ struct RenderWindow {
 // Output rows [y_begin, y_end) of an untiled width × height input.
 RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t y_begin, uint32_t y_end);
 
-// Where one sample falls: the index of its triangle in MeshRenderer::triangles() and its
-// barycentric weights for the triangle's v0, v1, v2.
+// A sample of an untiled output in its triangle: its row-major index and its barycentric
+// weights for the triangle's v0, v1, v2.
 struct SampleHit {
-    uint32_t triangle;
+    uint32_t sample;
     float weights[3];
 };
 
@@ -75,14 +76,16 @@ public:
     // Output rows [y_begin, y_end) of the whole image (`image` is the whole input).
     void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const;
 
-    // The triangle and weights of every sample of rows [y_begin, y_end) of an untiled output
-    // of size `out`, row-major into `hits`.
-    void locateSamples(OutputSize out, uint32_t y_begin, uint32_t y_end, SampleHit* hits) const;
+    // The samples of an untiled output of size `out` (below 2^32 samples) that lie in
+    // triangles [first, end) of triangles(), appended to `hits` triangle by triangle, each
+    // triangle's in row-major order; ends[t − first] = hits.size() after triangle t's.
+    void locateSamples(OutputSize out, uint32_t first, uint32_t end, std::vector<SampleHit>& hits, uint32_t* ends) const;
     const std::vector<Triangle>& triangles() const { return triangles_; }
 
 private:
+    std::pair<uint32_t, uint32_t> trianglesAround(const RenderWindow& window) const;
     template <typename Visit>
-    void visitSamples(const RenderWindow& window, Visit visit) const;
+    void visitSamples(const RenderWindow& window, uint32_t first, uint32_t end, Visit visit) const;
 
     const Image& image_;
     const std::vector<float>* bubbles_;
