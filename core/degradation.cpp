@@ -53,24 +53,29 @@ AxisTaps transposeTaps(const AxisTaps& apply, uint32_t supersamples) {
     return result;
 }
 
-// Along y: output row o of `out` gathers whole rows of `in` (row_floats floats each).
+// Along y: output row o of `out` gathers whole rows of `in` (row_floats floats each), a block
+// of the row at a time so that the sum stays in the L1 cache while its terms stream in.
 void gatherRows(const AxisTaps& taps, const float* in, float* out, size_t row_floats) {
+    const size_t kBlock = 1024;  // floats
     parallelFor(taps.outputs(), kGrain, [&](size_t begin, size_t end) {
         for (size_t o = begin; o < end; ++o) {
-            float* row = out + o * row_floats;
             const uint32_t first = taps.first[o], last = taps.first[o + 1];
-            if (first == last) {
-                std::fill_n(row, row_floats, 0.0f);
-                continue;
-            }
-            // 0 + the first term, as a sum from 0 has it (−0 becomes +0).
-            const float* source = in + taps.index[first] * row_floats;
-            const float g = taps.weight[first];
-            for (size_t i = 0; i < row_floats; ++i) row[i] = 0.0f + g * source[i];
-            for (uint32_t j = first + 1; j < last; ++j) {
-                const float* source = in + taps.index[j] * row_floats;
-                const float g = taps.weight[j];
-                for (size_t i = 0; i < row_floats; ++i) row[i] += g * source[i];
+            for (size_t block = 0; block < row_floats; block += kBlock) {
+                float* row = out + o * row_floats + block;
+                const size_t n = std::min(kBlock, row_floats - block);
+                if (first == last) {
+                    std::fill_n(row, n, 0.0f);
+                    continue;
+                }
+                // 0 + the first term, as a sum from 0 has it (−0 becomes +0).
+                const float* source = in + taps.index[first] * row_floats + block;
+                const float g = taps.weight[first];
+                for (size_t i = 0; i < n; ++i) row[i] = 0.0f + g * source[i];
+                for (uint32_t j = first + 1; j < last; ++j) {
+                    const float* source = in + taps.index[j] * row_floats + block;
+                    const float g = taps.weight[j];
+                    for (size_t i = 0; i < n; ++i) row[i] += g * source[i];
+                }
             }
         }
     });

@@ -63,8 +63,8 @@ Bounds boundsOf(const Image& input) {
     return bounds;
 }
 
-// Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): six per channel, its corners' hat
-// functions φ_v0..φ_v2, then its edges' bubbles φ_e0..φ_e2. Slot 6 · triangle + n.
+// Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): per channel, its corners' hat
+// functions φ_v0..φ_v2, then its edges' bubbles φ_e0..φ_e2.
 constexpr uint32_t kSlotsPerTriangle = 6;
 
 // A run of consecutive triangles and their supersamples, located by one task.
@@ -80,9 +80,13 @@ struct SampleRun {
 struct SampleLayout {
     const std::vector<Triangle>& triangles;  // the locating renderer's
     std::vector<SampleRun> runs;             // the triangles in order, kTrianglesPerRun a run
-    std::vector<uint32_t> first_corner;      // per vertex, + end: its range in `corner_slots`
-    std::vector<uint32_t> corner_slots;      // the partial-sum slots of the vertex's hat function
-    std::vector<std::array<uint32_t, 2>> edge_slots;  // per edge: the slots of its bubble, or kNone
+    // Where each triangle's six partial sums go, 6 · triangle + n: the partial sums are kept
+    // in the order that adds them up, so that adding them up reads them in sequence. Slots
+    // [first_corner[v], first_corner[v + 1]) hold vertex v's corners in triangle order,
+    // slots corners + 2 · e and the next edge e's first and second side (none: it stays 0).
+    std::vector<uint32_t> slots;
+    std::vector<uint32_t> first_corner;  // per vertex, + end
+    uint32_t corners = 0;                // 3 · triangles
 
     // Calls f(triangle index, its samples' begin, end) for every triangle, a task per run.
     template <typename F>
@@ -113,21 +117,20 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
             renderer.locateSamples(sub_size, run.first_triangle, run.end_triangle, run.samples, run.ends.data());
         }
     });
-    std::vector<uint32_t> next;
     layout.first_corner.assign(size_t(mesh.vertexCount()) + 1, 0);
-    layout.edge_slots.assign(mesh.edgeCount(), {kNone, kNone});
     for (const Triangle& t : layout.triangles)
         for (uint32_t v : {t.v0, t.v1, t.v2}) ++layout.first_corner[v + 1];
     for (uint32_t v = 0; v < mesh.vertexCount(); ++v) layout.first_corner[v + 1] += layout.first_corner[v];
-    layout.corner_slots.resize(3 * triangles);
-    next.assign(layout.first_corner.begin(), layout.first_corner.end() - 1);
+    layout.corners = 3 * triangles;
+    layout.slots.resize(size_t(kSlotsPerTriangle) * triangles);
+    std::vector<uint32_t> next_corner(layout.first_corner.begin(), layout.first_corner.end() - 1);
+    std::vector<uint8_t> sides_seen(mesh.edgeCount(), 0);
     for (uint32_t t = 0; t < triangles; ++t) {
         const Triangle& tri = layout.triangles[t];
         const uint32_t vertices[3] = {tri.v0, tri.v1, tri.v2}, edges[3] = {tri.e0, tri.e1, tri.e2};
         for (uint32_t k = 0; k < 3; ++k) {
-            layout.corner_slots[next[vertices[k]]++] = kSlotsPerTriangle * t + k;
-            std::array<uint32_t, 2>& sides = layout.edge_slots[edges[k]];
-            sides[sides[0] == kNone ? 0 : 1] = kSlotsPerTriangle * t + 3 + k;
+            layout.slots[kSlotsPerTriangle * t + k] = next_corner[vertices[k]]++;
+            layout.slots[kSlotsPerTriangle * t + 3 + k] = layout.corners + 2 * edges[k] + sides_seen[edges[k]]++;
         }
     }
     return layout;
@@ -158,7 +161,8 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
 // those of its triangles.
 void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout,
                     std::vector<float>& partial, std::vector<float>& at_vertices, std::vector<float>& at_edges) {
-    partial.resize(layout.triangles.size() * kSlotsPerTriangle * c);
+    // Zero at first: the second side of a hull edge is never written.
+    if (partial.empty()) partial.assign((size_t(layout.corners) + 2 * at_edges.size() / c) * c, 0.0f);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
         layout.forEachTriangle([&](uint32_t t, const SampleHit* begin, const SampleHit* end) {
@@ -169,25 +173,26 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
                 const PixelVector<cc> value = loadPixel<cc>(g.data() + size_t(s->sample) * cc);
                 for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) sums[n] += basis[n] * value;
             }
-            for (uint32_t n = 0; n < kSlotsPerTriangle; ++n)
-                storePixel<cc>(partial.data() + (size_t(t) * kSlotsPerTriangle + n) * cc, sums[n]);
+            const uint32_t* slots = layout.slots.data() + size_t(t) * kSlotsPerTriangle;
+            for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) storePixel<cc>(partial.data() + size_t(slots[n]) * cc, sums[n]);
         });
         const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
         parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
             for (size_t v = begin; v < end; ++v) {
-                float sum[cc] = {};
+                PixelVector<cc> sum = {};
                 for (uint32_t j = layout.first_corner[v]; j < layout.first_corner[v + 1]; ++j)
-                    for (uint32_t k = 0; k < cc; ++k) sum[k] += partial[size_t(layout.corner_slots[j]) * cc + k];
-                std::copy_n(sum, cc, at_vertices.data() + v * cc);
+                    sum += loadPixel<cc>(partial.data() + size_t(j) * cc);
+                storePixel<cc>(at_vertices.data() + v * cc, sum);
             }
         });
-        parallelFor(layout.edge_slots.size(), kGrain, [&](size_t begin, size_t end) {
+        const float* edge_sides = partial.data() + size_t(layout.corners) * cc;
+        parallelFor(at_edges.size() / cc, kGrain, [&](size_t begin, size_t end) {
             for (size_t e = begin; e < end; ++e) {
-                float sum[cc] = {};
-                for (uint32_t slot : layout.edge_slots[e])
-                    if (slot != kNone)
-                        for (uint32_t k = 0; k < cc; ++k) sum[k] += partial[size_t(slot) * cc + k];
-                std::copy_n(sum, cc, at_edges.data() + e * cc);
+                // From 0, as every sum here; the unwritten side of a hull edge adds 0.
+                PixelVector<cc> sum = {};
+                sum += loadPixel<cc>(edge_sides + 2 * e * cc);
+                sum += loadPixel<cc>(edge_sides + (2 * e + 1) * cc);
+                storePixel<cc>(at_edges.data() + e * cc, sum);
             }
         });
     });
