@@ -37,28 +37,47 @@ struct Bounds {
     std::vector<float> low, high;
 };
 
+// Separable: the 3-wide range of each row, then of three rows of those. std::min and std::max
+// keep the first of equal values, so this picks the same value (down to the sign of a zero)
+// as a scan of the 3 × 3 pixels in row-major order.
 Bounds boundsOf(const Image& input) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
+    const size_t row_floats = size_t(w) * c;
     const bool integer = boundedToUnit(input.sample_type);
     Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
     parallelFor(h, kGrain, [&](size_t begin, size_t end) {
-        for (size_t y = begin; y < end; ++y)
+        // The rows' own ranges, for rows [first, last] of this task.
+        const size_t first = begin ? begin - 1 : 0, last = std::min<size_t>(h - 1, end);
+        std::vector<float> row_low((last - first + 1) * row_floats), row_high(row_low.size());
+        for (size_t y = first; y <= last; ++y) {
+            const float* row = input.row(uint32_t(y));
+            float* low = row_low.data() + (y - first) * row_floats;
+            float* high = row_high.data() + (y - first) * row_floats;
             for (uint32_t x = 0; x < w; ++x)
                 for (uint32_t k = 0; k < c; ++k) {
                     float lo = INFINITY, hi = -INFINITY;
-                    for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny)
-                        for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
-                            const float v = input.pixels[(ny * w + nx) * c + k];
-                            lo = std::min(lo, v);
-                            hi = std::max(hi, v);
-                        }
-                    if (integer) {
-                        lo = std::max(lo, 0.0f);
-                        hi = std::min(hi, 1.0f);
+                    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
+                        lo = std::min(lo, row[nx * c + k]);
+                        hi = std::max(hi, row[nx * c + k]);
                     }
-                    bounds.low[(y * w + x) * c + k] = lo;
-                    bounds.high[(y * w + x) * c + k] = hi;
+                    low[x * c + k] = lo;
+                    high[x * c + k] = hi;
                 }
+        }
+        for (size_t y = begin; y < end; ++y)
+            for (size_t i = 0; i < row_floats; ++i) {
+                float lo = INFINITY, hi = -INFINITY;
+                for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny) {
+                    lo = std::min(lo, row_low[(ny - first) * row_floats + i]);
+                    hi = std::max(hi, row_high[(ny - first) * row_floats + i]);
+                }
+                if (integer) {
+                    lo = std::max(lo, 0.0f);
+                    hi = std::min(hi, 1.0f);
+                }
+                bounds.low[y * row_floats + i] = lo;
+                bounds.high[y * row_floats + i] = hi;
+            }
     });
     return bounds;
 }
@@ -233,14 +252,16 @@ Surface initialSurface(const Mesh& mesh, const Image& input) {
     const uint32_t c = input.channels;
     Surface surface{input, std::vector<float>(size_t(mesh.edgeCount()) * c)};
     auto at = [&](int x, int y) { return input.pixels.data() + (size_t(clampIndex(y, h)) * w + clampIndex(x, w)) * c; };
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-        const int px = int(mesh.vertices[e].a % w), py = int(mesh.vertices[e].a / w);
-        const int qx = int(mesh.vertices[e].b % w), qy = int(mesh.vertices[e].b / w);
-        const float *p = at(px, py), *q = at(qx, qy);
-        const float *before = at(2 * px - qx, 2 * py - qy), *after = at(2 * qx - px, 2 * qy - py);
-        for (uint32_t k = 0; k < c; ++k)
-            surface.bubbles[e * c + k] = (-before[k] + 9 * p[k] + 9 * q[k] - after[k]) / 16 - (p[k] + q[k]) / 2;
-    }
+    parallelFor(mesh.edgeCount(), 4096, [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e) {
+            const int px = int(mesh.vertices[e].a % w), py = int(mesh.vertices[e].a / w);
+            const int qx = int(mesh.vertices[e].b % w), qy = int(mesh.vertices[e].b / w);
+            const float *p = at(px, py), *q = at(qx, qy);
+            const float *before = at(2 * px - qx, 2 * py - qy), *after = at(2 * qx - px, 2 * qy - py);
+            for (uint32_t k = 0; k < c; ++k)
+                surface.bubbles[e * c + k] = (-before[k] + 9 * p[k] + 9 * q[k] - after[k]) / 16 - (p[k] + q[k]) / 2;
+        }
+    });
     return surface;
 }
 
@@ -278,9 +299,13 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
                 for (size_t p = begin * c; p < end * c; p += c)
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
         });
-        parallelFor(surface.bubbles.size(), kGrain, [&](size_t begin, size_t end) {
-            for (size_t i = begin; i < end; ++i)
-                if (edge_weight[i] > 0.0f) surface.bubbles[i] += kRelaxation * edge_step[i] / edge_weight[i];
+        parallelFor(surface.bubbles.size(), 4096, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) {
+                // Written without a branch around the division, so that it vectorises.
+                const bool moves = edge_weight[i] > 0.0f;
+                const float step = kRelaxation * edge_step[i] / (moves ? edge_weight[i] : 1.0f);
+                surface.bubbles[i] = moves ? surface.bubbles[i] + step : surface.bubbles[i];
+            }
         });
     }
     return surface;
