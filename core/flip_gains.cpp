@@ -10,7 +10,7 @@ namespace {
 // A vertex of a stencil: its id and the coordinates planeGradient derives from it.
 struct Corner {
     uint32_t id;
-    double x, y;
+    int32_t x, y;
 };
 
 // What planeGradient computes from the vertices alone: the triangle turned so that its smallest
@@ -20,19 +20,20 @@ struct TriangleShape {
     double dx1, dy1, dx2, dy2, scale;
 };
 
-TriangleShape turnedShape(int first, const Corner& c0, const Corner& c1, const Corner& c2) {
+// planeGradient's differences of coordinates below 2^28, exact in either order.
+inline TriangleShape turnedShape(int first, const Corner& c0, const Corner& c1, const Corner& c2) {
     const double dx1 = c1.x - c0.x, dy1 = c1.y - c0.y, dx2 = c2.x - c0.x, dy2 = c2.y - c0.y;
     return {first, dx1, dy1, dx2, dy2, dx1 * dy2 - dx2 * dy1};
 }
 
-TriangleShape shapeOf(const Corner& p0, const Corner& p1, const Corner& p2) {
+inline TriangleShape shapeOf(const Corner& p0, const Corner& p1, const Corner& p2) {
     if (p1.id < p0.id && p1.id < p2.id) return turnedShape(1, p1, p2, p0);
     if (p2.id < p0.id && p2.id < p1.id) return turnedShape(2, p2, p0, p1);
     return turnedShape(0, p0, p1, p2);
 }
 
 // planeGradient of the triangle with values z0, z1, z2 at its corners (in the order given to shapeOf).
-Gradient gradientOf(const TriangleShape& s, float z0, float z1, float z2) {
+inline Gradient gradientOf(const TriangleShape& s, float z0, float z1, float z2) {
     const float first = s.first == 0 ? z0 : s.first == 1 ? z1 : z2;
     const float second = s.first == 0 ? z1 : s.first == 1 ? z2 : z0;
     const float third = s.first == 0 ? z2 : s.first == 1 ? z0 : z1;
@@ -80,7 +81,7 @@ double FlipGains::gainOf(uint32_t e) {
     // v % width and v / width by one multiplication: exact for v, width < 2^32.
     auto corner = [&](uint32_t id) {
         const uint32_t row = uint32_t((unsigned __int128)id * width_reciprocal_ >> 64);
-        return Corner{id, double(id - row * mesh_.width), double(row)};
+        return Corner{id, int32_t(id - row * mesh_.width), int32_t(row)};
     };
     const Corner a = corner(v.a), b = corner(v.b), l = corner(v.l), r = corner(v.r);
     // flipIsConvex: both new triangles positive (orientation's exact integer arithmetic).
