@@ -266,11 +266,16 @@ Surface initialSurface(const Mesh& mesh, const Image& input) {
 }
 
 Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model, uint32_t iterations) {
+    if (model.identity() || iterations == 0) return initialSurface(mesh, input);
+    return reconstructSurface(mesh, input, model, MeshRenderer(mesh, input), iterations);
+}
+
+Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
+                           const MeshRenderer& locator, uint32_t iterations) {
     Surface surface = initialSurface(mesh, input);
     if (model.identity() || iterations == 0) return surface;  // D is the identity: already consistent
     const uint32_t c = input.channels;
     Degradation degradation(input.width, input.height, c, model);
-    const MeshRenderer locator(mesh, input);
     const SampleLayout layout = layoutOf(mesh, locator, {degradation.subWidth(), degradation.subHeight()});
     const Bounds bounds = boundsOf(input);
     const float tolerance = quantisationTolerance(input.sample_type);

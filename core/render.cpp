@@ -77,6 +77,12 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vect
     for (const Triangle& t : triangles) triangles_[next[topRow(t, mesh.width)]++] = t;
 }
 
+MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles)
+    : image_(image), bubbles_(bubbles), triangles_(std::move(tables.triangles_)),
+      first_in_row_(std::move(tables.first_in_row_)), tallest_(tables.tallest_) {
+    assert(image.width == tables.image_.width && image.height == tables.image_.height);
+}
+
 void MeshRenderer::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const {
     renderWindow(wholeRows(image_.width, image_.height, out, y_begin, y_end), rows);
 }

@@ -70,6 +70,9 @@ public:
     // `image` holds the vertex values (premultiplied); `bubbles`, if not null, edgeCount() ×
     // channels values. All must outlive the renderer.
     MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles = nullptr);
+    // A renderer of the same mesh as `tables` for another surface, taking over its triangle
+    // tables instead of building them again.
+    MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles = nullptr);
 
     // Renders the window into `rows`: window.width() × channels floats per row.
     void renderWindow(const RenderWindow& window, float* rows) const;
