@@ -26,6 +26,10 @@ inline TriangleShape turnedShape(int first, const Corner& c0, const Corner& c1, 
     return {first, dx1, dy1, dx2, dy2, dx1 * dy2 - dx2 * dy1};
 }
 
+inline Corner cornerOf(uint32_t id, const DivideBy& by_width) {
+    return {id, int32_t(by_width.remainder(id)), int32_t(by_width.quotient(id))};
+}
+
 inline TriangleShape shapeOf(const Corner& p0, const Corner& p1, const Corner& p2) {
     if (p1.id < p0.id && p1.id < p2.id) return turnedShape(1, p1, p2, p0);
     if (p2.id < p0.id && p2.id < p1.id) return turnedShape(2, p2, p0, p1);
@@ -43,14 +47,25 @@ inline Gradient gradientOf(const TriangleShape& s, float z0, float z1, float z2)
 
 }  // namespace
 
-FlipGains::FlipGains(const Mesh& mesh, const CostField& field)
-    : mesh_(mesh), width_reciprocal_(UINT64_MAX / mesh.width + 1) {
-    assert(mesh.width >= 2);
+FlipGains::FlipGains(const Mesh& mesh, const CostField& field) : mesh_(mesh), by_width_(mesh.width) {
     channels_.push_back({field.luma, {}, {}});
     if (!field.alpha.empty()) channels_.push_back({field.alpha, {}, {}});
-    for (Channel& channel : channels_) {
-        channel.costs.resize(mesh.edgeCount());
-        for (uint32_t e = 0; e < mesh.edgeCount(); ++e) channel.costs[e] = channelCost(channel, e);
+    for (Channel& channel : channels_) channel.costs.resize(mesh.edgeCount());
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        const EdgeVertices& v = mesh.vertices[e];
+        if (v.l == kNone || v.r == kNone) {
+            for (Channel& channel : channels_) channel.costs[e] = 0.0;
+            continue;
+        }
+        // edgeCost's: the SCF of the left triangle (a, b, l) and the right one (b, a, r).
+        const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
+        const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
+        const TriangleShape left = shapeOf(a, b, l), right = shapeOf(b, a, r);
+        for (Channel& channel : channels_) {
+            const std::vector<float>& z = channel.values;
+            channel.costs[e] =
+                sederbergCost(gradientOf(left, z[v.a], z[v.b], z[v.l]), gradientOf(right, z[v.b], z[v.a], z[v.r]));
+        }
     }
 }
 
@@ -65,25 +80,12 @@ double FlipGains::total() const {
     return total;
 }
 
-double FlipGains::channelCost(const Channel& channel, uint32_t e) const {
-    const EdgeVertices& v = mesh_.vertices[e];
-    if (v.l == kNone || v.r == kNone) return 0.0;
-    const std::vector<float>& z = channel.values;
-    const uint32_t w = mesh_.width;
-    return sederbergCost(planeGradient(v.a, v.b, v.l, z[v.a], z[v.b], z[v.l], w),
-                         planeGradient(v.b, v.a, v.r, z[v.b], z[v.a], z[v.r], w));
-}
-
 double FlipGains::gainOf(uint32_t e) {
     changed_[0] = kNone;
     const EdgeVertices& v = mesh_.vertices[e];
     if (v.l == kNone || v.r == kNone) return -std::numeric_limits<double>::infinity();
-    // v % width and v / width by one multiplication: exact for v, width < 2^32.
-    auto corner = [&](uint32_t id) {
-        const uint32_t row = uint32_t((unsigned __int128)id * width_reciprocal_ >> 64);
-        return Corner{id, int32_t(id - row * mesh_.width), int32_t(row)};
-    };
-    const Corner a = corner(v.a), b = corner(v.b), l = corner(v.l), r = corner(v.r);
+    const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
+    const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
     // flipIsConvex: both new triangles positive (orientation's exact integer arithmetic).
     const TriangleShape rbl = shapeOf(r, b, l), lar = shapeOf(l, a, r);
     if (!(rbl.scale > 0.0 && lar.scale > 0.0)) return -std::numeric_limits<double>::infinity();
@@ -101,7 +103,7 @@ double FlipGains::gainOf(uint32_t e) {
     TriangleShape outer[4];
     for (int k = 0; k < 4; ++k)
         if (far_ids[k] != kNone) {
-            far[k] = corner(far_ids[k]);
+            far[k] = cornerOf(far_ids[k], by_width_);
             outer[k] = shapeOf(*near[k][0], *near[k][1], far[k]);
         }
 

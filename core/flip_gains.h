@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cost.h"
+#include "divide_by.h"
 #include "mesh.h"
 
 namespace ddt {
@@ -33,10 +34,8 @@ private:
         double after[5];            // the last gain's new costs of its edges `changed_`
     };
 
-    double channelCost(const Channel& channel, uint32_t e) const;
-
     const Mesh& mesh_;
-    uint64_t width_reciprocal_;  // ⌊2^64 / width⌋ + 1
+    DivideBy by_width_;
     std::vector<Channel> channels_;  // luma, then alpha if any
     uint32_t changed_[5] = {kNone};  // the last gain's edge e and its neighbours bl, la, ar, rb
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "channel_count.h"
+#include "divide_by.h"
 #include "raster.h"
 
 namespace ddt {
@@ -15,17 +16,6 @@ namespace {
 uint32_t roundedSide(double side) { return side >= 4294967295.0 ? UINT32_MAX : uint32_t(std::llround(side)); }
 
 uint32_t topRow(const Triangle& t, uint32_t width) { return std::min({t.v0, t.v1, t.v2}) / width; }
-
-struct Bounds {
-    uint32_t x0, x1, y0, y1;
-};
-
-Bounds boundsOf(const Triangle& t, uint32_t width) {
-    uint32_t xs[3] = {t.v0 % width, t.v1 % width, t.v2 % width};
-    uint32_t ys[3] = {t.v0 / width, t.v1 / width, t.v2 / width};
-    return {*std::min_element(xs, xs + 3), *std::max_element(xs, xs + 3), *std::min_element(ys, ys + 3),
-            *std::max_element(ys, ys + 3)};
-}
 
 }  // namespace
 
@@ -63,18 +53,19 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vect
     : image_(image), bubbles_(bubbles) {
     assert(image.width == mesh.width && image.height == mesh.height);
     assert(!bubbles || bubbles->size() == size_t(mesh.edgeCount()) * image.channels);
-    std::vector<Triangle> triangles = listTriangles(mesh);
-    // Counting sort by top row, so a band of output rows visits only nearby triangles.
+    // The triangles sorted by top row (counting sort, stable), so a band of output rows visits
+    // only nearby triangles.
+    const DivideBy by_width(mesh.width);
     first_in_row_.assign(mesh.height + 1, 0);
-    for (const Triangle& t : triangles) {
-        ++first_in_row_[topRow(t, mesh.width) + 1];
-        Bounds b = boundsOf(t, mesh.width);
-        tallest_ = std::max(tallest_, b.y1 - b.y0);
-    }
+    forEachTriangle(mesh, [&](const Triangle& t) {
+        const uint32_t top = by_width.quotient(std::min({t.v0, t.v1, t.v2}));
+        ++first_in_row_[top + 1];
+        tallest_ = std::max(tallest_, by_width.quotient(std::max({t.v0, t.v1, t.v2})) - top);
+    });
     for (uint32_t y = 0; y < mesh.height; ++y) first_in_row_[y + 1] += first_in_row_[y];
-    triangles_.resize(triangles.size());
+    triangles_.resize(first_in_row_.back());
     std::vector<uint32_t> next(first_in_row_.begin(), first_in_row_.end() - 1);
-    for (const Triangle& t : triangles) triangles_[next[topRow(t, mesh.width)]++] = t;
+    forEachTriangle(mesh, [&](const Triangle& t) { triangles_[next[by_width.quotient(std::min({t.v0, t.v1, t.v2}))]++] = t; });
 }
 
 MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles)
@@ -164,9 +155,11 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
     const uint32_t top_first = topRow(triangles_[first], w), top_last = topRow(triangles_[end - 1], w);
     const SampleGrid grid = sampleGridOf(window, w, top_first, std::min(h, top_last + tallest_ + 1));
 
+    const DivideBy by_width(w);
     for (uint32_t i = first; i < end; ++i) {
         const Triangle& t = triangles_[i];
-        const uint32_t xs[3] = {t.v0 % w, t.v1 % w, t.v2 % w}, ys[3] = {t.v0 / w, t.v1 / w, t.v2 / w};
+        const uint32_t ys[3] = {by_width.quotient(t.v0), by_width.quotient(t.v1), by_width.quotient(t.v2)};
+        const uint32_t xs[3] = {t.v0 - ys[0] * w, t.v1 - ys[1] * w, t.v2 - ys[2] * w};
         const uint32_t x_lo = grid.col_first[std::min({xs[0], xs[1], xs[2]})];
         const uint32_t x_hi = grid.col_last[std::max({xs[0], xs[1], xs[2]})];
         const uint32_t y_lo = grid.row_first[std::min({ys[0], ys[1], ys[2]}) - grid.row_base];
