@@ -36,8 +36,12 @@ public:
     }
 
     void reconstruct(const DegradationModel& model) override {
+        // One set of triangle tables locates the supersamples, then renders the result.
+        MeshRenderer locator = renderer_ ? MeshRenderer(std::move(*renderer_), *image_) : MeshRenderer(mesh_, *image_);
         renderer_.reset();
-        surface_ = reconstructSurface(mesh_, *image_, model);
+        surface_.reset();
+        surface_ = reconstructSurface(mesh_, *image_, model, locator);
+        renderer_.emplace(std::move(locator), surface_->values, &surface_->bubbles);
     }
 
     void renderWindow(const RenderWindow& window, float* rows) override {
@@ -66,13 +70,14 @@ public:
     // renderer's triangle list (about two 24-byte triangles per vertex), the cost field and
     // the sweeps' per-edge state (about 16 bytes per edge, ~3 edges per vertex); then the
     // reconstruction's (core/reconstruct.cpp, per pixel: 9 supersamples, 2 triangles, 3
-    // edges): the supersamples' triangles and weights, twice while they are grouped (288
-    // bytes), the triangle, corner and edge indices (about 70), and per channel 160 bytes of
-    // floats (the supersamples' values, the pass between the axes, each triangle's six sums,
-    // the values, bubbles, bounds, weights and steps).
+    // edges; it locates with the renderer's triangle list): the supersamples' indices and
+    // weights (144 bytes), the triangles' sample ends and sum slots and the vertices' corner
+    // ranges (about 65), and per channel 160 bytes of floats (the supersamples' values, the
+    // pass between the axes, each triangle's six sums, the values, bubbles, bounds, weights
+    // and steps).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t surface = reconstruction ? 360 + 160 * channels : 0;
+        const uint64_t surface = reconstruction ? 210 + 160 * channels : 0;
         return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + surface);
     }
 

@@ -166,12 +166,7 @@ std::vector<uint32_t> regionOf(const Mesh& mesh, uint32_t e, int degree) {
 std::vector<Triangle> listTriangles(const Mesh& mesh) {
     std::vector<Triangle> triangles;
     triangles.reserve(2 * size_t(mesh.width - 1) * (mesh.height - 1));
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-        const EdgeVertices& v = mesh.vertices[e];
-        const EdgeNeighbours& n = mesh.neighbours[e];
-        if (v.l != kNone && e < n.bl && e < n.la) triangles.push_back({v.a, v.b, v.l, n.bl, n.la, e});
-        if (v.r != kNone && e < n.ar && e < n.rb) triangles.push_back({v.b, v.a, v.r, n.ar, n.rb, e});
-    }
+    forEachTriangle(mesh, [&](const Triangle& t) { triangles.push_back(t); });
     return triangles;
 }
 

@@ -86,6 +86,17 @@ struct Triangle {
 };
 std::vector<Triangle> listTriangles(const Mesh& mesh);
 
+// Calls f(triangle) for every triangle, in listTriangles' order.
+template <typename F>
+void forEachTriangle(const Mesh& mesh, F f) {
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        const EdgeVertices& v = mesh.vertices[e];
+        const EdgeNeighbours& n = mesh.neighbours[e];
+        if (v.l != kNone && e < n.bl && e < n.la) f(Triangle{v.a, v.b, v.l, n.bl, n.la, e});
+        if (v.r != kNone && e < n.ar && e < n.rb) f(Triangle{v.b, v.a, v.r, n.ar, n.rb, e});
+    }
+}
+
 // Checks the mesh: every record consistent with its neighbours, every triangle positive,
 // interior edges shared by two triangles, boundary edges on the hull with one, total area
 // (w−1)(h−1), no duplicate edge. Returns "" if valid, else the first problem found.

@@ -4,9 +4,11 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <type_traits>
 
+#include "channel_count.h"
+#include "degradation.h"
 #include "parallel.h"
+#include "pixel_vector.h"
 #include "render.h"
 
 namespace ddt {
@@ -15,6 +17,8 @@ namespace {
 
 // Items are whole rows or runs of triangles: even a few are worth a thread each.
 const size_t kGrain = 8;
+// Locating samples sets up tables of the whole output's columns per call: runs of many triangles.
+const uint32_t kTrianglesPerRun = 16384;
 
 double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * std::sqrt(1.0 - 1.0 / (scale * scale)); }
 
@@ -33,115 +37,60 @@ struct Bounds {
     std::vector<float> low, high;
 };
 
+// Separable: the 3-wide range of each row, then of three rows of those. std::min and std::max
+// keep the first of equal values, so this picks the same value (down to the sign of a zero)
+// as a scan of the 3 × 3 pixels in row-major order.
 Bounds boundsOf(const Image& input) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
+    const size_t row_floats = size_t(w) * c;
     const bool integer = boundedToUnit(input.sample_type);
     Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
     parallelFor(h, kGrain, [&](size_t begin, size_t end) {
-        for (size_t y = begin; y < end; ++y)
+        // The rows' own ranges, for rows [first, last] of this task.
+        const size_t first = begin ? begin - 1 : 0, last = std::min<size_t>(h - 1, end);
+        std::vector<float> row_low((last - first + 1) * row_floats), row_high(row_low.size());
+        for (size_t y = first; y <= last; ++y) {
+            const float* row = input.row(uint32_t(y));
+            float* low = row_low.data() + (y - first) * row_floats;
+            float* high = row_high.data() + (y - first) * row_floats;
             for (uint32_t x = 0; x < w; ++x)
                 for (uint32_t k = 0; k < c; ++k) {
                     float lo = INFINITY, hi = -INFINITY;
-                    for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny)
-                        for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
-                            const float v = input.pixels[(ny * w + nx) * c + k];
-                            lo = std::min(lo, v);
-                            hi = std::max(hi, v);
-                        }
-                    if (integer) {
-                        lo = std::max(lo, 0.0f);
-                        hi = std::min(hi, 1.0f);
+                    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
+                        lo = std::min(lo, row[nx * c + k]);
+                        hi = std::max(hi, row[nx * c + k]);
                     }
-                    bounds.low[(y * w + x) * c + k] = lo;
-                    bounds.high[(y * w + x) * c + k] = hi;
+                    low[x * c + k] = lo;
+                    high[x * c + k] = hi;
                 }
+        }
+        for (size_t y = begin; y < end; ++y)
+            for (size_t i = 0; i < row_floats; ++i) {
+                float lo = INFINITY, hi = -INFINITY;
+                for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny) {
+                    lo = std::min(lo, row_low[(ny - first) * row_floats + i]);
+                    hi = std::max(hi, row_high[(ny - first) * row_floats + i]);
+                }
+                if (integer) {
+                    lo = std::max(lo, 0.0f);
+                    hi = std::min(hi, 1.0f);
+                }
+                bounds.low[y * row_floats + i] = lo;
+                bounds.high[y * row_floats + i] = hi;
+            }
     });
     return bounds;
 }
 
-// The degradation D and its transpose between the supersampled grid (sub_w × sub_h, the
-// input's size × kSupersampling) and the input grid. Separable; taps past the border land on
-// the nearest sample.
-class Degradation {
-public:
-    Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model)
-        : w_(width), h_(height), c_(channels), sub_w_(width * kSupersampling), sub_h_(height * kSupersampling),
-          taps_x_(degradationTaps(model.sigma_x)), taps_y_(degradationTaps(model.sigma_y)) {}
+// Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): per channel, its corners' hat
+// functions φ_v0..φ_v2, then its edges' bubbles φ_e0..φ_e2.
+constexpr uint32_t kSlotsPerTriangle = 6;
 
-    uint32_t subWidth() const { return sub_w_; }
-    uint32_t subHeight() const { return sub_h_; }
-
-    // degraded (w × h) = D(sub).
-    void apply(const std::vector<float>& sub, std::vector<float>& degraded) {
-        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2);
-        const size_t sub_row = size_t(sub_w_) * c_;
-        columns_.assign(sub_row * h_, 0.0f);
-        degraded.assign(size_t(w_) * h_ * c_, 0.0f);
-        parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
-            for (size_t y = begin; y < end; ++y) {
-                float* column_row = columns_.data() + y * sub_row;
-                for (int t = -ry; t <= ry; ++t) {
-                    const float g = taps_y_[t + ry];
-                    const float* in = sub.data() + centreSample(y, t, sub_h_) * sub_row;
-                    for (size_t i = 0; i < sub_row; ++i) column_row[i] += g * in[i];
-                }
-                for (uint32_t x = 0; x < w_; ++x) {
-                    float* out = degraded.data() + (y * w_ + x) * c_;
-                    for (int t = -rx; t <= rx; ++t) {
-                        const float g = taps_x_[t + rx];
-                        const float* in = column_row + centreSample(x, t, sub_w_) * c_;
-                        for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
-                    }
-                }
-            }
-        });
-    }
-
-    // sub (sub_w × sub_h) = Dᵀ(residual), each supersample gathering the pixels whose taps
-    // reach it.
-    void transpose(const std::vector<float>& residual, std::vector<float>& sub) {
-        const int rx = int(taps_x_.size() / 2), ry = int(taps_y_.size() / 2);
-        const size_t sub_row = size_t(sub_w_) * c_;
-        columns_.assign(sub_row * h_, 0.0f);
-        parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
-            for (size_t y = begin; y < end; ++y)
-                for (uint32_t x = 0; x < w_; ++x) {
-                    const float* in = residual.data() + (y * w_ + x) * c_;
-                    for (int t = -rx; t <= rx; ++t) {
-                        const float g = taps_x_[t + rx];
-                        float* out = columns_.data() + y * sub_row + centreSample(x, t, sub_w_) * c_;
-                        for (uint32_t k = 0; k < c_; ++k) out[k] += g * in[k];
-                    }
-                }
-        });
-        sub.assign(sub_row * sub_h_, 0.0f);
-        const int q = int(kSupersampling);
-        parallelFor(sub_h_, kGrain, [&](size_t begin, size_t end) {
-            for (size_t row = begin; row < end; ++row) {
-                float* out = sub.data() + row * sub_row;
-                // Input rows whose taps can land on this row, the border's clamped ones included.
-                const int first = std::max(0, (int(row) - q / 2 - ry) / q - 1);
-                const int last = std::min(int(h_) - 1, (int(row) - q / 2 + ry) / q + 1);
-                for (int y = first; y <= last; ++y)
-                    for (int t = -ry; t <= ry; ++t) {
-                        if (centreSample(y, t, sub_h_) != row) continue;
-                        const float g = taps_y_[t + ry];
-                        const float* in = columns_.data() + y * sub_row;
-                        for (size_t i = 0; i < sub_row; ++i) out[i] += g * in[i];
-                    }
-            }
-        });
-    }
-
-private:
-    // The supersample t steps from the centre sample of pixel i, clamped into [0, size).
-    static size_t centreSample(size_t i, int t, uint32_t size) {
-        return size_t(clampIndex(int(i) * int(kSupersampling) + int(kSupersampling) / 2 + t, int(size)));
-    }
-
-    uint32_t w_, h_, c_, sub_w_, sub_h_;
-    std::vector<float> taps_x_, taps_y_;
-    std::vector<float> columns_;  // the pass between the two axes
+// A run of consecutive triangles and their supersamples, located by one task.
+struct SampleRun {
+    uint32_t first_triangle = 0, end_triangle = 0;
+    std::vector<uint32_t> ends;      // per triangle of the run: where its samples end in `samples`
+    std::vector<SampleHit> samples;  // triangle by triangle, row-major within one
 };
 
 // The supersamples grouped by triangle, and the triangles around each vertex and edge, so that
@@ -149,61 +98,61 @@ private:
 // the result does not depend on how the work is split across threads.
 struct SampleLayout {
     const std::vector<Triangle>& triangles;  // the locating renderer's
-    std::vector<uint32_t> first_sample;  // per triangle, + end: its range in `samples`
-    std::vector<uint32_t> samples;       // supersample indices, grouped by triangle
-    std::vector<std::array<float, 3>> weights;
-    std::vector<uint32_t> first_corner;  // per vertex, + end: its range in `corners`
-    std::vector<uint32_t> corners;       // 3 · triangle + k, where the vertex is the triangle's v_k
-    std::vector<std::array<uint32_t, 2>> edge_sides;  // per edge: 3 · triangle + k for e_k, or kNone
+    std::vector<SampleRun> runs;             // the triangles in order, kTrianglesPerRun a run
+    // Where each triangle's six partial sums go, 6 · triangle + n: the partial sums are kept
+    // in the order that adds them up, so that adding them up reads them in sequence. Slots
+    // [first_corner[v], first_corner[v + 1]) hold vertex v's corners in triangle order,
+    // slots corners + 2 · e and the next edge e's first and second side (none: it stays 0).
+    std::vector<uint32_t> slots;
+    std::vector<uint32_t> first_corner;  // per vertex, + end
+    uint32_t corners = 0;                // 3 · triangles
+
+    // Calls f(triangle index, its samples' begin, end) for every triangle, a task per run.
+    template <typename F>
+    void forEachTriangle(F f) const {
+        parallelFor(runs.size(), 1, [&](size_t begin, size_t end) {
+            for (size_t r = begin; r < end; ++r) {
+                const SampleRun& run = runs[r];
+                const SampleHit* samples = run.samples.data();
+                for (uint32_t t = run.first_triangle; t < run.end_triangle; ++t) {
+                    const uint32_t i = t - run.first_triangle;
+                    f(t, samples + (i ? run.ends[i - 1] : 0), samples + run.ends[i]);
+                }
+            }
+        });
+    }
 };
 
 SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize sub_size) {
-    SampleLayout layout{renderer.triangles(), {}, {}, {}, {}, {}, {}};
-    const size_t triangles = layout.triangles.size();
-    std::vector<SampleHit> hits(size_t(sub_size.width) * sub_size.height);
-    parallelFor(sub_size.height, kGrain, [&](size_t begin, size_t end) {
-        renderer.locateSamples(sub_size, uint32_t(begin), uint32_t(end), hits.data() + begin * sub_size.width);
+    SampleLayout layout{renderer.triangles(), {}, {}, {}, {}};
+    const uint32_t triangles = uint32_t(layout.triangles.size());
+    layout.runs.resize((triangles + kTrianglesPerRun - 1) / kTrianglesPerRun);
+    parallelFor(layout.runs.size(), 1, [&](size_t begin, size_t end) {
+        for (size_t r = begin; r < end; ++r) {
+            SampleRun& run = layout.runs[r];
+            run.first_triangle = uint32_t(r * kTrianglesPerRun);
+            run.end_triangle = std::min(triangles, run.first_triangle + kTrianglesPerRun);
+            run.ends.resize(run.end_triangle - run.first_triangle);
+            renderer.locateSamples(sub_size, run.first_triangle, run.end_triangle, run.samples, run.ends.data());
+        }
     });
-    layout.first_sample.assign(triangles + 1, 0);
-    for (const SampleHit& hit : hits) ++layout.first_sample[hit.triangle + 1];
-    for (size_t t = 0; t < triangles; ++t) layout.first_sample[t + 1] += layout.first_sample[t];
-    layout.samples.resize(hits.size());
-    layout.weights.resize(hits.size());
-    std::vector<uint32_t> next(layout.first_sample.begin(), layout.first_sample.end() - 1);
-    for (size_t i = 0; i < hits.size(); ++i) {
-        const uint32_t slot = next[hits[i].triangle]++;
-        layout.samples[slot] = uint32_t(i);
-        layout.weights[slot] = {hits[i].weights[0], hits[i].weights[1], hits[i].weights[2]};
-    }
     layout.first_corner.assign(size_t(mesh.vertexCount()) + 1, 0);
-    layout.edge_sides.assign(mesh.edgeCount(), {kNone, kNone});
     for (const Triangle& t : layout.triangles)
         for (uint32_t v : {t.v0, t.v1, t.v2}) ++layout.first_corner[v + 1];
     for (uint32_t v = 0; v < mesh.vertexCount(); ++v) layout.first_corner[v + 1] += layout.first_corner[v];
-    layout.corners.resize(3 * triangles);
-    next.assign(layout.first_corner.begin(), layout.first_corner.end() - 1);
+    layout.corners = 3 * triangles;
+    layout.slots.resize(size_t(kSlotsPerTriangle) * triangles);
+    std::vector<uint32_t> next_corner(layout.first_corner.begin(), layout.first_corner.end() - 1);
+    std::vector<uint8_t> sides_seen(mesh.edgeCount(), 0);
     for (uint32_t t = 0; t < triangles; ++t) {
         const Triangle& tri = layout.triangles[t];
         const uint32_t vertices[3] = {tri.v0, tri.v1, tri.v2}, edges[3] = {tri.e0, tri.e1, tri.e2};
         for (uint32_t k = 0; k < 3; ++k) {
-            layout.corners[next[vertices[k]]++] = 3 * t + k;
-            std::array<uint32_t, 2>& sides = layout.edge_sides[edges[k]];
-            sides[sides[0] == kNone ? 0 : 1] = 3 * t + k;
+            layout.slots[kSlotsPerTriangle * t + k] = next_corner[vertices[k]]++;
+            layout.slots[kSlotsPerTriangle * t + 3 + k] = layout.corners + 2 * edges[k] + sides_seen[edges[k]]++;
         }
     }
     return layout;
-}
-
-// Calls f(std::integral_constant<uint32_t, channels>) so that the per-channel loops of the
-// hot passes have a constant trip count the compiler unrolls.
-template <typename F>
-void withChannelCount(uint32_t channels, F f) {
-    switch (channels) {
-    case 1: f(std::integral_constant<uint32_t, 1>()); break;
-    case 2: f(std::integral_constant<uint32_t, 2>()); break;
-    case 3: f(std::integral_constant<uint32_t, 3>()); break;
-    default: f(std::integral_constant<uint32_t, 4>()); break;
-    }
 }
 
 // The surface at every supersample (no clamping: the model sees the surface the solver moves).
@@ -212,17 +161,15 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
         constexpr uint32_t c = decltype(channels)::value;
         const float* v = surface.values.pixels.data();
         const float* b = surface.bubbles.data();
-        parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
-            for (size_t ti = begin; ti < end; ++ti) {
-                const Triangle& t = layout.triangles[ti];
-                for (uint32_t j = layout.first_sample[ti]; j < layout.first_sample[ti + 1]; ++j) {
-                    const std::array<float, 3>& l = layout.weights[j];
-                    const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
-                    float* out = sub.data() + size_t(layout.samples[j]) * c;
-                    for (uint32_t k = 0; k < c; ++k)
-                        out[k] = l[0] * v[t.v0 * c + k] + l[1] * v[t.v1 * c + k] + l[2] * v[t.v2 * c + k] +
-                                 q0 * b[t.e0 * c + k] + q1 * b[t.e1 * c + k] + q2 * b[t.e2 * c + k];
-                }
+        layout.forEachTriangle([&](uint32_t ti, const SampleHit* begin, const SampleHit* end) {
+            const Triangle& t = layout.triangles[ti];
+            const PixelVector<c> v0 = loadPixel<c>(v + size_t(t.v0) * c), v1 = loadPixel<c>(v + size_t(t.v1) * c),
+                                 v2 = loadPixel<c>(v + size_t(t.v2) * c), b0 = loadPixel<c>(b + size_t(t.e0) * c),
+                                 b1 = loadPixel<c>(b + size_t(t.e1) * c), b2 = loadPixel<c>(b + size_t(t.e2) * c);
+            for (const SampleHit* s = begin; s != end; ++s) {
+                const float* l = s->weights;
+                const float q0 = 4 * l[1] * l[2], q1 = 4 * l[2] * l[0], q2 = 4 * l[0] * l[1];
+                storePixel<c>(sub.data() + size_t(s->sample) * c, l[0] * v0 + l[1] * v1 + l[2] * v2 + q0 * b0 + q1 * b1 + q2 * b2);
             }
         });
     });
@@ -233,41 +180,40 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
 // those of its triangles.
 void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout,
                     std::vector<float>& partial, std::vector<float>& at_vertices, std::vector<float>& at_edges) {
-    partial.resize(layout.triangles.size() * 6 * c);
+    // Zero at first: the second side of a hull edge is never written.
+    if (partial.empty()) partial.assign((size_t(layout.corners) + 2 * at_edges.size() / c) * c, 0.0f);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
-        parallelFor(layout.triangles.size(), kGrain, [&](size_t begin, size_t end) {
-            for (size_t t = begin; t < end; ++t) {
-                float sums[6][cc] = {};
-                for (uint32_t j = layout.first_sample[t]; j < layout.first_sample[t + 1]; ++j) {
-                    const std::array<float, 3>& l = layout.weights[j];
-                    const float basis[6] = {l[0], l[1], l[2], 4 * l[1] * l[2], 4 * l[2] * l[0], 4 * l[0] * l[1]};
-                    const float* value = g.data() + size_t(layout.samples[j]) * cc;
-                    for (int n = 0; n < 6; ++n)
-                        for (uint32_t k = 0; k < cc; ++k) sums[n][k] += basis[n] * value[k];
-                }
-                std::copy_n(&sums[0][0], 6 * cc, partial.data() + t * 6 * cc);
+        layout.forEachTriangle([&](uint32_t t, const SampleHit* begin, const SampleHit* end) {
+            PixelVector<cc> sums[kSlotsPerTriangle] = {};
+            for (const SampleHit* s = begin; s != end; ++s) {
+                const float* l = s->weights;
+                const float basis[kSlotsPerTriangle] = {l[0], l[1], l[2], 4 * l[1] * l[2], 4 * l[2] * l[0], 4 * l[0] * l[1]};
+                const PixelVector<cc> value = loadPixel<cc>(g.data() + size_t(s->sample) * cc);
+                for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) sums[n] += basis[n] * value;
+            }
+            const uint32_t* slots = layout.slots.data() + size_t(t) * kSlotsPerTriangle;
+            for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) storePixel<cc>(partial.data() + size_t(slots[n]) * cc, sums[n]);
+        });
+        const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
+        parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
+            for (size_t v = begin; v < end; ++v) {
+                PixelVector<cc> sum = {};
+                for (uint32_t j = layout.first_corner[v]; j < layout.first_corner[v + 1]; ++j)
+                    sum += loadPixel<cc>(partial.data() + size_t(j) * cc);
+                storePixel<cc>(at_vertices.data() + v * cc, sum);
             }
         });
-    });
-    const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
-    parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
-        for (size_t v = begin; v < end; ++v)
-            for (uint32_t k = 0; k < c; ++k) {
-                float sum = 0.0f;
-                for (uint32_t j = layout.first_corner[v]; j < layout.first_corner[v + 1]; ++j)
-                    sum += partial[((layout.corners[j] / 3) * 6 + layout.corners[j] % 3) * c + k];
-                at_vertices[v * c + k] = sum;
+        const float* edge_sides = partial.data() + size_t(layout.corners) * cc;
+        parallelFor(at_edges.size() / cc, kGrain, [&](size_t begin, size_t end) {
+            for (size_t e = begin; e < end; ++e) {
+                // From 0, as every sum here; the unwritten side of a hull edge adds 0.
+                PixelVector<cc> sum = {};
+                sum += loadPixel<cc>(edge_sides + 2 * e * cc);
+                sum += loadPixel<cc>(edge_sides + (2 * e + 1) * cc);
+                storePixel<cc>(at_edges.data() + e * cc, sum);
             }
-    });
-    parallelFor(layout.edge_sides.size(), kGrain, [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e)
-            for (uint32_t k = 0; k < c; ++k) {
-                float sum = 0.0f;
-                for (uint32_t side : layout.edge_sides[e])
-                    if (side != kNone) sum += partial[((side / 3) * 6 + 3 + side % 3) * c + k];
-                at_edges[e * c + k] = sum;
-            }
+        });
     });
 }
 
@@ -306,23 +252,30 @@ Surface initialSurface(const Mesh& mesh, const Image& input) {
     const uint32_t c = input.channels;
     Surface surface{input, std::vector<float>(size_t(mesh.edgeCount()) * c)};
     auto at = [&](int x, int y) { return input.pixels.data() + (size_t(clampIndex(y, h)) * w + clampIndex(x, w)) * c; };
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-        const int px = int(mesh.vertices[e].a % w), py = int(mesh.vertices[e].a / w);
-        const int qx = int(mesh.vertices[e].b % w), qy = int(mesh.vertices[e].b / w);
-        const float *p = at(px, py), *q = at(qx, qy);
-        const float *before = at(2 * px - qx, 2 * py - qy), *after = at(2 * qx - px, 2 * qy - py);
-        for (uint32_t k = 0; k < c; ++k)
-            surface.bubbles[e * c + k] = (-before[k] + 9 * p[k] + 9 * q[k] - after[k]) / 16 - (p[k] + q[k]) / 2;
-    }
+    parallelFor(mesh.edgeCount(), 4096, [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e) {
+            const int px = int(mesh.vertices[e].a % w), py = int(mesh.vertices[e].a / w);
+            const int qx = int(mesh.vertices[e].b % w), qy = int(mesh.vertices[e].b / w);
+            const float *p = at(px, py), *q = at(qx, qy);
+            const float *before = at(2 * px - qx, 2 * py - qy), *after = at(2 * qx - px, 2 * qy - py);
+            for (uint32_t k = 0; k < c; ++k)
+                surface.bubbles[e * c + k] = (-before[k] + 9 * p[k] + 9 * q[k] - after[k]) / 16 - (p[k] + q[k]) / 2;
+        }
+    });
     return surface;
 }
 
 Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model, uint32_t iterations) {
+    if (model.identity() || iterations == 0) return initialSurface(mesh, input);
+    return reconstructSurface(mesh, input, model, MeshRenderer(mesh, input), iterations);
+}
+
+Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
+                           const MeshRenderer& locator, uint32_t iterations) {
     Surface surface = initialSurface(mesh, input);
     if (model.identity() || iterations == 0) return surface;  // D is the identity: already consistent
     const uint32_t c = input.channels;
     Degradation degradation(input.width, input.height, c, model);
-    const MeshRenderer locator(mesh, input);
     const SampleLayout layout = layoutOf(mesh, locator, {degradation.subWidth(), degradation.subHeight()});
     const Bounds bounds = boundsOf(input);
     const float tolerance = quantisationTolerance(input.sample_type);
@@ -351,9 +304,13 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
                 for (size_t p = begin * c; p < end * c; p += c)
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
         });
-        parallelFor(surface.bubbles.size(), kGrain, [&](size_t begin, size_t end) {
-            for (size_t i = begin; i < end; ++i)
-                if (edge_weight[i] > 0.0f) surface.bubbles[i] += kRelaxation * edge_step[i] / edge_weight[i];
+        parallelFor(surface.bubbles.size(), 4096, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) {
+                // Written without a branch around the division, so that it vectorises.
+                const bool moves = edge_weight[i] > 0.0f;
+                const float step = kRelaxation * edge_step[i] / (moves ? edge_weight[i] : 1.0f);
+                surface.bubbles[i] = moves ? surface.bubbles[i] + step : surface.bubbles[i];
+            }
         });
     }
     return surface;

@@ -52,6 +52,7 @@
 
 #include "image.h"
 #include "mesh.h"
+#include "render.h"
 
 namespace ddt {
 
@@ -92,5 +93,10 @@ Surface initialSurface(const Mesh& mesh, const Image& input);
 // The consistent surface for `mesh` (optimised on `input`) under `model`.
 Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
                            uint32_t iterations = kReconstructIterations);
+// The same, locating the supersamples with `locator`, a renderer of `mesh` (for any surface):
+// a caller that renders the result afterwards builds the triangle tables once (see
+// MeshRenderer's constructor that takes them over).
+Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
+                           const MeshRenderer& locator, uint32_t iterations = kReconstructIterations);
 
 }  // namespace ddt

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "channel_count.h"
+#include "divide_by.h"
 #include "raster.h"
 
 namespace ddt {
@@ -14,17 +16,6 @@ namespace {
 uint32_t roundedSide(double side) { return side >= 4294967295.0 ? UINT32_MAX : uint32_t(std::llround(side)); }
 
 uint32_t topRow(const Triangle& t, uint32_t width) { return std::min({t.v0, t.v1, t.v2}) / width; }
-
-struct Bounds {
-    uint32_t x0, x1, y0, y1;
-};
-
-Bounds boundsOf(const Triangle& t, uint32_t width) {
-    uint32_t xs[3] = {t.v0 % width, t.v1 % width, t.v2 % width};
-    uint32_t ys[3] = {t.v0 / width, t.v1 / width, t.v2 / width};
-    return {*std::min_element(xs, xs + 3), *std::max_element(xs, xs + 3), *std::min_element(ys, ys + 3),
-            *std::max_element(ys, ys + 3)};
-}
 
 }  // namespace
 
@@ -62,107 +53,233 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vect
     : image_(image), bubbles_(bubbles) {
     assert(image.width == mesh.width && image.height == mesh.height);
     assert(!bubbles || bubbles->size() == size_t(mesh.edgeCount()) * image.channels);
-    std::vector<Triangle> triangles = listTriangles(mesh);
-    // Counting sort by top row, so a band of output rows visits only nearby triangles.
+    // The triangles sorted by top row (counting sort, stable), so a band of output rows visits
+    // only nearby triangles.
+    const DivideBy by_width(mesh.width);
     first_in_row_.assign(mesh.height + 1, 0);
-    for (const Triangle& t : triangles) {
-        ++first_in_row_[topRow(t, mesh.width) + 1];
-        Bounds b = boundsOf(t, mesh.width);
-        tallest_ = std::max(tallest_, b.y1 - b.y0);
-    }
+    forEachTriangle(mesh, [&](const Triangle& t) {
+        const uint32_t top = by_width.quotient(std::min({t.v0, t.v1, t.v2}));
+        ++first_in_row_[top + 1];
+        tallest_ = std::max(tallest_, by_width.quotient(std::max({t.v0, t.v1, t.v2})) - top);
+    });
     for (uint32_t y = 0; y < mesh.height; ++y) first_in_row_[y + 1] += first_in_row_[y];
-    triangles_.resize(triangles.size());
+    triangles_.resize(first_in_row_.back());
     std::vector<uint32_t> next(first_in_row_.begin(), first_in_row_.end() - 1);
-    for (const Triangle& t : triangles) triangles_[next[topRow(t, mesh.width)]++] = t;
+    forEachTriangle(mesh, [&](const Triangle& t) { triangles_[next[by_width.quotient(std::min({t.v0, t.v1, t.v2}))]++] = t; });
+}
+
+MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles)
+    : image_(image), bubbles_(bubbles), triangles_(std::move(tables.triangles_)),
+      first_in_row_(std::move(tables.first_in_row_)), tallest_(tables.tallest_) {
+    assert(image.width == tables.image_.width && image.height == tables.image_.height);
 }
 
 void MeshRenderer::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const {
     renderWindow(wholeRows(image_.width, image_.height, out, y_begin, y_end), rows);
 }
 
-// Calls visit(x, y, triangle index, l0, l1, l2) for every sample of the window, each once.
-template <typename Visit>
-void MeshRenderer::visitSamples(const RenderWindow& window, Visit visit) const {
-    // w, h: the crop the mesh covers; in_w, in_h: the whole input, which sets the sampling.
-    const uint32_t w = image_.width, h = image_.height;
+namespace {
+
+// Where the window's samples lie: their coordinates (raster.h's units) per output column, and
+// the first and last output column or row whose sample lies at or after / at or before each
+// crop column or row, clamped to the window. Tables, so that no division or clamp is left
+// for the triangles and samples.
+struct SampleGrid {
+    std::vector<int64_t> su, sv;        // per window column / row
+    std::vector<int8_t> dir_u, dir_v;   // per window column / row
+    std::vector<uint32_t> col_first, col_last;  // per crop column
+    std::vector<uint32_t> row_first, row_last;  // per crop row in [row_base, row_base + size)
+    uint32_t row_base = 0;
+};
+
+SampleGrid sampleGridOf(const RenderWindow& window, uint32_t crop_w, uint32_t row_begin, uint32_t row_end) {
     const uint32_t in_w = window.input_width, in_h = window.input_height;
     const uint32_t out_w = window.out.width, out_h = window.out.height;
-    const uint32_t cx = window.crop_x, cy = window.crop_y;
-    assert(cx + w <= in_w && cy + h <= in_h && window.x_end <= out_w && window.y_end <= out_h);
-    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return;
-    // Crop rows the window's samples fall in, widened by the tallest triangle.
+    SampleGrid grid;
+    grid.su.resize(window.width());
+    grid.dir_u.resize(window.width());
+    for (uint32_t x = window.x_begin; x < window.x_end; ++x) {
+        grid.su[x - window.x_begin] = sampleCoord(x, in_w, out_w);
+        grid.dir_u[x - window.x_begin] = int8_t(sampleDirection(grid.su[x - window.x_begin], in_w, out_w));
+    }
+    grid.sv.resize(window.height());
+    grid.dir_v.resize(window.height());
+    for (uint32_t y = window.y_begin; y < window.y_end; ++y) {
+        grid.sv[y - window.y_begin] = sampleCoord(y, in_h, out_h);
+        grid.dir_v[y - window.y_begin] = int8_t(sampleDirection(grid.sv[y - window.y_begin], in_h, out_h));
+    }
+    grid.col_first.resize(crop_w);
+    grid.col_last.resize(crop_w);
+    for (uint32_t x = 0; x < crop_w; ++x) {
+        grid.col_first[x] = std::max(firstSampleAtOrAfter(x + window.crop_x, in_w, out_w), window.x_begin);
+        grid.col_last[x] = std::min(lastSampleAtOrBefore(x + window.crop_x, in_w, out_w), window.x_end - 1);
+    }
+    grid.row_base = row_begin;
+    grid.row_first.resize(row_end - row_begin);
+    grid.row_last.resize(row_end - row_begin);
+    for (uint32_t y = row_begin; y < row_end; ++y) {
+        grid.row_first[y - row_begin] = std::max(firstSampleAtOrAfter(y + window.crop_y, in_h, out_h), window.y_begin);
+        grid.row_last[y - row_begin] = std::min(lastSampleAtOrBefore(y + window.crop_y, in_h, out_h), window.y_end - 1);
+    }
+    return grid;
+}
+
+}  // namespace
+
+// The triangles whose samples can fall in the window's rows: those whose top row lies in the
+// crop rows the window samples, widened upwards by the tallest triangle.
+std::pair<uint32_t, uint32_t> MeshRenderer::trianglesAround(const RenderWindow& window) const {
+    const uint32_t h = image_.height, in_h = window.input_height, out_h = window.out.height, cy = window.crop_y;
+    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return {0, 0};
     const int64_t unit = vertexCoord(1, out_h);
     const uint32_t v_first = uint32_t(sampleCoord(window.y_begin, in_h, out_h) / unit);
     const uint32_t v_last = uint32_t((sampleCoord(window.y_end - 1, in_h, out_h) + unit - 1) / unit);
     const uint32_t local_first = v_first > cy ? v_first - cy : 0;
     const uint32_t top_first = local_first > tallest_ ? local_first - tallest_ : 0;
     const uint32_t top_last = std::min(v_last > cy ? v_last - cy : 0, h - 1);
+    return {first_in_row_[top_first], first_in_row_[top_last + 1]};
+}
 
-    for (uint32_t i = first_in_row_[top_first]; i < first_in_row_[top_last + 1]; ++i) {
+// For every triangle of [first, end) with samples in the window, calls visit(triangle index)
+// once; it returns a callable that visitSamples calls as sample(x, y, l0, l1, l2) for each of
+// them, in row-major order. Each sample of the window lies in exactly one triangle.
+template <typename Visit>
+void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint32_t end, Visit visit) const {
+    // w, h: the crop the mesh covers; the whole input (window.input_*) sets the sampling.
+    const uint32_t w = image_.width, h = image_.height;
+    const uint32_t out_w = window.out.width, out_h = window.out.height;
+    const uint32_t cx = window.crop_x, cy = window.crop_y;
+    assert(cx + w <= window.input_width && cy + h <= window.input_height && window.x_end <= out_w && window.y_end <= out_h);
+    if (window.x_begin >= window.x_end || window.y_begin >= window.y_end || first >= end) return;
+    // The crop rows these triangles span: sorted by top row, each at most tallest_ rows high.
+    const uint32_t top_first = topRow(triangles_[first], w), top_last = topRow(triangles_[end - 1], w);
+    const SampleGrid grid = sampleGridOf(window, w, top_first, std::min(h, top_last + tallest_ + 1));
+
+    const DivideBy by_width(w);
+    for (uint32_t i = first; i < end; ++i) {
         const Triangle& t = triangles_[i];
-        const Bounds b = boundsOf(t, w);
-        const uint32_t x_lo = std::max(firstSampleAtOrAfter(b.x0 + cx, in_w, out_w), window.x_begin);
-        const uint32_t x_hi = std::min(lastSampleAtOrBefore(b.x1 + cx, in_w, out_w), window.x_end - 1);
-        const uint32_t y_lo = std::max(firstSampleAtOrAfter(b.y0 + cy, in_h, out_h), window.y_begin);
-        const uint32_t y_hi = std::min(lastSampleAtOrBefore(b.y1 + cy, in_h, out_h), window.y_end - 1);
+        const uint32_t ys[3] = {by_width.quotient(t.v0), by_width.quotient(t.v1), by_width.quotient(t.v2)};
+        const uint32_t xs[3] = {t.v0 - ys[0] * w, t.v1 - ys[1] * w, t.v2 - ys[2] * w};
+        const uint32_t x_lo = grid.col_first[std::min({xs[0], xs[1], xs[2]})];
+        const uint32_t x_hi = grid.col_last[std::max({xs[0], xs[1], xs[2]})];
+        const uint32_t y_lo = grid.row_first[std::min({ys[0], ys[1], ys[2]}) - grid.row_base];
+        const uint32_t y_hi = grid.row_last[std::max({ys[0], ys[1], ys[2]}) - grid.row_base];
         if (x_lo > x_hi || y_lo > y_hi) continue;
 
-        const int64_t px[3] = {vertexCoord(t.v0 % w + cx, out_w), vertexCoord(t.v1 % w + cx, out_w),
-                               vertexCoord(t.v2 % w + cx, out_w)};
-        const int64_t py[3] = {vertexCoord(t.v0 / w + cy, out_h), vertexCoord(t.v1 / w + cy, out_h),
-                               vertexCoord(t.v2 / w + cy, out_h)};
+        int64_t px[3], py[3];
+        for (int k = 0; k < 3; ++k) {
+            px[k] = vertexCoord(xs[k] + cx, out_w);
+            py[k] = vertexCoord(ys[k] + cy, out_h);
+        }
+        // Edge k runs from vertex p = k + 1 to q = k + 2 (mod 3), opposite vertex k. Its edge
+        // function (q − p) × (s − p) is weight[k] = slope[k]·su + offset[k] along a row, in
+        // wrapping 64-bit arithmetic: the terms may pass 2^63, the sum is the exact value.
+        int64_t edge_dx[3], edge_dy[3];
+        uint64_t slope[3];
+        // Bit k of ties[v][u]: whether a sample on edge k's line counts as inside by the tie
+        // rule (raster.h's sampleSide), for a sample pushed along v backwards (v = 0) or
+        // forwards (1) and along u backwards (u = 0) or forwards (1).
+        uint32_t ties[2][2] = {};
+        for (int k = 0; k < 3; ++k) {
+            const int p = (k + 1) % 3, q = (k + 2) % 3;
+            edge_dx[k] = px[q] - px[p];
+            edge_dy[k] = py[q] - py[p];
+            slope[k] = uint64_t(-edge_dy[k]);
+            for (int v = 0; v < 2; ++v) {
+                ties[v][1] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] < 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
+                ties[v][0] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] > 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
+            }
+        }
+        auto sample = visit(i);
         for (uint32_t y = y_lo; y <= y_hi; ++y) {
-            const int64_t sv = sampleCoord(y, in_h, out_h);
-            const int dir_v = sampleDirection(sv, in_h, out_h);
+            const int64_t sv = grid.sv[y - window.y_begin];
+            const uint32_t* row_ties = ties[grid.dir_v[y - window.y_begin] > 0];
+            uint64_t offset[3];
+            for (int k = 0; k < 3; ++k) {
+                const int p = (k + 1) % 3;
+                offset[k] = uint64_t(edge_dx[k] * (sv - py[p])) + uint64_t(edge_dy[k]) * uint64_t(px[p]);
+            }
+            // The samples a convex triangle covers are consecutive along a row (the tie rule
+            // moves them all the same way, but for the hull's last column, which is last).
+            bool entered = false;
             for (uint32_t x = x_lo; x <= x_hi; ++x) {
-                const int64_t su = sampleCoord(x, in_w, out_w);
-                const int dir_u = sampleDirection(su, in_w, out_w);
-                bool inside = true;
-                int64_t weight[3];  // edge function opposite each vertex = its barycentric weight × 2·area
-                for (int k = 0; k < 3 && inside; ++k) {
-                    int p = (k + 1) % 3, q = (k + 2) % 3;
-                    inside = sampleSide(px[p], py[p], px[q], py[q], su, sv, dir_u, dir_v) > 0;
-                    weight[k] = (px[q] - px[p]) * (sv - py[p]) - (py[q] - py[p]) * (su - px[p]);
+                const int64_t su = grid.su[x - window.x_begin];
+                // The edge function opposite each vertex is its barycentric weight × 2·area.
+                int64_t weight[3];
+                for (int k = 0; k < 3; ++k) weight[k] = int64_t(slope[k] * uint64_t(su) + offset[k]);
+                const uint32_t on_line = uint32_t(weight[0] == 0) | uint32_t(weight[1] == 0) << 1 | uint32_t(weight[2] == 0) << 2;
+                const bool inside = (weight[0] | weight[1] | weight[2]) >= 0 &&
+                                    (on_line & ~row_ties[grid.dir_u[x - window.x_begin] > 0]) == 0;
+                if (!inside) {
+                    if (entered) break;
+                    continue;
                 }
-                if (!inside) continue;
+                entered = true;
                 const double total = double(weight[0]) + double(weight[1]) + double(weight[2]);
-                visit(x, y, i, double(weight[0]) / total, double(weight[1]) / total, double(weight[2]) / total);
+                sample(x, y, double(weight[0]) / total, double(weight[1]) / total, double(weight[2]) / total);
             }
         }
     }
 }
 
 void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
-    const uint32_t c = image_.channels;
-    const size_t row_floats = size_t(window.width()) * c;
-    const float* values = image_.pixels.data();
-    const bool alpha = image_.hasAlpha();
-    visitSamples(window, [&](uint32_t x, uint32_t y, uint32_t i, double l0, double l1, double l2) {
-        const Triangle& t = triangles_[i];
-        const float* z[3] = {values + size_t(t.v0) * c, values + size_t(t.v1) * c, values + size_t(t.v2) * c};
-        float* pixel = rows + size_t(y - window.y_begin) * row_floats + size_t(x - window.x_begin) * c;
-        if (!bubbles_) {
-            for (uint32_t k = 0; k < c; ++k) pixel[k] = float(l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k]);
-            return;
-        }
-        const float* b[3] = {bubbles_->data() + size_t(t.e0) * c, bubbles_->data() + size_t(t.e1) * c,
-                             bubbles_->data() + size_t(t.e2) * c};
-        for (uint32_t k = 0; k < c; ++k) {
-            const double value = l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k] +
-                                 4.0 * (l1 * l2 * b[0][k] + l2 * l0 * b[1][k] + l0 * l1 * b[2][k]);
-            pixel[k] = float(std::clamp<double>(value, std::min({z[0][k], z[1][k], z[2][k]}),
-                                                std::max({z[0][k], z[1][k], z[2][k]})));
-        }
-        if (alpha)
-            for (uint32_t k = 0; k + 1 < c; ++k) pixel[k] = std::min(pixel[k], pixel[c - 1]);
+    withChannelCount(image_.channels, [&](auto channels) {
+        constexpr uint32_t c = decltype(channels)::value;
+        const size_t row_floats = size_t(window.width()) * c;
+        const size_t x_begin = window.x_begin, y_begin = window.y_begin;
+        const float* values = image_.pixels.data();
+        const float* bubbles = bubbles_ ? bubbles_->data() : nullptr;
+        const bool alpha = image_.hasAlpha();
+        const auto [first, end] = trianglesAround(window);
+        visitSamples(window, first, end, [&](uint32_t i) {
+            // The triangle's vertex values and bubbles per channel, and the range a sample keeps to.
+            const Triangle& t = triangles_[i];
+            // Doubles, converted once here rather than at every sample.
+            double z[3][c], b[3][c] = {}, lo[c], hi[c];
+            for (uint32_t k = 0; k < c; ++k) {
+                z[0][k] = values[size_t(t.v0) * c + k];
+                z[1][k] = values[size_t(t.v1) * c + k];
+                z[2][k] = values[size_t(t.v2) * c + k];
+                lo[k] = std::min({z[0][k], z[1][k], z[2][k]});
+                hi[k] = std::max({z[0][k], z[1][k], z[2][k]});
+                if (bubbles) {
+                    b[0][k] = bubbles[size_t(t.e0) * c + k];
+                    b[1][k] = bubbles[size_t(t.e1) * c + k];
+                    b[2][k] = bubbles[size_t(t.e2) * c + k];
+                }
+            }
+            return [=](uint32_t x, uint32_t y, double l0, double l1, double l2) {
+                float* pixel = rows + (y - y_begin) * row_floats + (x - x_begin) * c;
+                if (!bubbles) {
+                    for (uint32_t k = 0; k < c; ++k) pixel[k] = float(l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k]);
+                    return;
+                }
+                for (uint32_t k = 0; k < c; ++k) {
+                    const double value = l0 * z[0][k] + l1 * z[1][k] + l2 * z[2][k] +
+                                         4.0 * (l1 * l2 * b[0][k] + l2 * l0 * b[1][k] + l0 * l1 * b[2][k]);
+                    pixel[k] = float(std::clamp(value, lo[k], hi[k]));
+                }
+                if (alpha)
+                    for (uint32_t k = 0; k + 1 < c; ++k) pixel[k] = std::min(pixel[k], pixel[c - 1]);
+            };
+        });
     });
 }
 
-void MeshRenderer::locateSamples(OutputSize out, uint32_t y_begin, uint32_t y_end, SampleHit* hits) const {
-    visitSamples(wholeRows(image_.width, image_.height, out, y_begin, y_end),
-                 [&](uint32_t x, uint32_t y, uint32_t i, double l0, double l1, double l2) {
-                     hits[size_t(y - y_begin) * out.width + x] = {i, {float(l0), float(l1), float(l2)}};
-                 });
+void MeshRenderer::locateSamples(OutputSize out, uint32_t first, uint32_t end, std::vector<SampleHit>& hits,
+                                 uint32_t* ends) const {
+    const uint32_t start = uint32_t(hits.size());
+    // About as many samples in each triangle as on average.
+    hits.reserve(start + size_t(1.25 * double(out.width) * out.height / triangles_.size() * (end - first)) + 16);
+    std::fill(ends, ends + (end - first), 0);  // first each triangle's count
+    visitSamples(wholeRows(image_.width, image_.height, out, 0, out.height), first, end, [&](uint32_t i) {
+        return [&, count = ends + (i - first)](uint32_t x, uint32_t y, double l0, double l1, double l2) {
+            hits.push_back({y * out.width + x, {float(l0), float(l1), float(l2)}});
+            ++*count;
+        };
+    });
+    uint32_t total = start;
+    for (uint32_t i = 0; i < end - first; ++i) ends[i] = total += ends[i];
 }
 
 Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles) {

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "image.h"
@@ -51,10 +52,10 @@ struct RenderWindow {
 // Output rows [y_begin, y_end) of an untiled width × height input.
 RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t y_begin, uint32_t y_end);
 
-// Where one sample falls: the index of its triangle in MeshRenderer::triangles() and its
-// barycentric weights for the triangle's v0, v1, v2.
+// A sample of an untiled output in its triangle: its row-major index and its barycentric
+// weights for the triangle's v0, v1, v2.
 struct SampleHit {
-    uint32_t triangle;
+    uint32_t sample;
     float weights[3];
 };
 
@@ -69,20 +70,25 @@ public:
     // `image` holds the vertex values (premultiplied); `bubbles`, if not null, edgeCount() ×
     // channels values. All must outlive the renderer.
     MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles = nullptr);
+    // A renderer of the same mesh as `tables` for another surface, taking over its triangle
+    // tables instead of building them again.
+    MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles = nullptr);
 
     // Renders the window into `rows`: window.width() × channels floats per row.
     void renderWindow(const RenderWindow& window, float* rows) const;
     // Output rows [y_begin, y_end) of the whole image (`image` is the whole input).
     void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const;
 
-    // The triangle and weights of every sample of rows [y_begin, y_end) of an untiled output
-    // of size `out`, row-major into `hits`.
-    void locateSamples(OutputSize out, uint32_t y_begin, uint32_t y_end, SampleHit* hits) const;
+    // The samples of an untiled output of size `out` (below 2^32 samples) that lie in
+    // triangles [first, end) of triangles(), appended to `hits` triangle by triangle, each
+    // triangle's in row-major order; ends[t − first] = hits.size() after triangle t's.
+    void locateSamples(OutputSize out, uint32_t first, uint32_t end, std::vector<SampleHit>& hits, uint32_t* ends) const;
     const std::vector<Triangle>& triangles() const { return triangles_; }
 
 private:
+    std::pair<uint32_t, uint32_t> trianglesAround(const RenderWindow& window) const;
     template <typename Visit>
-    void visitSamples(const RenderWindow& window, Visit visit) const;
+    void visitSamples(const RenderWindow& window, uint32_t first, uint32_t end, Visit visit) const;
 
     const Image& image_;
     const std::vector<float>* bubbles_;

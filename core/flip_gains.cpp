@@ -1,0 +1,156 @@
+#include "flip_gains.h"
+
+#include <cassert>
+#include <limits>
+
+namespace ddt {
+
+namespace {
+
+// A vertex of a stencil: its id and the coordinates planeGradient derives from it.
+struct Corner {
+    uint32_t id;
+    int32_t x, y;
+};
+
+// What planeGradient computes from the vertices alone: the triangle turned so that its smallest
+// id comes first (orientation kept), and its coordinate differences.
+struct TriangleShape {
+    int first;  // which corner comes first after the turn: 0, 1 or 2
+    double dx1, dy1, dx2, dy2, scale;
+};
+
+// planeGradient's differences of coordinates below 2^28, exact in either order.
+inline TriangleShape turnedShape(int first, const Corner& c0, const Corner& c1, const Corner& c2) {
+    const double dx1 = c1.x - c0.x, dy1 = c1.y - c0.y, dx2 = c2.x - c0.x, dy2 = c2.y - c0.y;
+    return {first, dx1, dy1, dx2, dy2, dx1 * dy2 - dx2 * dy1};
+}
+
+inline Corner cornerOf(uint32_t id, const DivideBy& by_width) {
+    return {id, int32_t(by_width.remainder(id)), int32_t(by_width.quotient(id))};
+}
+
+inline TriangleShape shapeOf(const Corner& p0, const Corner& p1, const Corner& p2) {
+    if (p1.id < p0.id && p1.id < p2.id) return turnedShape(1, p1, p2, p0);
+    if (p2.id < p0.id && p2.id < p1.id) return turnedShape(2, p2, p0, p1);
+    return turnedShape(0, p0, p1, p2);
+}
+
+// planeGradient of the triangle with values z0, z1, z2 at its corners (in the order given to shapeOf).
+inline Gradient gradientOf(const TriangleShape& s, float z0, float z1, float z2) {
+    const float first = s.first == 0 ? z0 : s.first == 1 ? z1 : z2;
+    const float second = s.first == 0 ? z1 : s.first == 1 ? z2 : z0;
+    const float third = s.first == 0 ? z2 : s.first == 1 ? z0 : z1;
+    const double dz1 = double(second) - double(first), dz2 = double(third) - double(first);
+    return {dz1 * s.dy2 - dz2 * s.dy1, dz2 * s.dx1 - dz1 * s.dx2, s.scale};
+}
+
+}  // namespace
+
+FlipGains::FlipGains(const Mesh& mesh, const CostField& field) : mesh_(mesh), by_width_(mesh.width) {
+    channels_.push_back({field.luma, {}, {}});
+    if (!field.alpha.empty()) channels_.push_back({field.alpha, {}, {}});
+    for (Channel& channel : channels_) channel.costs.resize(mesh.edgeCount());
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        const EdgeVertices& v = mesh.vertices[e];
+        if (v.l == kNone || v.r == kNone) {
+            for (Channel& channel : channels_) channel.costs[e] = 0.0;
+            continue;
+        }
+        // edgeCost's: the SCF of the left triangle (a, b, l) and the right one (b, a, r).
+        const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
+        const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
+        const TriangleShape left = shapeOf(a, b, l), right = shapeOf(b, a, r);
+        for (Channel& channel : channels_) {
+            const std::vector<float>& z = channel.values;
+            channel.costs[e] =
+                sederbergCost(gradientOf(left, z[v.a], z[v.b], z[v.l]), gradientOf(right, z[v.b], z[v.a], z[v.r]));
+        }
+    }
+}
+
+double FlipGains::total() const {
+    // meshCost's sum: edge by edge in id order, each edge's channels first.
+    double total = 0.0;
+    for (uint32_t e = 0; e < mesh_.edgeCount(); ++e) {
+        double cost = channels_[0].costs[e];
+        if (channels_.size() > 1) cost += channels_[1].costs[e];
+        total += cost;
+    }
+    return total;
+}
+
+double FlipGains::gainOf(uint32_t e) {
+    changed_[0] = kNone;
+    const EdgeVertices& v = mesh_.vertices[e];
+    if (v.l == kNone || v.r == kNone) return -std::numeric_limits<double>::infinity();
+    const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
+    const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
+    // flipIsConvex: both new triangles positive (orientation's exact integer arithmetic).
+    const TriangleShape rbl = shapeOf(r, b, l), lar = shapeOf(l, a, r);
+    if (!(rbl.scale > 0.0 && lar.scale > 0.0)) return -std::numeric_limits<double>::infinity();
+
+    const EdgeNeighbours& n = mesh_.neighbours[e];
+    const uint32_t neighbours[4] = {n.bl, n.la, n.ar, n.rb};
+    const uint32_t far_ids[4] = {farVertex(mesh_, n.bl, v.a), farVertex(mesh_, n.la, v.b), farVertex(mesh_, n.ar, v.b),
+                                 farVertex(mesh_, n.rb, v.a)};
+    // The outer triangles across the neighbours, in positive orientation: (l, b, far_bl),
+    // (a, l, far_la), (r, a, far_ar), (b, r, far_rb); after the flip, bl and rb border the new
+    // triangle (r, b, l), la and ar the new (l, a, r).
+    const Corner* near[4][2] = {{&l, &b}, {&a, &l}, {&r, &a}, {&b, &r}};
+    const int new_side[4] = {0, 1, 1, 0};  // 0: (r, b, l), 1: (l, a, r)
+    Corner far[4];
+    TriangleShape outer[4];
+    for (int k = 0; k < 4; ++k)
+        if (far_ids[k] != kNone) {
+            far[k] = cornerOf(far_ids[k], by_width_);
+            outer[k] = shapeOf(*near[k][0], *near[k][1], far[k]);
+        }
+
+    changed_[0] = e;
+    for (int k = 0; k < 4; ++k) changed_[k + 1] = neighbours[k];
+    double gain = 0.0;
+    for (size_t ch = 0; ch < channels_.size(); ++ch) {
+        Channel& channel = channels_[ch];
+        const std::vector<float>& z = channel.values;
+        const std::vector<double>& costs = channel.costs;
+        const float za = z[v.a], zb = z[v.b], zl = z[v.l], zr = z[v.r];
+        float zfar[4];
+        for (int k = 0; k < 4; ++k) zfar[k] = far_ids[k] == kNone ? 0.0f : z[far_ids[k]];
+        const StencilValues values = {za, zb, zl, zr, zfar[0], zfar[1], zfar[2], zfar[3]};
+        const FlipStencil stencil = {v.a, v.b, v.l, v.r, far_ids[0], far_ids[1], far_ids[2], far_ids[3]};
+        double channel_gain = 0.0;
+        if (stencilIsFlat(stencil, values)) {
+            // Every cost around is 0 and stays 0.
+            for (double& cost : channel.after) cost = 0.0;
+        } else {
+            const Gradient inner[2] = {gradientOf(rbl, zr, zb, zl), gradientOf(lar, zl, za, zr)};
+            channel.after[0] = sederbergCost(inner[0], inner[1]);
+            for (int k = 0; k < 4; ++k) {
+                const float z0 = k == 0 ? zl : k == 1 ? za : k == 2 ? zr : zb;
+                const float z1 = k == 0 ? zb : k == 1 ? zl : k == 2 ? za : zr;
+                channel.after[k + 1] = far_ids[k] == kNone
+                                           ? 0.0
+                                           : sederbergCost(inner[new_side[k]], gradientOf(outer[k], z0, z1, zfar[k]));
+            }
+            // flipGain's sums, term by term: the costs now, then after the flip.
+            const double before =
+                costs[e] + costs[neighbours[0]] + costs[neighbours[1]] + costs[neighbours[2]] + costs[neighbours[3]];
+            const double after =
+                channel.after[0] + channel.after[1] + channel.after[2] + channel.after[3] + channel.after[4];
+            channel_gain = before - after;
+        }
+        gain = ch == 0 ? channel_gain : gain + channel_gain;
+    }
+    return gain;
+}
+
+void FlipGains::flipped(uint32_t e) {
+    assert(changed_[0] == e);
+    (void)e;
+    for (Channel& channel : channels_)
+        for (int k = 0; k < 5; ++k) channel.costs[changed_[k]] = channel.after[k];
+    changed_[0] = kNone;
+}
+
+}  // namespace ddt
