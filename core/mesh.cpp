@@ -4,6 +4,8 @@
 #include <cassert>
 #include <sstream>
 
+#include "huge_pages.h"
+
 namespace ddt {
 
 namespace {
@@ -87,9 +89,8 @@ Mesh buildGridMesh(uint32_t width, uint32_t height) {
     mesh.width = width;
     mesh.height = height;
     const uint64_t edge_count = gridEdgeCount(width, height);
-    mesh.vertices.reserve(edge_count);
-    const EdgeNeighbours no_neighbours = {kNone, kNone, kNone, kNone};
-    mesh.neighbours.assign(edge_count, no_neighbours);
+    reserveOnHugePages(mesh.vertices, edge_count);
+    mesh.neighbours = vectorOnHugePages<EdgeNeighbours>(edge_count, {kNone, kNone, kNone, kNone});
 
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
