@@ -18,8 +18,11 @@ namespace {
 
 // Items are whole rows or runs of triangles: even a few are worth a thread each.
 const size_t kGrain = 8;
-// Locating samples sets up tables of the whole output's columns per call: runs of many triangles.
-const uint32_t kTrianglesPerRun = 65536;
+// Runs of many triangles: locating samples sets up tables of the whole output's columns per
+// run, and a run's samples should fill whole huge pages; but at least four runs a thread.
+uint32_t trianglesPerRun(size_t triangles) {
+    return uint32_t(std::clamp<size_t>(triangles / (4 * threadCount()), 4096, 65536));
+}
 
 double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * std::sqrt(1.0 - 1.0 / (scale * scale)); }
 
@@ -99,7 +102,7 @@ struct SampleRun {
 // the result does not depend on how the work is split across threads.
 struct SampleLayout {
     const std::vector<Triangle>& triangles;  // the locating renderer's
-    std::vector<SampleRun> runs;             // the triangles in order, kTrianglesPerRun a run
+    std::vector<SampleRun> runs;             // the triangles in order, in runs of trianglesPerRun
     // Where each triangle's six partial sums go, 6 · triangle + n: the partial sums are kept
     // in the order that adds them up, so that adding them up reads them in sequence. Slots
     // [first_corner[v], first_corner[v + 1]) hold vertex v's corners in triangle order,
@@ -127,12 +130,13 @@ struct SampleLayout {
 SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize sub_size) {
     SampleLayout layout{renderer.triangles(), {}, {}, {}, {}};
     const uint32_t triangles = uint32_t(layout.triangles.size());
-    layout.runs.resize((triangles + kTrianglesPerRun - 1) / kTrianglesPerRun);
+    const uint32_t per_run = trianglesPerRun(triangles);
+    layout.runs.resize((triangles + per_run - 1) / per_run);
     parallelFor(layout.runs.size(), 1, [&](size_t begin, size_t end) {
         for (size_t r = begin; r < end; ++r) {
             SampleRun& run = layout.runs[r];
-            run.first_triangle = uint32_t(r * kTrianglesPerRun);
-            run.end_triangle = std::min(triangles, run.first_triangle + kTrianglesPerRun);
+            run.first_triangle = uint32_t(r * per_run);
+            run.end_triangle = std::min(triangles, run.first_triangle + per_run);
             run.ends.resize(run.end_triangle - run.first_triangle);
             renderer.locateSamples(sub_size, run.first_triangle, run.end_triangle, run.samples, run.ends.data());
         }
