@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "channel_count.h"
-#include "huge_pages.h"
 #include "parallel.h"
 #include "pixel_vector.h"
 
@@ -111,8 +110,6 @@ Degradation::Degradation(uint32_t width, uint32_t height, uint32_t channels, con
       transpose_x_(transposeTaps(apply_x_, sub_w_)), transpose_y_(transposeTaps(apply_y_, sub_h_)) {}
 
 void Degradation::apply(const std::vector<float>& sub, std::vector<float>& degraded) {
-    reserveOnHugePages(between_, size_t(sub_w_) * h_ * c_);
-    reserveOnHugePages(degraded, size_t(w_) * h_ * c_);
     between_.resize(size_t(sub_w_) * h_ * c_);
     degraded.resize(size_t(w_) * h_ * c_);
     gatherRows(apply_y_, sub.data(), between_.data(), size_t(sub_w_) * c_);
@@ -120,8 +117,6 @@ void Degradation::apply(const std::vector<float>& sub, std::vector<float>& degra
 }
 
 void Degradation::transpose(const std::vector<float>& residual, std::vector<float>& sub) {
-    reserveOnHugePages(between_, size_t(sub_w_) * h_ * c_);
-    reserveOnHugePages(sub, size_t(sub_w_) * sub_h_ * c_);
     between_.resize(size_t(sub_w_) * h_ * c_);
     sub.resize(size_t(sub_w_) * sub_h_ * c_);
     gatherColumns(transpose_x_, c_, residual.data(), w_, between_.data(), h_);

@@ -3,8 +3,6 @@
 #include <cassert>
 #include <limits>
 
-#include "huge_pages.h"
-
 namespace ddt {
 
 namespace {
@@ -52,7 +50,7 @@ inline Gradient gradientOf(const TriangleShape& s, float z0, float z1, float z2)
 FlipGains::FlipGains(const Mesh& mesh, const CostField& field) : mesh_(mesh), by_width_(mesh.width) {
     channels_.push_back({field.luma, {}, {}});
     if (!field.alpha.empty()) channels_.push_back({field.alpha, {}, {}});
-    for (Channel& channel : channels_) channel.costs = vectorOnHugePages<double>(mesh.edgeCount());
+    for (Channel& channel : channels_) channel.costs.resize(mesh.edgeCount());
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
         const EdgeVertices& v = mesh.vertices[e];
         if (v.l == kNone || v.r == kNone) {

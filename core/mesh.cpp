@@ -4,8 +4,6 @@
 #include <cassert>
 #include <sstream>
 
-#include "huge_pages.h"
-
 namespace ddt {
 
 namespace {
@@ -89,8 +87,9 @@ Mesh buildGridMesh(uint32_t width, uint32_t height) {
     mesh.width = width;
     mesh.height = height;
     const uint64_t edge_count = gridEdgeCount(width, height);
-    reserveOnHugePages(mesh.vertices, edge_count);
-    mesh.neighbours = vectorOnHugePages<EdgeNeighbours>(edge_count, {kNone, kNone, kNone, kNone});
+    mesh.vertices.reserve(edge_count);
+    const EdgeNeighbours no_neighbours = {kNone, kNone, kNone, kNone};
+    mesh.neighbours.assign(edge_count, no_neighbours);
 
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {

@@ -7,7 +7,6 @@
 
 #include "channel_count.h"
 #include "degradation.h"
-#include "huge_pages.h"
 #include "parallel.h"
 #include "pixel_vector.h"
 #include "render.h"
@@ -18,8 +17,8 @@ namespace {
 
 // Items are whole rows or runs of triangles: even a few are worth a thread each.
 const size_t kGrain = 8;
-// Runs of many triangles: locating samples sets up tables of the whole output's columns per
-// run, and a run's samples should fill whole huge pages; but at least four runs a thread.
+// Runs of many triangles (locating samples sets up tables of the whole output's columns per
+// run), but at least four runs a thread.
 uint32_t trianglesPerRun(size_t triangles) {
     return uint32_t(std::clamp<size_t>(triangles / (4 * threadCount()), 4096, 65536));
 }
@@ -48,7 +47,7 @@ Bounds boundsOf(const Image& input) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
     const size_t row_floats = size_t(w) * c;
     const bool integer = boundedToUnit(input.sample_type);
-    Bounds bounds{vectorOnHugePages<float>(input.pixels.size()), vectorOnHugePages<float>(input.pixels.size())};
+    Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
     parallelFor(h, kGrain, [&](size_t begin, size_t end) {
         // The rows' own ranges, for rows [first, last] of this task.
         const size_t first = begin ? begin - 1 : 0, last = std::min<size_t>(h - 1, end);
@@ -141,12 +140,12 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
             renderer.locateSamples(sub_size, run.first_triangle, run.end_triangle, run.samples, run.ends.data());
         }
     });
-    layout.first_corner = vectorOnHugePages<uint32_t>(size_t(mesh.vertexCount()) + 1, 0);
+    layout.first_corner.assign(size_t(mesh.vertexCount()) + 1, 0);
     for (const Triangle& t : layout.triangles)
         for (uint32_t v : {t.v0, t.v1, t.v2}) ++layout.first_corner[v + 1];
     for (uint32_t v = 0; v < mesh.vertexCount(); ++v) layout.first_corner[v + 1] += layout.first_corner[v];
     layout.corners = 3 * triangles;
-    layout.slots = vectorOnHugePages<uint32_t>(size_t(kSlotsPerTriangle) * triangles);
+    layout.slots.resize(size_t(kSlotsPerTriangle) * triangles);
     std::vector<uint32_t> next_corner(layout.first_corner.begin(), layout.first_corner.end() - 1);
     std::vector<uint8_t> sides_seen(mesh.edgeCount(), 0);
     for (uint32_t t = 0; t < triangles; ++t) {
@@ -186,7 +185,7 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
 void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout,
                     std::vector<float>& partial, std::vector<float>& at_vertices, std::vector<float>& at_edges) {
     // Zero at first: the second side of a hull edge is never written.
-    if (partial.empty()) partial = vectorOnHugePages<float>((size_t(layout.corners) + 2 * at_edges.size() / c) * c);
+    if (partial.empty()) partial.assign((size_t(layout.corners) + 2 * at_edges.size() / c) * c, 0.0f);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
         layout.forEachTriangle([&](uint32_t t, const SampleHit* begin, const SampleHit* end) {
@@ -255,7 +254,7 @@ std::vector<float> degradationTaps(double sigma) {
 Surface initialSurface(const Mesh& mesh, const Image& input) {
     const int w = int(input.width), h = int(input.height);
     const uint32_t c = input.channels;
-    Surface surface{input, vectorOnHugePages<float>(size_t(mesh.edgeCount()) * c)};
+    Surface surface{input, std::vector<float>(size_t(mesh.edgeCount()) * c)};
     auto at = [&](int x, int y) { return input.pixels.data() + (size_t(clampIndex(y, h)) * w + clampIndex(x, w)) * c; };
     parallelFor(mesh.edgeCount(), 4096, [&](size_t begin, size_t end) {
         for (size_t e = begin; e < end; ++e) {
@@ -286,15 +285,13 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     const float tolerance = quantisationTolerance(input.sample_type);
 
     // SART's normalisers: ⟨φ_u, Dᵀ1⟩.
-    std::vector<float> sub = vectorOnHugePages<float>(size_t(degradation.subWidth()) * degradation.subHeight() * c);
-    std::vector<float> residual = vectorOnHugePages<float>(input.pixels.size(), 1.0f), degraded, partial;
-    std::vector<float> vertex_weight = vectorOnHugePages<float>(input.pixels.size());
-    std::vector<float> edge_weight = vectorOnHugePages<float>(surface.bubbles.size());
+    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c), degraded, partial;
+    std::vector<float> residual(input.pixels.size(), 1.0f);
+    std::vector<float> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
     degradation.transpose(residual, sub);
     projectOnBasis(sub, c, layout, partial, vertex_weight, edge_weight);
 
-    std::vector<float> vertex_step = vectorOnHugePages<float>(vertex_weight.size());
-    std::vector<float> edge_step = vectorOnHugePages<float>(edge_weight.size());
+    std::vector<float> vertex_step(vertex_weight.size()), edge_step(edge_weight.size());
     std::vector<float>& v = surface.values.pixels;
     for (uint32_t step = 0; step < iterations; ++step) {
         evaluate(surface, layout, sub);

@@ -6,7 +6,6 @@
 
 #include "channel_count.h"
 #include "divide_by.h"
-#include "huge_pages.h"
 #include "raster.h"
 
 namespace ddt {
@@ -64,7 +63,6 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vect
         tallest_ = std::max(tallest_, by_width.quotient(std::max({t.v0, t.v1, t.v2})) - top);
     });
     for (uint32_t y = 0; y < mesh.height; ++y) first_in_row_[y + 1] += first_in_row_[y];
-    reserveOnHugePages(triangles_, first_in_row_.back());
     triangles_.resize(first_in_row_.back());
     std::vector<uint32_t> next(first_in_row_.begin(), first_in_row_.end() - 1);
     forEachTriangle(mesh, [&](const Triangle& t) { triangles_[next[by_width.quotient(std::min({t.v0, t.v1, t.v2}))]++] = t; });
@@ -272,7 +270,7 @@ void MeshRenderer::locateSamples(OutputSize out, uint32_t first, uint32_t end, s
                                  uint32_t* ends) const {
     const uint32_t start = uint32_t(hits.size());
     // About as many samples in each triangle as on average.
-    reserveOnHugePages(hits, start + size_t(1.25 * double(out.width) * out.height / triangles_.size() * (end - first)) + 16);
+    hits.reserve(start + size_t(1.25 * double(out.width) * out.height / triangles_.size() * (end - first)) + 16);
     std::fill(ends, ends + (end - first), 0);  // first each triangle's count
     visitSamples(wholeRows(image_.width, image_.height, out, 0, out.height), first, end, [&](uint32_t i) {
         return [&, count = ends + (i - first)](uint32_t x, uint32_t y, double l0, double l1, double l2) {
