@@ -72,12 +72,11 @@ public:
     // reconstruction's (core/reconstruct.cpp, per pixel: 9 supersamples, 2 triangles, 3
     // edges; it locates with the renderer's triangle list): the supersamples' indices and
     // weights (144 bytes), the triangles' sample ends and sum slots and the vertices' corner
-    // ranges (about 65), and per channel 160 bytes of floats (the supersamples' values, the
-    // pass between the axes, each triangle's six sums, the values, bubbles, bounds, weights
-    // and steps).
+    // ranges (about 65), and per channel 132 bytes of floats (the supersamples' values, each
+    // triangle's six sums, the values, bubbles, bounds and weights).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t surface = reconstruction ? 210 + 160 * channels : 0;
+        const uint64_t surface = reconstruction ? 210 + 132 * channels : 0;
         return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + surface);
     }
 

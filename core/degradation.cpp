@@ -53,53 +53,52 @@ AxisTaps transposeTaps(const AxisTaps& apply, uint32_t supersamples) {
     return result;
 }
 
-// Along y: output row o of `out` gathers whole rows of `in` (row_floats floats each), a block
-// of the row at a time so that the sum stays in the L1 cache while its terms stream in.
-void gatherRows(const AxisTaps& taps, const float* in, float* out, size_t row_floats) {
+// Along y: row o of the output gathers whole rows (row_floats floats each; input row i at
+// source(i)), a block of the row at a time so that the sum stays in the L1 cache while its
+// terms stream in.
+template <typename Source>
+void gatherRow(const AxisTaps& taps, uint32_t o, Source source, float* out, size_t row_floats) {
     const size_t kBlock = 1024;  // floats
-    parallelFor(taps.outputs(), kGrain, [&](size_t begin, size_t end) {
-        for (size_t o = begin; o < end; ++o) {
-            const uint32_t first = taps.first[o], last = taps.first[o + 1];
-            for (size_t block = 0; block < row_floats; block += kBlock) {
-                float* row = out + o * row_floats + block;
-                const size_t n = std::min(kBlock, row_floats - block);
-                if (first == last) {
-                    std::fill_n(row, n, 0.0f);
-                    continue;
-                }
-                // 0 + the first term, as a sum from 0 has it (−0 becomes +0).
-                const float* source = in + taps.index[first] * row_floats + block;
-                const float g = taps.weight[first];
-                for (size_t i = 0; i < n; ++i) row[i] = 0.0f + g * source[i];
-                for (uint32_t j = first + 1; j < last; ++j) {
-                    const float* source = in + taps.index[j] * row_floats + block;
-                    const float g = taps.weight[j];
-                    for (size_t i = 0; i < n; ++i) row[i] += g * source[i];
-                }
-            }
+    const uint32_t first = taps.first[o], last = taps.first[o + 1];
+    for (size_t block = 0; block < row_floats; block += kBlock) {
+        float* row = out + block;
+        const size_t n = std::min(kBlock, row_floats - block);
+        if (first == last) {
+            std::fill_n(row, n, 0.0f);
+            continue;
         }
-    });
+        // 0 + the first term, as a sum from 0 has it (−0 becomes +0).
+        const float* in = source(taps.index[first]) + block;
+        const float g = taps.weight[first];
+        for (size_t i = 0; i < n; ++i) row[i] = 0.0f + g * in[i];
+        for (uint32_t j = first + 1; j < last; ++j) {
+            const float* in = source(taps.index[j]) + block;
+            const float g = taps.weight[j];
+            for (size_t i = 0; i < n; ++i) row[i] += g * in[i];
+        }
+    }
 }
 
-// Along x, in each of `rows` rows: output pixel o gathers pixels of the input row.
-void gatherColumns(const AxisTaps& taps, uint32_t channels, const float* in, uint32_t in_pixels, float* out,
-                   uint32_t rows) {
-    withChannelCount(channels, [&](auto channel_count) {
-        constexpr uint32_t c = decltype(channel_count)::value;
-        const uint32_t out_pixels = taps.outputs();
-        parallelFor(rows, kGrain, [&](size_t begin, size_t end) {
-            for (size_t y = begin; y < end; ++y) {
-                const float* source = in + y * in_pixels * c;
-                float* row = out + y * out_pixels * c;
-                for (uint32_t o = 0; o < out_pixels; ++o) {
-                    PixelVector<c> sum = {};
-                    for (uint32_t j = taps.first[o]; j < taps.first[o + 1]; ++j)
-                        sum += taps.weight[j] * loadPixel<c>(source + size_t(taps.index[j]) * c);
-                    storePixel<c>(row + o * c, sum);
-                }
-            }
-        });
-    });
+// Along x, within one row: output pixel o gathers pixels of the input row.
+template <uint32_t C>
+void gatherColumns(const AxisTaps& taps, const float* in, float* out) {
+    for (uint32_t o = 0; o < taps.outputs(); ++o) {
+        PixelVector<C> sum = {};
+        for (uint32_t j = taps.first[o]; j < taps.first[o + 1]; ++j)
+            sum += taps.weight[j] * loadPixel<C>(in + size_t(taps.index[j]) * C);
+        storePixel<C>(out + size_t(o) * C, sum);
+    }
+}
+
+// The most rows of its input one output of `taps` spans.
+uint32_t widestSpan(const AxisTaps& taps) {
+    uint32_t widest = 1;
+    for (uint32_t o = 0; o < taps.outputs(); ++o) {
+        if (taps.first[o] == taps.first[o + 1]) continue;
+        const auto [lo, hi] = std::minmax_element(taps.index.begin() + taps.first[o], taps.index.begin() + taps.first[o + 1]);
+        widest = std::max(widest, *hi - *lo + 1);
+    }
+    return widest;
 }
 
 }  // namespace
@@ -107,20 +106,51 @@ void gatherColumns(const AxisTaps& taps, uint32_t channels, const float* in, uin
 Degradation::Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model)
     : w_(width), h_(height), c_(channels), sub_w_(width * kSupersampling), sub_h_(height * kSupersampling),
       apply_x_(applyTaps(width, degradationTaps(model.sigma_x))), apply_y_(applyTaps(height, degradationTaps(model.sigma_y))),
-      transpose_x_(transposeTaps(apply_x_, sub_w_)), transpose_y_(transposeTaps(apply_y_, sub_h_)) {}
+      transpose_x_(transposeTaps(apply_x_, sub_w_)), transpose_y_(transposeTaps(apply_y_, sub_h_)),
+      transpose_rows_(widestSpan(transpose_y_)) {}
 
+// Each output row is done by one task from its own copy of the row between the two passes.
 void Degradation::apply(const std::vector<float>& sub, std::vector<float>& degraded) {
-    between_.resize(size_t(sub_w_) * h_ * c_);
+    const size_t sub_row = size_t(sub_w_) * c_;
     degraded.resize(size_t(w_) * h_ * c_);
-    gatherRows(apply_y_, sub.data(), between_.data(), size_t(sub_w_) * c_);
-    gatherColumns(apply_x_, c_, between_.data(), sub_w_, degraded.data(), h_);
+    withChannelCount(c_, [&](auto channels) {
+        constexpr uint32_t c = decltype(channels)::value;
+        parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
+            std::vector<float> between(sub_row);
+            for (size_t y = begin; y < end; ++y) {
+                gatherRow(apply_y_, uint32_t(y), [&](uint32_t row) { return sub.data() + row * sub_row; }, between.data(), sub_row);
+                gatherColumns<c>(apply_x_, between.data(), degraded.data() + y * w_ * c);
+            }
+        });
+    });
 }
 
+// Each task keeps the rows between the two passes that its output rows need in a ring: the
+// rows an output gathers increase with it, so a row is computed once per task.
 void Degradation::transpose(const std::vector<float>& residual, std::vector<float>& sub) {
-    between_.resize(size_t(sub_w_) * h_ * c_);
-    sub.resize(size_t(sub_w_) * sub_h_ * c_);
-    gatherColumns(transpose_x_, c_, residual.data(), w_, between_.data(), h_);
-    gatherRows(transpose_y_, between_.data(), sub.data(), size_t(sub_w_) * c_);
+    const size_t sub_row = size_t(sub_w_) * c_;
+    sub.resize(sub_row * sub_h_);
+    withChannelCount(c_, [&](auto channels) {
+        constexpr uint32_t c = decltype(channels)::value;
+        parallelFor(sub_h_, kGrain, [&](size_t begin, size_t end) {
+            std::vector<float> ring(transpose_rows_ * sub_row);
+            std::vector<uint32_t> ring_row(transpose_rows_, UINT32_MAX);  // the input row each slot holds
+            auto between = [&](uint32_t y) {
+                const uint32_t slot = y % transpose_rows_;
+                float* row = ring.data() + slot * sub_row;
+                if (ring_row[slot] != y) {
+                    gatherColumns<c>(transpose_x_, residual.data() + size_t(y) * w_ * c, row);
+                    ring_row[slot] = y;
+                }
+                return row;
+            };
+            for (size_t o = begin; o < end; ++o) {
+                // Every row this output needs, first, so that none evicts another while in use.
+                for (uint32_t j = transpose_y_.first[o]; j < transpose_y_.first[o + 1]; ++j) between(transpose_y_.index[j]);
+                gatherRow(transpose_y_, uint32_t(o), between, sub.data() + o * sub_row, sub_row);
+            }
+        });
+    });
 }
 
 }  // namespace ddt

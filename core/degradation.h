@@ -39,7 +39,7 @@ public:
 private:
     uint32_t w_, h_, c_, sub_w_, sub_h_;
     AxisTaps apply_x_, apply_y_, transpose_x_, transpose_y_;
-    std::vector<float> between_;  // h × sub_w pixels: the pass between the two axes
+    uint32_t transpose_rows_;  // the most input rows one output row of Dᵀ along y gathers
 };
 
 }  // namespace ddt

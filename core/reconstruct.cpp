@@ -17,8 +17,11 @@ namespace {
 
 // Items are whole rows or runs of triangles: even a few are worth a thread each.
 const size_t kGrain = 8;
-// Locating samples sets up tables of the whole output's columns per call: runs of many triangles.
-const uint32_t kTrianglesPerRun = 16384;
+// Runs of many triangles (locating samples sets up tables of the whole output's columns per
+// run), but at least four runs a thread.
+uint32_t trianglesPerRun(size_t triangles) {
+    return uint32_t(std::clamp<size_t>(triangles / (4 * threadCount()), 4096, 65536));
+}
 
 double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * std::sqrt(1.0 - 1.0 / (scale * scale)); }
 
@@ -98,7 +101,7 @@ struct SampleRun {
 // the result does not depend on how the work is split across threads.
 struct SampleLayout {
     const std::vector<Triangle>& triangles;  // the locating renderer's
-    std::vector<SampleRun> runs;             // the triangles in order, kTrianglesPerRun a run
+    std::vector<SampleRun> runs;             // the triangles in order, in runs of trianglesPerRun
     // Where each triangle's six partial sums go, 6 · triangle + n: the partial sums are kept
     // in the order that adds them up, so that adding them up reads them in sequence. Slots
     // [first_corner[v], first_corner[v + 1]) hold vertex v's corners in triangle order,
@@ -126,12 +129,13 @@ struct SampleLayout {
 SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize sub_size) {
     SampleLayout layout{renderer.triangles(), {}, {}, {}, {}};
     const uint32_t triangles = uint32_t(layout.triangles.size());
-    layout.runs.resize((triangles + kTrianglesPerRun - 1) / kTrianglesPerRun);
+    const uint32_t per_run = trianglesPerRun(triangles);
+    layout.runs.resize((triangles + per_run - 1) / per_run);
     parallelFor(layout.runs.size(), 1, [&](size_t begin, size_t end) {
         for (size_t r = begin; r < end; ++r) {
             SampleRun& run = layout.runs[r];
-            run.first_triangle = uint32_t(r * kTrianglesPerRun);
-            run.end_triangle = std::min(triangles, run.first_triangle + kTrianglesPerRun);
+            run.first_triangle = uint32_t(r * per_run);
+            run.end_triangle = std::min(triangles, run.first_triangle + per_run);
             run.ends.resize(run.end_triangle - run.first_triangle);
             renderer.locateSamples(sub_size, run.first_triangle, run.end_triangle, run.samples, run.ends.data());
         }
@@ -177,11 +181,12 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
 
 // ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples: each triangle's
 // six sums (its corners' hat functions, its edges' bubbles), then each vertex and edge adds
-// those of its triangles.
-void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout,
-                    std::vector<float>& partial, std::vector<float>& at_vertices, std::vector<float>& at_edges) {
+// those of its triangles and hands the sum (c floats) to at_vertex(v, sum) or at_edge(e, sum).
+template <typename AtVertex, typename AtEdge>
+void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout, uint32_t edges,
+                    std::vector<float>& partial, AtVertex at_vertex, AtEdge at_edge) {
     // Zero at first: the second side of a hull edge is never written.
-    if (partial.empty()) partial.assign((size_t(layout.corners) + 2 * at_edges.size() / c) * c, 0.0f);
+    if (partial.empty()) partial.assign((size_t(layout.corners) + 2 * size_t(edges)) * c, 0.0f);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
         layout.forEachTriangle([&](uint32_t t, const SampleHit* begin, const SampleHit* end) {
@@ -201,17 +206,21 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
                 PixelVector<cc> sum = {};
                 for (uint32_t j = layout.first_corner[v]; j < layout.first_corner[v + 1]; ++j)
                     sum += loadPixel<cc>(partial.data() + size_t(j) * cc);
-                storePixel<cc>(at_vertices.data() + v * cc, sum);
+                float sums[4] = {};  // a callback reads c = cc of them
+                storePixel<cc>(sums, sum);
+                at_vertex(v, sums);
             }
         });
         const float* edge_sides = partial.data() + size_t(layout.corners) * cc;
-        parallelFor(at_edges.size() / cc, kGrain, [&](size_t begin, size_t end) {
+        parallelFor(edges, kGrain, [&](size_t begin, size_t end) {
             for (size_t e = begin; e < end; ++e) {
                 // From 0, as every sum here; the unwritten side of a hull edge adds 0.
                 PixelVector<cc> sum = {};
                 sum += loadPixel<cc>(edge_sides + 2 * e * cc);
                 sum += loadPixel<cc>(edge_sides + (2 * e + 1) * cc);
-                storePixel<cc>(at_edges.data() + e * cc, sum);
+                float sums[4] = {};
+                storePixel<cc>(sums, sum);
+                at_edge(e, sums);
             }
         });
     });
@@ -285,9 +294,14 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     std::vector<float> residual(input.pixels.size(), 1.0f);
     std::vector<float> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
     degradation.transpose(residual, sub);
-    projectOnBasis(sub, c, layout, partial, vertex_weight, edge_weight);
+    projectOnBasis(
+        sub, c, layout, mesh.edgeCount(), partial,
+        [&](size_t vertex, const float* sum) { std::copy_n(sum, c, vertex_weight.data() + vertex * c); },
+        [&](size_t edge, const float* sum) { std::copy_n(sum, c, edge_weight.data() + edge * c); });
 
-    std::vector<float> vertex_step(vertex_weight.size()), edge_step(edge_weight.size());
+    // Each step moves every unknown by ω·⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩ as soon as its projection is
+    // summed up (nothing else reads it): a vertex value within its bounds and premultiplied
+    // colour at most alpha, a bubble where its normaliser is positive.
     std::vector<float>& v = surface.values.pixels;
     for (uint32_t step = 0; step < iterations; ++step) {
         evaluate(surface, layout, sub);
@@ -296,22 +310,22 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
             for (size_t i = begin; i < end; ++i) residual[i] = beyondTolerance(input.pixels[i] - degraded[i], tolerance);
         });
         degradation.transpose(residual, sub);
-        projectOnBasis(sub, c, layout, partial, vertex_step, edge_step);
-        parallelFor(v.size() / c, kGrain, [&](size_t begin, size_t end) {
-            for (size_t i = begin * c; i < end * c; ++i)
-                v[i] = std::clamp(v[i] + kRelaxation * vertex_step[i] / vertex_weight[i], bounds.low[i], bounds.high[i]);
-            if (input.hasAlpha())
-                for (size_t p = begin * c; p < end * c; p += c)
+        projectOnBasis(
+            sub, c, layout, mesh.edgeCount(), partial,
+            [&](size_t vertex, const float* step) {
+                const size_t p = vertex * c;
+                for (uint32_t k = 0; k < c; ++k)
+                    v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[p + k], bounds.low[p + k],
+                                          bounds.high[p + k]);
+                if (input.hasAlpha())
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
-        });
-        parallelFor(surface.bubbles.size(), 4096, [&](size_t begin, size_t end) {
-            for (size_t i = begin; i < end; ++i) {
-                // Written without a branch around the division, so that it vectorises.
-                const bool moves = edge_weight[i] > 0.0f;
-                const float step = kRelaxation * edge_step[i] / (moves ? edge_weight[i] : 1.0f);
-                surface.bubbles[i] = moves ? surface.bubbles[i] + step : surface.bubbles[i];
-            }
-        });
+            },
+            [&](size_t edge, const float* step) {
+                for (uint32_t k = 0; k < c; ++k) {
+                    const size_t i = edge * c + k;
+                    if (edge_weight[i] > 0.0f) surface.bubbles[i] += kRelaxation * step[k] / edge_weight[i];
+                }
+            });
     }
     return surface;
 }
