@@ -53,9 +53,10 @@ void printDevices() {
 }
 
 // One thread count for every pool in the process: ddtup's own (optimizing, rendering,
-// encoding), OIIO's (decoding) and lavapipe's, unless its LP_NUM_THREADS is set. They work
-// in turn on one image, so together they keep the processors busy without oversubscribing
-// them; a batch script running several ddtup processes divides the processors with --threads.
+// encoding), OIIO's (decoding) and lavapipe's, unless its LP_NUM_THREADS is set. Decoding
+// the next image is short beside the rest, and rendering and encoding share ddtup's pool, so
+// the process stays near that many busy threads; a batch script running several ddtup
+// processes divides the processors with --threads.
 void sizeThreadPools(unsigned threads) {
     ddt::setThreadCount(threads);
     const int count = int(ddt::threadCount());

@@ -24,6 +24,12 @@ Run runDdtup(const std::vector<std::string>& args, const std::vector<std::string
 // stderr, for runs that need more than arguments: a mount namespace, a redirection.
 Run runShell(const std::string& command_line);
 
+// The environment of a run that finds no Vulkan driver: the loader is pointed at a file that
+// does not exist. (Validation, on for the rest of the suite, would report the loader's own
+// complaints about that.)
+const std::vector<std::string> kNoVulkanDevice = {"VK_DRIVER_FILES=/nonexistent/icd.json",
+                                                  "VK_ICD_FILENAMES=/nonexistent/icd.json", "DDTUP_VALIDATION=0"};
+
 // `arg` quoted for the shell.
 std::string shellQuoted(const std::string& arg);
 

@@ -15,11 +15,6 @@ namespace {
 
 std::string fixture(const std::string& name) { return ddt::test::testDataPath(name); }
 
-// The loader finds no driver when pointed at a file that does not exist. (Validation, on for
-// the rest of the suite, would report the loader's own complaints about that.)
-const std::vector<std::string> kNoVulkanDevice = {"VK_DRIVER_FILES=/nonexistent/icd.json",
-                                                  "VK_ICD_FILENAMES=/nonexistent/icd.json", "DDTUP_VALIDATION=0"};
-
 // The loader sees lavapipe alone: its manifest, whatever the machine's architecture.
 std::vector<std::string> onlyLavapipe() {
     for (const auto& entry : std::filesystem::directory_iterator("/usr/share/vulkan/icd.d"))
