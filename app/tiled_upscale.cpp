@@ -18,8 +18,9 @@ namespace {
 // Output rows are rendered in bands of at most this many floats, which keeps the host's
 // memory flat whatever the output size.
 const size_t kBandFloats = size_t(2) << 20;  // 8 MiB
-// A strip of several tiles is assembled on the host before its rows go out: strips are cut
-// thinner than the tile side where a strip of square tiles would exceed this.
+// On a backend that keeps its surfaces (a GPU), a strip of several tiles is assembled on the
+// host before its rows go out: strips are cut thinner than the tile side where a strip of
+// square tiles would exceed this.
 const size_t kStripFloats = size_t(128) << 20;  // 512 MiB
 
 using Sink = std::function<void(uint32_t y_begin, uint32_t y_end, const float* rows)>;
@@ -82,10 +83,11 @@ bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t chan
 // Tiles processed at once: one per thread where the backend has twins (the CPU), else one.
 uint32_t tilesAtOnce(const Backend& backend) { return backend.twin() ? std::max(1u, threadCount()) : 1; }
 
-// Input rows per strip: the tile side, or fewer where a strip of several tiles would not fit
-// kStripFloats (a strip of one tile streams its rows out).
-uint32_t stripSide(const Image& image, OutputSize out, uint32_t side) {
-    if (side >= image.width) return side;
+// Input rows per strip: the tile side, or, where a strip of several tiles is assembled, fewer
+// if it would not fit kStripFloats (a strip of one tile, or of surfaces handed over, streams
+// its rows out).
+uint32_t stripSide(const Image& image, OutputSize out, uint32_t side, bool assembled) {
+    if (side >= image.width || !assembled) return side;
     const size_t row_floats = size_t(out.width) * image.channels;
     const uint64_t out_rows = std::max<size_t>(1, kStripFloats / row_floats);
     const uint64_t in_rows = out_rows * image.height / out.height;
@@ -102,7 +104,7 @@ uint32_t tilesFrom(uint32_t width, uint32_t height, uint32_t y0, uint32_t side, 
 // thread, so that tiles are processed in parallel. A tile borrows one for its whole way.
 class BackendPool {
 public:
-    BackendPool(Backend& backend, uint32_t size) {
+    BackendPool(Backend& backend, uint32_t size) : hand_over_surfaces_(backend.handsOverSurface()) {
         free_.push_back(&backend);
         for (uint32_t i = 1; i < size; ++i) {
             twins_.push_back(backend.twin());
@@ -110,6 +112,7 @@ public:
         }
     }
     uint32_t size() const { return uint32_t(twins_.size() + 1); }
+    bool handOverSurfaces() const { return hand_over_surfaces_; }
 
     template <typename Task>
     auto withBackend(Task task) {
@@ -131,6 +134,7 @@ public:
     }
 
 private:
+    bool hand_over_surfaces_;
     std::mutex mutex_;
     std::vector<std::unique_ptr<Backend>> twins_;
     std::vector<Backend*> free_;
@@ -151,15 +155,11 @@ struct Job {
     }
 };
 
-// Optimises one tile's crop on `backend` and renders `window` of it, in bands, to
-// `deliver(y_begin, y_end, rows)`.
-template <typename Deliver>
-OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t index, uint32_t total,
-                          Deliver deliver) {
-    if (tile.output.width() == 0 || tile.output.height() == 0) return {};  // a core between two samples
+// Optimises one tile's crop on `backend` and, if the job asks, reconstructs its surface. The
+// crop is made in `crop`, which the backend reads until it is prepared again.
+OptimizeStats shapeTile(Job& job, Backend& backend, const Tile& tile, uint32_t index, uint32_t total, Image& crop) {
     job.step(index, total, TilePhase::Optimize);
     const bool whole = tile.crop.width() == job.image.width && tile.crop.height() == job.image.height;
-    Image crop;
     if (!whole) crop = cropOf(job.image, tile.crop);
     backend.prepare(whole ? job.image : crop);
     const OptimizeStats stats = backend.optimize();
@@ -170,8 +170,11 @@ OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t
         backend.reconstruct(
             degradationFor(double(job.out.width) / job.image.width, double(job.out.height) / job.image.height));
     }
-    job.step(index, total, TilePhase::Render);
+    return stats;
+}
 
+// The tile's output rows [y_begin, y_end).
+RenderWindow windowOf(const Job& job, const Tile& tile, uint32_t y_begin, uint32_t y_end) {
     RenderWindow window;
     window.input_width = job.image.width;
     window.input_height = job.image.height;
@@ -180,19 +183,79 @@ OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t
     window.crop_y = tile.crop.y0;
     window.x_begin = tile.output.x0;
     window.x_end = tile.output.x1;
+    window.y_begin = y_begin;
+    window.y_end = y_end;
+    return window;
+}
+
+// Output rows per band for rows of `row_floats` floats.
+uint32_t bandRows(size_t row_floats) { return uint32_t(std::max<size_t>(1, kBandFloats / row_floats)); }
+
+// Optimises one tile's crop on `backend` and renders its output, in bands, to
+// `deliver(y_begin, y_end, rows)`.
+template <typename Deliver>
+OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t index, uint32_t total,
+                          Deliver deliver) {
+    if (tile.output.width() == 0 || tile.output.height() == 0) return {};  // a core between two samples
+    Image crop;
+    const OptimizeStats stats = shapeTile(job, backend, tile, index, total, crop);
+    job.step(index, total, TilePhase::Render);
     const size_t row_floats = size_t(tile.output.width()) * job.image.channels;
-    const uint32_t band_rows = uint32_t(std::max<size_t>(1, kBandFloats / row_floats));
+    const uint32_t band_rows = bandRows(row_floats);
     std::vector<float> band(std::min<size_t>(band_rows, tile.output.height()) * row_floats);
     for (uint32_t y = tile.output.y0; y < tile.output.y1; y += band_rows) {
-        window.y_begin = y;
-        window.y_end = std::min(tile.output.y1, y + band_rows);
+        const RenderWindow window = windowOf(job, tile, y, std::min(tile.output.y1, y + band_rows));
         backend.renderWindow(window, band.data());
         deliver(window.y_begin, window.y_end, band.data());
     }
     return stats;
 }
 
-// One strip of tiles: a single tile streams its rows out; several are assembled first.
+// A strip of several tiles on a backend that hands its surfaces over: the tiles are shaped
+// (in parallel with twins) and their surfaces kept, then the strip's rows are rendered band
+// by band across the tiles, so that a band is all the output held, whatever the scale.
+OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint32_t first_index, uint32_t total) {
+    OptimizeStats stats;
+    std::mutex stats_mutex;
+    std::vector<std::unique_ptr<HostSurface>> surfaces(tiles.size());
+    parallelFor(tiles.size(), 1, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const Tile& tile = tiles[i];
+            if (tile.output.width() == 0 || tile.output.height() == 0) continue;  // a core between two samples
+            job.backends.withBackend([&](Backend& backend) {
+                Image crop;
+                const OptimizeStats tile_stats = shapeTile(job, backend, tile, first_index + uint32_t(i), total, crop);
+                surfaces[i] = backend.takeSurface();
+                std::lock_guard lock(stats_mutex);
+                addStats(stats, tile_stats);
+            });
+        }
+    });
+    const uint32_t c = job.image.channels;
+    const size_t row_floats = size_t(job.out.width) * c;
+    const uint32_t y0 = tiles[0].output.y0, y1 = tiles[0].output.y1, band_rows = bandRows(row_floats);
+    for (uint32_t i = 0; i < tiles.size(); ++i)
+        if (surfaces[i]) job.step(first_index + i, total, TilePhase::Render);
+    std::vector<float> band(std::min(band_rows, y1 - y0) * row_floats), tile_rows;
+    for (uint32_t y = y0; y < y1; y += band_rows) {
+        const uint32_t y_end = std::min(y1, y + band_rows);
+        for (uint32_t i = 0; i < tiles.size(); ++i) {
+            if (!surfaces[i]) continue;
+            const RenderWindow window = windowOf(job, tiles[i], y, y_end);
+            const size_t tile_row_floats = size_t(window.width()) * c;
+            tile_rows.resize(window.height() * tile_row_floats);
+            surfaces[i]->renderWindow(window, tile_rows.data());
+            for (uint32_t row = 0; row < window.height(); ++row)
+                std::copy_n(tile_rows.data() + row * tile_row_floats, tile_row_floats,
+                            band.data() + row * row_floats + size_t(window.x_begin) * c);
+        }
+        job.rows.emit(y, y_end, band.data());
+    }
+    return stats;
+}
+
+// One strip of tiles: a single tile streams its rows out; several render band by band from
+// their surfaces where the backend hands them over, else are assembled first.
 OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t first_index, uint32_t total) {
     OptimizeStats stats;
     const uint32_t c = job.image.channels;
@@ -204,6 +267,7 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
         }));
         return stats;
     }
+    if (job.backends.handOverSurfaces()) return upscaleStripInBands(job, tiles, first_index, total);
     const PixelRect strip = {0, tiles[0].output.y0, job.out.width, tiles[0].output.y1};
     std::vector<float> strip_rows(size_t(strip.height()) * row_floats);
     std::mutex stats_mutex;
@@ -268,7 +332,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {
-        const uint32_t strip_side = stripSide(image, out, side);
+        const uint32_t strip_side = stripSide(image, out, side, !backends.handOverSurfaces());
         const uint32_t y1 = stripEnd(image.height, y0, strip_side);
         const std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap);
         std::string out_of_memory;

@@ -17,6 +17,15 @@
 
 namespace ddt {
 
+// A tile's surface handed over by a backend that renders on the host, able to render windows
+// on its own (as Backend::renderWindow does), so that the backend can take the next tile
+// while this one waits for its rows to be rendered.
+class HostSurface {
+public:
+    virtual ~HostSurface() = default;
+    virtual void renderWindow(const RenderWindow& window, float* rows) const = 0;
+};
+
 class Backend {
 public:
     virtual ~Backend() = default;
@@ -30,6 +39,11 @@ public:
     // Renders `window` (see core/render.h) of the prepared image, which is the crop at
     // (window.crop_x, window.crop_y) of the whole input: window.width() × channels floats per row.
     virtual void renderWindow(const RenderWindow& window, float* rows) = 0;
+    // Whether the backend renders on the host and hands its surfaces over (takeSurface).
+    virtual bool handsOverSurface() const { return false; }
+    // The surface renderWindow would render (after optimize and, if wanted, reconstruct),
+    // taken out of the backend: the next prepare starts afresh. Null unless handsOverSurface().
+    virtual std::unique_ptr<HostSurface> takeSurface() { return nullptr; }
     // The current mesh (for tests and checks).
     virtual Mesh mesh() = 0;
 

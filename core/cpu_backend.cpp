@@ -19,6 +19,36 @@ const size_t kRowsPerBand = 16;
 // spare), where tiles would cost a quarter more work.
 const uint64_t kWorkingMemory = uint64_t(320) << 20;
 
+// Renders `window` in bands of rows in parallel: each band writes only its own rows, so the
+// result does not depend on the split.
+void renderInBands(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows) {
+    const size_t row_floats = size_t(window.width()) * channels;
+    parallelFor(window.height(), kRowsPerBand, [&](size_t begin, size_t end) {
+        RenderWindow band = window;
+        band.y_begin = window.y_begin + uint32_t(begin);
+        band.y_end = window.y_begin + uint32_t(end);
+        renderer.renderWindow(band, rows + begin * row_floats);
+    });
+}
+
+// A surface taken out of the backend with its triangle tables: it owns what the renderer reads.
+class TakenSurface final : public HostSurface {
+public:
+    TakenSurface(Surface surface, MeshRenderer&& tables)
+        : surface_(std::move(surface)),
+          renderer_(std::move(tables), surface_.values, surface_.bubbles.empty() ? nullptr : &surface_.bubbles) {}
+    TakenSurface(const TakenSurface&) = delete;  // renderer_ refers to surface_
+    TakenSurface& operator=(const TakenSurface&) = delete;
+
+    void renderWindow(const RenderWindow& window, float* rows) const override {
+        renderInBands(renderer_, window, surface_.values.channels, rows);
+    }
+
+private:
+    Surface surface_;
+    MeshRenderer renderer_;
+};
+
 class CpuBackend final : public Backend {
 public:
     void prepare(const Image& image) override {
@@ -45,21 +75,21 @@ public:
     }
 
     void renderWindow(const RenderWindow& window, float* rows) override {
-        if (!renderer_) {
-            if (surface_)
-                renderer_.emplace(mesh_, surface_->values, &surface_->bubbles);
-            else
-                renderer_.emplace(mesh_, *image_);
-        }
-        // Bands of rows in parallel: each writes only its own rows, so the result does not
-        // depend on the split.
-        const size_t row_floats = size_t(window.width()) * image_->channels;
-        parallelFor(window.height(), kRowsPerBand, [&](size_t begin, size_t end) {
-            RenderWindow band = window;
-            band.y_begin = window.y_begin + uint32_t(begin);
-            band.y_end = window.y_begin + uint32_t(end);
-            renderer_->renderWindow(band, rows + begin * row_floats);
-        });
+        renderInBands(renderer(), window, image_->channels, rows);
+    }
+
+    bool handsOverSurface() const override { return true; }
+
+    std::unique_ptr<HostSurface> takeSurface() override {
+        renderer();  // builds the triangle tables if reconstruct did not
+        // The plain surface is the prepared image's values, which its caller may drop: copied.
+        Surface surface = surface_ ? std::move(*surface_) : Surface{*image_, {}};
+        auto taken = std::make_unique<TakenSurface>(std::move(surface), std::move(*renderer_));
+        renderer_.reset();
+        surface_.reset();
+        mesh_ = {};
+        field_ = {};
+        return taken;
     }
 
     Mesh mesh() override { return mesh_; }
@@ -85,6 +115,17 @@ public:
     uint64_t memoryAvailable() const override { return std::min(kWorkingMemory, physicalMemory() / 2); }
 
 private:
+    // The renderer of the current surface, built on first use.
+    const MeshRenderer& renderer() {
+        if (!renderer_) {
+            if (surface_)
+                renderer_.emplace(mesh_, surface_->values, &surface_->bubbles);
+            else
+                renderer_.emplace(mesh_, *image_);
+        }
+        return *renderer_;
+    }
+
     const Image* image_ = nullptr;
     CostField field_;
     Mesh mesh_;
