@@ -1,5 +1,6 @@
 // ddtup: magnify images by data-dependent triangulation.
 #include <OpenImageIO/imageio.h>
+#include <malloc.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -64,6 +65,16 @@ void sizeThreadPools(unsigned threads) {
     ::setenv("LP_NUM_THREADS", std::to_string(count).c_str(), 0);
 }
 
+// Tiles and the reconstruction allocate and free arrays of megabytes again and again. By
+// default glibc maps each large one afresh and unmaps it when freed, and the kernel zeroes
+// every page on first touch: on a 1600×1112 photo at ×4 that was 2/3 of the page faults and
+// 0.4–0.6 s of system time (perf stat). Kept in the heap, freed arrays are reused instead;
+// the peak resident size is unchanged (it is the peak either way).
+void keepFreedMemoryForReuse() {
+    ::mallopt(M_MMAP_THRESHOLD, 32 << 20);   // blocks below 32 MiB (glibc's most) come from the heap
+    ::mallopt(M_TRIM_THRESHOLD, 256 << 20);  // and up to 256 MiB free at its top stays there
+}
+
 int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
     std::vector<ddt::ImageTask> tasks;
     try {
@@ -105,6 +116,7 @@ int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    keepFreedMemoryForReuse();
     ddt::installInterruptCleanup();
     int exit_code = 0;
     std::optional<ddt::Settings> settings = ddt::parseCommandLine(argc, argv, exit_code);

@@ -34,7 +34,9 @@ public:
     virtual OptimizeStats optimize() = 0;
     // Replaces plain DDT's surface (the input values, linear on each triangle) by the
     // consistent reconstruction under `model` (core/reconstruct.h); renderWindow then renders
-    // it. prepare and optimize return to the plain surface.
+    // it. prepare returns to the plain surface. The CPU backend gives up its mesh here to
+    // lower its peak memory: after reconstruct, only renderWindow and takeSurface until the
+    // next prepare.
     virtual void reconstruct(const DegradationModel& model) = 0;
     // Renders `window` (see core/render.h) of the prepared image, which is the crop at
     // (window.crop_x, window.crop_y) of the whole input: window.width() × channels floats per row.

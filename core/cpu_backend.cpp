@@ -2,6 +2,7 @@
 // and the rasteriser on the host, the last two on the shared thread pool.
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
 
 #include "backend.h"
 #include "parallel.h"
@@ -57,20 +58,25 @@ public:
         surface_.reset();
         field_ = costFieldOf(image);
         mesh_ = buildGridMesh(image.width, image.height);
+        mesh_released_ = false;
     }
 
     OptimizeStats optimize() override {
+        requireMesh();
         renderer_.reset();
         surface_.reset();
         return optimizeSerial(mesh_, field_);
     }
 
     void reconstruct(const DegradationModel& model) override {
+        requireMesh();
         // One set of triangle tables locates the supersamples, then renders the result.
         MeshRenderer locator = renderer_ ? MeshRenderer(std::move(*renderer_), *image_) : MeshRenderer(mesh_, *image_);
         renderer_.reset();
         surface_.reset();
-        surface_ = reconstructSurface(mesh_, *image_, model, locator);
+        // The reconstruction is the mesh's last use: rendering reads the triangle tables.
+        surface_ = reconstructSurface(std::move(mesh_), *image_, model, locator);
+        mesh_released_ = true;
         renderer_.emplace(std::move(locator), surface_->values, &surface_->bubbles);
     }
 
@@ -88,11 +94,15 @@ public:
         renderer_.reset();
         surface_.reset();
         mesh_ = {};
+        mesh_released_ = true;
         field_ = {};
         return taken;
     }
 
-    Mesh mesh() override { return mesh_; }
+    Mesh mesh() override {
+        requireMesh();
+        return mesh_;
+    }
     std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(); }
     const Image& preparedImage() const override { return *image_; }
 
@@ -102,11 +112,11 @@ public:
     // reconstruction's (core/reconstruct.cpp, per pixel: 9 supersamples, 2 triangles, 3
     // edges; it locates with the renderer's triangle list): the supersamples' indices and
     // weights (144 bytes), the triangles' sample ends and sum slots and the vertices' corner
-    // ranges (about 65), and per channel 132 bytes of floats (the supersamples' values, each
-    // triangle's six sums, the values, bubbles, bounds and weights).
+    // ranges (about 65), and per channel 120 bytes of floats (the supersamples' values, each
+    // triangle's six sums, the values, bubbles, residuals and weights).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t surface = reconstruction ? 210 + 132 * channels : 0;
+        const uint64_t surface = reconstruction ? 210 + 120 * channels : 0;
         return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + surface);
     }
 
@@ -115,6 +125,10 @@ public:
     uint64_t memoryAvailable() const override { return std::min(kWorkingMemory, physicalMemory() / 2); }
 
 private:
+    void requireMesh() const {
+        if (mesh_released_) throw std::logic_error("CpuBackend: prepare again after reconstruct");
+    }
+
     // The renderer of the current surface, built on first use.
     const MeshRenderer& renderer() {
         if (!renderer_) {
@@ -129,6 +143,7 @@ private:
     const Image* image_ = nullptr;
     CostField field_;
     Mesh mesh_;
+    bool mesh_released_ = false;  // by reconstruct
     std::optional<Surface> surface_;  // set by reconstruct
     std::optional<MeshRenderer> renderer_;
 };

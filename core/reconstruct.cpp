@@ -34,55 +34,28 @@ float beyondTolerance(float residual, float tolerance) {
     return residual > tolerance ? residual - tolerance : residual < -tolerance ? residual + tolerance : 0.0f;
 }
 
-// The range each vertex value must stay in: its 3 × 3 input neighbourhood's, within [0, 1]
-// for integer sample types.
-struct Bounds {
-    std::vector<float> low, high;
-};
-
-// Separable: the 3-wide range of each row, then of three rows of those. std::min and std::max
-// keep the first of equal values, so this picks the same value (down to the sign of a zero)
-// as a scan of the 3 × 3 pixels in row-major order.
-Bounds boundsOf(const Image& input) {
+// The range vertex (x, y)'s values must stay in: its 3 × 3 input neighbourhood's, within
+// [0, 1] for integer sample types; low and high get c values each. Scanned in row-major
+// order with std::min and std::max, which keep the first of equal values (down to the sign of
+// a zero). Worked out where it is needed rather than stored: two arrays the size of the input
+// for nine loads per vertex and step.
+void boundsAt(const Image& input, uint32_t x, uint32_t y, float* low, float* high) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
-    const size_t row_floats = size_t(w) * c;
-    const bool integer = boundedToUnit(input.sample_type);
-    Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
-    parallelFor(h, kGrain, [&](size_t begin, size_t end) {
-        // The rows' own ranges, for rows [first, last] of this task.
-        const size_t first = begin ? begin - 1 : 0, last = std::min<size_t>(h - 1, end);
-        std::vector<float> row_low((last - first + 1) * row_floats), row_high(row_low.size());
-        for (size_t y = first; y <= last; ++y) {
-            const float* row = input.row(uint32_t(y));
-            float* low = row_low.data() + (y - first) * row_floats;
-            float* high = row_high.data() + (y - first) * row_floats;
-            for (uint32_t x = 0; x < w; ++x)
-                for (uint32_t k = 0; k < c; ++k) {
-                    float lo = INFINITY, hi = -INFINITY;
-                    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
-                        lo = std::min(lo, row[nx * c + k]);
-                        hi = std::max(hi, row[nx * c + k]);
-                    }
-                    low[x * c + k] = lo;
-                    high[x * c + k] = hi;
-                }
-        }
-        for (size_t y = begin; y < end; ++y)
-            for (size_t i = 0; i < row_floats; ++i) {
-                float lo = INFINITY, hi = -INFINITY;
-                for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny) {
-                    lo = std::min(lo, row_low[(ny - first) * row_floats + i]);
-                    hi = std::max(hi, row_high[(ny - first) * row_floats + i]);
-                }
-                if (integer) {
-                    lo = std::max(lo, 0.0f);
-                    hi = std::min(hi, 1.0f);
-                }
-                bounds.low[y * row_floats + i] = lo;
-                bounds.high[y * row_floats + i] = hi;
+    std::fill_n(low, c, INFINITY);
+    std::fill_n(high, c, -INFINITY);
+    for (uint32_t ny = y ? y - 1 : 0; ny <= std::min(h - 1, y + 1); ++ny) {
+        const float* row = input.row(ny);
+        for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx)
+            for (uint32_t k = 0; k < c; ++k) {
+                low[k] = std::min(low[k], row[nx * c + k]);
+                high[k] = std::max(high[k], row[nx * c + k]);
             }
-    });
-    return bounds;
+    }
+    if (boundedToUnit(input.sample_type))
+        for (uint32_t k = 0; k < c; ++k) {
+            low[k] = std::max(low[k], 0.0f);
+            high[k] = std::min(high[k], 1.0f);
+        }
 }
 
 // Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): per channel, its corners' hat
@@ -279,23 +252,29 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     return reconstructSurface(mesh, input, model, MeshRenderer(mesh, input), iterations);
 }
 
-Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
-                           const MeshRenderer& locator, uint32_t iterations) {
+namespace {
+
+// The reconstruction; `release`, if given, is called once the mesh is no longer read (its
+// arrays can make room for the solver's).
+template <typename Release>
+Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel& model, const MeshRenderer& locator,
+                    uint32_t iterations, Release release) {
     Surface surface = initialSurface(mesh, input);
     if (model.identity() || iterations == 0) return surface;  // D is the identity: already consistent
     const uint32_t c = input.channels;
     Degradation degradation(input.width, input.height, c, model);
     const SampleLayout layout = layoutOf(mesh, locator, {degradation.subWidth(), degradation.subHeight()});
-    const Bounds bounds = boundsOf(input);
     const float tolerance = quantisationTolerance(input.sample_type);
+    const uint32_t edges = mesh.edgeCount();
+    release();
 
     // SART's normalisers: ⟨φ_u, Dᵀ1⟩.
-    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c), degraded, partial;
+    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c), partial;
     std::vector<float> residual(input.pixels.size(), 1.0f);
     std::vector<float> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
     degradation.transpose(residual, sub);
     projectOnBasis(
-        sub, c, layout, mesh.edgeCount(), partial,
+        sub, c, layout, edges, partial,
         [&](size_t vertex, const float* sum) { std::copy_n(sum, c, vertex_weight.data() + vertex * c); },
         [&](size_t edge, const float* sum) { std::copy_n(sum, c, edge_weight.data() + edge * c); });
 
@@ -305,18 +284,19 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     std::vector<float>& v = surface.values.pixels;
     for (uint32_t step = 0; step < iterations; ++step) {
         evaluate(surface, layout, sub);
-        degradation.apply(sub, degraded);
+        degradation.apply(sub, residual);  // D(S), made the residual in place
         parallelFor(residual.size(), kGrain, [&](size_t begin, size_t end) {
-            for (size_t i = begin; i < end; ++i) residual[i] = beyondTolerance(input.pixels[i] - degraded[i], tolerance);
+            for (size_t i = begin; i < end; ++i) residual[i] = beyondTolerance(input.pixels[i] - residual[i], tolerance);
         });
         degradation.transpose(residual, sub);
         projectOnBasis(
-            sub, c, layout, mesh.edgeCount(), partial,
+            sub, c, layout, edges, partial,
             [&](size_t vertex, const float* step) {
                 const size_t p = vertex * c;
+                float low[4], high[4];
+                boundsAt(input, uint32_t(vertex % input.width), uint32_t(vertex / input.width), low, high);
                 for (uint32_t k = 0; k < c; ++k)
-                    v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[p + k], bounds.low[p + k],
-                                          bounds.high[p + k]);
+                    v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[p + k], low[k], high[k]);
                 if (input.hasAlpha())
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
             },
@@ -328,6 +308,18 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
             });
     }
     return surface;
+}
+
+}  // namespace
+
+Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
+                           const MeshRenderer& locator, uint32_t iterations) {
+    return reconstruct(mesh, input, model, locator, iterations, [] {});
+}
+
+Surface reconstructSurface(Mesh&& mesh, const Image& input, const DegradationModel& model, const MeshRenderer& locator,
+                           uint32_t iterations) {
+    return reconstruct(mesh, input, model, locator, iterations, [&] { mesh = {}; });
 }
 
 }  // namespace ddt

@@ -98,5 +98,9 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
 // MeshRenderer's constructor that takes them over).
 Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
                            const MeshRenderer& locator, uint32_t iterations = kReconstructIterations);
+// The same, consuming the mesh: it is emptied once the supersamples are located, before the
+// solver's arrays are made, which lowers the peak memory by the mesh's size.
+Surface reconstructSurface(Mesh&& mesh, const Image& input, const DegradationModel& model, const MeshRenderer& locator,
+                           uint32_t iterations = kReconstructIterations);
 
 }  // namespace ddt
