@@ -35,27 +35,36 @@ float beyondTolerance(float residual, float tolerance) {
 }
 
 // The range vertex (x, y)'s values must stay in: its 3 × 3 input neighbourhood's, within
-// [0, 1] for integer sample types; low and high get c values each. Scanned in row-major
+// [0, 1] for integer sample types; low and high get C values each. Scanned in row-major
 // order with std::min and std::max, which keep the first of equal values (down to the sign of
 // a zero). Worked out where it is needed rather than stored: two arrays the size of the input
 // for nine loads per vertex and step.
+template <uint32_t C>
 void boundsAt(const Image& input, uint32_t x, uint32_t y, float* low, float* high) {
-    const uint32_t w = input.width, h = input.height, c = input.channels;
-    std::fill_n(low, c, INFINITY);
-    std::fill_n(high, c, -INFINITY);
-    for (uint32_t ny = y ? y - 1 : 0; ny <= std::min(h - 1, y + 1); ++ny) {
-        const float* row = input.row(ny);
-        for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx)
-            for (uint32_t k = 0; k < c; ++k) {
-                low[k] = std::min(low[k], row[nx * c + k]);
-                high[k] = std::max(high[k], row[nx * c + k]);
+    const uint32_t x0 = x ? x - 1 : 0, y0 = y ? y - 1 : 0;
+    const uint32_t columns = std::min(input.width - 1, x + 1) - x0 + 1, rows = std::min(input.height - 1, y + 1) - y0 + 1;
+    // In locals, which the compiler keeps in registers (the arguments might alias the rows).
+    float lo[C], hi[C];
+    std::fill_n(lo, C, INFINITY);
+    std::fill_n(hi, C, -INFINITY);
+    auto scan = [&](uint32_t columns, uint32_t rows) {
+        for (uint32_t j = 0; j < rows; ++j) {
+            const float* row = input.row(y0 + j) + size_t(x0) * C;
+            for (uint32_t i = 0; i < columns * C; ++i) {
+                lo[i % C] = std::min(lo[i % C], row[i]);
+                hi[i % C] = std::max(hi[i % C], row[i]);
             }
-    }
-    if (boundedToUnit(input.sample_type))
-        for (uint32_t k = 0; k < c; ++k) {
-            low[k] = std::max(low[k], 0.0f);
-            high[k] = std::min(high[k], 1.0f);
         }
+    };
+    if (columns == 3 && rows == 3)
+        scan(3, 3);  // the same loop with constant bounds, unrolled: most vertices
+    else
+        scan(columns, rows);
+    const bool unit = boundedToUnit(input.sample_type);
+    for (uint32_t k = 0; k < C; ++k) {
+        low[k] = unit ? std::max(lo[k], 0.0f) : lo[k];
+        high[k] = unit ? std::min(hi[k], 1.0f) : hi[k];
+    }
 }
 
 // Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): per channel, its corners' hat
@@ -294,7 +303,8 @@ Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel
             [&](size_t vertex, const float* step) {
                 const size_t p = vertex * c;
                 float low[4], high[4];
-                boundsAt(input, uint32_t(vertex % input.width), uint32_t(vertex / input.width), low, high);
+                const uint32_t x = uint32_t(vertex % input.width), y = uint32_t(vertex / input.width);
+                withChannelCount(c, [&](auto channels) { boundsAt<decltype(channels)::value>(input, x, y, low, high); });
                 for (uint32_t k = 0; k < c; ++k)
                     v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[p + k], low[k], high[k]);
                 if (input.hasAlpha())
