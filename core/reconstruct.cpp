@@ -70,38 +70,54 @@ void boundsAt(const Image& input, uint32_t x, uint32_t y, float* low, float* hig
 // Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): per channel, its corners' hat
 // functions φ_v0..φ_v2, then its edges' bubbles φ_e0..φ_e2.
 constexpr uint32_t kSlotsPerTriangle = 6;
+// A partial sum that goes straight to its vertex's or edge's total (see SampleRun::shared).
+constexpr uint32_t kOwned = UINT32_MAX;
+
+// A triangle touching a shared vertex or edge, and where its partial sums go: the slot of the
+// shared sums, or kOwned.
+struct SharedSlots {
+    uint32_t triangle;
+    uint32_t slots[kSlotsPerTriangle];
+};
 
 // A run of consecutive triangles and their supersamples, located by one task.
 struct SampleRun {
     uint32_t first_triangle = 0, end_triangle = 0;
     std::vector<uint32_t> ends;      // per triangle of the run: where its samples end in `samples`
     std::vector<SampleHit> samples;  // triangle by triangle, row-major within one
+    // The run's triangles that touch a vertex or edge of another run too, in order. Their
+    // partial sums for those are kept apart and added up after all runs, in triangle order.
+    std::vector<SharedSlots> shared;
 };
 
-// The supersamples grouped by triangle, and the triangles around each vertex and edge, so that
-// every pass below is a gather: each output is written by one task, in a fixed order, and
-// the result does not depend on how the work is split across threads.
+// The supersamples grouped by triangle, so that every pass below is a gather or writes only
+// what one task owns: each sum is added up in a fixed order, and the result does not depend
+// on how the work is split across threads. A vertex or edge whose triangles all lie in one
+// run gets them added straight into its total by that run, in triangle order; one that
+// several runs touch (along the runs' borders: a few rows of the mesh) gets its partial sums
+// in slots and added up, in triangle order too, once all runs are done.
 struct SampleLayout {
     const std::vector<Triangle>& triangles;  // the locating renderer's
     std::vector<SampleRun> runs;             // the triangles in order, in runs of trianglesPerRun
-    // Where each triangle's six partial sums go, 6 · triangle + n: the partial sums are kept
-    // in the order that adds them up, so that adding them up reads them in sequence. Slots
-    // [first_corner[v], first_corner[v + 1]) hold vertex v's corners in triangle order,
-    // slots corners + 2 · e and the next edge e's first and second side (none: it stays 0).
-    std::vector<uint32_t> slots;
-    std::vector<uint32_t> first_corner;  // per vertex, + end
-    uint32_t corners = 0;                // 3 · triangles
+    // The shared vertices, ascending, with their corners' slots [first_slot[i], first_slot[i + 1]);
+    // the shared edges, ascending, edge i's first and second side at slots edge_slots + 2i (+1).
+    std::vector<uint32_t> shared_vertices, first_slot, shared_edges;
+    uint32_t edge_slots = 0, slots = 0;
 
-    // Calls f(triangle index, its samples' begin, end) for every triangle, a task per run.
+    // Calls f(triangle index, its samples' begin, end, its shared slots or null) for every
+    // triangle, a task per run.
     template <typename F>
     void forEachTriangle(F f) const {
         parallelFor(runs.size(), 1, [&](size_t begin, size_t end) {
             for (size_t r = begin; r < end; ++r) {
                 const SampleRun& run = runs[r];
                 const SampleHit* samples = run.samples.data();
+                auto shared = run.shared.begin();  // the next shared triangle
                 for (uint32_t t = run.first_triangle; t < run.end_triangle; ++t) {
                     const uint32_t i = t - run.first_triangle;
-                    f(t, samples + (i ? run.ends[i - 1] : 0), samples + run.ends[i]);
+                    const SharedSlots* slots = nullptr;
+                    if (shared != run.shared.end() && shared->triangle == t) slots = &*shared++;
+                    f(t, samples + (i ? run.ends[i - 1] : 0), samples + run.ends[i], slots);
                 }
             }
         });
@@ -122,22 +138,57 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
             renderer.locateSamples(sub_size, run.first_triangle, run.end_triangle, run.samples, run.ends.data());
         }
     });
-    layout.first_corner.assign(size_t(mesh.vertexCount()) + 1, 0);
-    for (const Triangle& t : layout.triangles)
-        for (uint32_t v : {t.v0, t.v1, t.v2}) ++layout.first_corner[v + 1];
-    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) layout.first_corner[v + 1] += layout.first_corner[v];
-    layout.corners = 3 * triangles;
-    layout.slots.resize(size_t(kSlotsPerTriangle) * triangles);
-    std::vector<uint32_t> next_corner(layout.first_corner.begin(), layout.first_corner.end() - 1);
-    std::vector<uint8_t> sides_seen(mesh.edgeCount(), 0);
-    for (uint32_t t = 0; t < triangles; ++t) {
-        const Triangle& tri = layout.triangles[t];
-        const uint32_t vertices[3] = {tri.v0, tri.v1, tri.v2}, edges[3] = {tri.e0, tri.e1, tri.e2};
-        for (uint32_t k = 0; k < 3; ++k) {
-            layout.slots[kSlotsPerTriangle * t + k] = next_corner[vertices[k]]++;
-            layout.slots[kSlotsPerTriangle * t + 3 + k] = layout.corners + 2 * edges[k] + sides_seen[edges[k]]++;
+    // Which vertices and edges more than one run touches: their index among the shared ones
+    // (kOwned for the others), from the run each was first seen in.
+    const uint32_t vertices = mesh.vertexCount(), edges = mesh.edgeCount();
+    std::vector<uint32_t> vertex_index(vertices, kOwned), edge_index(edges, kOwned);
+    {
+        std::vector<uint32_t> vertex_run(vertices, kOwned), edge_run(edges, kOwned);
+        auto see = [](uint32_t& first_run, uint32_t& index, uint32_t run) {
+            if (first_run == kOwned) first_run = run;
+            else if (first_run != run) index = 0;  // numbered below
+        };
+        for (uint32_t t = 0; t < triangles; ++t) {
+            const Triangle& tri = layout.triangles[t];
+            const uint32_t run = t / per_run;
+            for (uint32_t v : {tri.v0, tri.v1, tri.v2}) see(vertex_run[v], vertex_index[v], run);
+            for (uint32_t e : {tri.e0, tri.e1, tri.e2}) see(edge_run[e], edge_index[e], run);
         }
     }
+    for (uint32_t v = 0; v < vertices; ++v)
+        if (vertex_index[v] != kOwned) {
+            vertex_index[v] = uint32_t(layout.shared_vertices.size());
+            layout.shared_vertices.push_back(v);
+        }
+    for (uint32_t e = 0; e < edges; ++e)
+        if (edge_index[e] != kOwned) {
+            edge_index[e] = uint32_t(layout.shared_edges.size());
+            layout.shared_edges.push_back(e);
+        }
+    // Slots: the shared vertices' corners in triangle order, then the shared edges' sides.
+    layout.first_slot.assign(layout.shared_vertices.size() + 1, 0);
+    for (const Triangle& t : layout.triangles)
+        for (uint32_t v : {t.v0, t.v1, t.v2})
+            if (vertex_index[v] != kOwned) ++layout.first_slot[vertex_index[v] + 1];
+    for (size_t i = 0; i < layout.shared_vertices.size(); ++i) layout.first_slot[i + 1] += layout.first_slot[i];
+    layout.edge_slots = layout.first_slot.back();
+    layout.slots = layout.edge_slots + 2 * uint32_t(layout.shared_edges.size());
+    std::vector<uint32_t> next_corner(layout.first_slot.begin(), layout.first_slot.end() - 1);
+    std::vector<uint8_t> sides_seen(layout.shared_edges.size(), 0);
+    for (SampleRun& run : layout.runs)
+        for (uint32_t t = run.first_triangle; t < run.end_triangle; ++t) {
+            const Triangle& tri = layout.triangles[t];
+            const uint32_t corners[3] = {vertex_index[tri.v0], vertex_index[tri.v1], vertex_index[tri.v2]};
+            const uint32_t sides[3] = {edge_index[tri.e0], edge_index[tri.e1], edge_index[tri.e2]};
+            SharedSlots shared{t, {kOwned, kOwned, kOwned, kOwned, kOwned, kOwned}};
+            bool any = false;
+            for (uint32_t k = 0; k < 3; ++k) {
+                if (corners[k] != kOwned) shared.slots[k] = next_corner[corners[k]]++, any = true;
+                if (sides[k] != kOwned)
+                    shared.slots[3 + k] = layout.edge_slots + 2 * sides[k] + sides_seen[sides[k]]++, any = true;
+            }
+            if (any) run.shared.push_back(shared);
+        }
     return layout;
 }
 
@@ -147,7 +198,7 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
         constexpr uint32_t c = decltype(channels)::value;
         const float* v = surface.values.pixels.data();
         const float* b = surface.bubbles.data();
-        layout.forEachTriangle([&](uint32_t ti, const SampleHit* begin, const SampleHit* end) {
+        layout.forEachTriangle([&](uint32_t ti, const SampleHit* begin, const SampleHit* end, const SharedSlots*) {
             const Triangle& t = layout.triangles[ti];
             const PixelVector<c> v0 = loadPixel<c>(v + size_t(t.v0) * c), v1 = loadPixel<c>(v + size_t(t.v1) * c),
                                  v2 = loadPixel<c>(v + size_t(t.v2) * c), b0 = loadPixel<c>(b + size_t(t.e0) * c),
@@ -161,17 +212,28 @@ void evaluate(const Surface& surface, const SampleLayout& layout, std::vector<fl
     });
 }
 
+// What projectOnBasis works in, kept across calls: the shared partial sums and every
+// vertex's and edge's total (c floats each).
+struct Projection {
+    std::vector<float> partial, vertex_sums, edge_sums;
+};
+
 // ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples: each triangle's
-// six sums (its corners' hat functions, its edges' bubbles), then each vertex and edge adds
-// those of its triangles and hands the sum (c floats) to at_vertex(v, sum) or at_edge(e, sum).
+// six sums (its corners' hat functions, its edges' bubbles) are added into its vertices' and
+// edges' totals (SampleLayout), which go to at_vertex(v, sum) or at_edge(e, sum) (c floats).
 template <typename AtVertex, typename AtEdge>
-void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout, uint32_t edges,
-                    std::vector<float>& partial, AtVertex at_vertex, AtEdge at_edge) {
-    // Zero at first: the second side of a hull edge is never written.
-    if (partial.empty()) partial.assign((size_t(layout.corners) + 2 * size_t(edges)) * c, 0.0f);
+void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout, uint32_t vertices,
+                    uint32_t edges, Projection& work, AtVertex at_vertex, AtEdge at_edge) {
+    // Every total from 0; so is every shared slot, as the second side of a hull edge is never written.
+    work.vertex_sums.assign(size_t(vertices) * c, 0.0f);
+    work.edge_sums.assign(size_t(edges) * c, 0.0f);
+    work.partial.assign(size_t(layout.slots) * c, 0.0f);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
-        layout.forEachTriangle([&](uint32_t t, const SampleHit* begin, const SampleHit* end) {
+        float* const vertex_sums = work.vertex_sums.data();
+        float* const edge_sums = work.edge_sums.data();
+        auto add = [](float* total, PixelVector<cc> value) { storePixel<cc>(total, loadPixel<cc>(total) + value); };
+        layout.forEachTriangle([&](uint32_t t, const SampleHit* begin, const SampleHit* end, const SharedSlots* slots) {
             PixelVector<cc> sums[kSlotsPerTriangle] = {};
             for (const SampleHit* s = begin; s != end; ++s) {
                 const float* l = s->weights;
@@ -179,31 +241,37 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
                 const PixelVector<cc> value = loadPixel<cc>(g.data() + size_t(s->sample) * cc);
                 for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) sums[n] += basis[n] * value;
             }
-            const uint32_t* slots = layout.slots.data() + size_t(t) * kSlotsPerTriangle;
-            for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) storePixel<cc>(partial.data() + size_t(slots[n]) * cc, sums[n]);
+            const Triangle& tri = layout.triangles[t];
+            const uint32_t targets[kSlotsPerTriangle] = {tri.v0, tri.v1, tri.v2, tri.e0, tri.e1, tri.e2};
+            for (uint32_t n = 0; n < kSlotsPerTriangle; ++n) {
+                if (slots && slots->slots[n] != kOwned)
+                    storePixel<cc>(work.partial.data() + size_t(slots->slots[n]) * cc, sums[n]);
+                else
+                    add((n < 3 ? vertex_sums : edge_sums) + size_t(targets[n]) * cc, sums[n]);
+            }
         });
-        const uint32_t vertices = uint32_t(layout.first_corner.size() - 1);
+        // The shared totals, each from 0 in triangle order (an edge: its first side, then its second).
+        parallelFor(layout.shared_vertices.size(), kGrain, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) {
+                PixelVector<cc> sum = {};
+                for (uint32_t j = layout.first_slot[i]; j < layout.first_slot[i + 1]; ++j)
+                    sum += loadPixel<cc>(work.partial.data() + size_t(j) * cc);
+                storePixel<cc>(vertex_sums + size_t(layout.shared_vertices[i]) * cc, sum);
+            }
+        });
+        parallelFor(layout.shared_edges.size(), kGrain, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) {
+                PixelVector<cc> sum = {};
+                sum += loadPixel<cc>(work.partial.data() + size_t(layout.edge_slots + 2 * i) * cc);
+                sum += loadPixel<cc>(work.partial.data() + size_t(layout.edge_slots + 2 * i + 1) * cc);
+                storePixel<cc>(edge_sums + size_t(layout.shared_edges[i]) * cc, sum);
+            }
+        });
         parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
-            for (size_t v = begin; v < end; ++v) {
-                PixelVector<cc> sum = {};
-                for (uint32_t j = layout.first_corner[v]; j < layout.first_corner[v + 1]; ++j)
-                    sum += loadPixel<cc>(partial.data() + size_t(j) * cc);
-                float sums[4] = {};  // a callback reads c = cc of them
-                storePixel<cc>(sums, sum);
-                at_vertex(v, sums);
-            }
+            for (size_t v = begin; v < end; ++v) at_vertex(v, vertex_sums + v * cc);
         });
-        const float* edge_sides = partial.data() + size_t(layout.corners) * cc;
         parallelFor(edges, kGrain, [&](size_t begin, size_t end) {
-            for (size_t e = begin; e < end; ++e) {
-                // From 0, as every sum here; the unwritten side of a hull edge adds 0.
-                PixelVector<cc> sum = {};
-                sum += loadPixel<cc>(edge_sides + 2 * e * cc);
-                sum += loadPixel<cc>(edge_sides + (2 * e + 1) * cc);
-                float sums[4] = {};
-                storePixel<cc>(sums, sum);
-                at_edge(e, sums);
-            }
+            for (size_t e = begin; e < end; ++e) at_edge(e, edge_sums + e * cc);
         });
     });
 }
@@ -274,16 +342,17 @@ Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel
     Degradation degradation(input.width, input.height, c, model);
     const SampleLayout layout = layoutOf(mesh, locator, {degradation.subWidth(), degradation.subHeight()});
     const float tolerance = quantisationTolerance(input.sample_type);
-    const uint32_t edges = mesh.edgeCount();
+    const uint32_t vertices = mesh.vertexCount(), edges = mesh.edgeCount();
     release();
 
     // SART's normalisers: ⟨φ_u, Dᵀ1⟩.
-    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c), partial;
+    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c);
+    Projection projection;
     std::vector<float> residual(input.pixels.size(), 1.0f);
     std::vector<float> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
     degradation.transpose(residual, sub);
     projectOnBasis(
-        sub, c, layout, edges, partial,
+        sub, c, layout, vertices, edges, projection,
         [&](size_t vertex, const float* sum) { std::copy_n(sum, c, vertex_weight.data() + vertex * c); },
         [&](size_t edge, const float* sum) { std::copy_n(sum, c, edge_weight.data() + edge * c); });
 
@@ -299,7 +368,7 @@ Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel
         });
         degradation.transpose(residual, sub);
         projectOnBasis(
-            sub, c, layout, edges, partial,
+            sub, c, layout, vertices, edges, projection,
             [&](size_t vertex, const float* step) {
                 const size_t p = vertex * c;
                 float low[4], high[4];
