@@ -31,10 +31,12 @@
 //   the smaller kept: rocket_clipart ×4 takes 0.16 s and comes out 2 % under vips. Every piece
 //   ISA-L compressed worse than vips had 80 % zeros or more; photographs have few flat pieces
 //   (astronaut ×8: 1 of 196; camera ×8: 18 of 66).
-// - Unfiltered too: every piece is also deflated unfiltered, the smaller kept. On noise about
-//   mid-grey (ImageMagick's Gaussian noise on grey, 1024² RGB) filtering made ISA-L's output
-//   3.5 % larger than vips', unfiltered 2 % smaller; on astronaut ×8, where filtering always
-//   wins, the second try costs 0.11 s (0.31 s in all).
+// - Unfiltered too: a flat piece, or one that filtered and deflated keeps more than half its
+//   size, is also deflated unfiltered, the smaller kept. On noise about mid-grey (ImageMagick's
+//   Gaussian noise on grey, 1024² RGB) filtering made ISA-L's output 3.5 % larger than vips',
+//   unfiltered 2 % smaller. Smooth pieces compress to a fifth or less, and filtering won on
+//   every one of them; trying them all cost 0.075 s of 0.32 s on astronaut ×8 and 0.25 s of
+//   0.57 s on the 6400 × 4448 photo (the e2e bench's job b), none of it kept.
 // - Piece size: 256 KiB. 64 KiB pieces were 0.2 to 2.4 % larger, 1 MiB ones no smaller.
 
 namespace ddt {
@@ -46,6 +48,9 @@ constexpr size_t kWindow = 32 * 1024;
 
 // A piece is flat when at least this share of its filtered bytes are zeros.
 constexpr size_t kFlatZerosPercent = 80;
+// Filtered and deflated, a piece above this share of its size is noise-like enough for its
+// unfiltered rows to be tried too.
+constexpr size_t kPoorlyCompressedPercent = 50;
 
 // zlib's header for a deflate stream with a 32 KiB window; FLEVEL 1 says "fast" (RFC 1950).
 constexpr uint8_t kZlibHeader[2] = {0x78, 0x5E};
@@ -182,7 +187,8 @@ struct PngEncoder::State {
         Piece& piece = pieces[p];
         piece.deflater = piece.flat ? Deflater::Zlib : Deflater::Isal;
         deflatePiece(piece, dictionary(p, false), last);
-        if (options.try_unfiltered) tryUnfiltered(p, last);
+        if (options.try_unfiltered && (piece.flat || piece.compressed_size * 100 > kPoorlyCompressedPercent * piece.size))
+            tryUnfiltered(p, last);
         piece.adler = isal_adler32(1, piece.stored(), piece.size);
     }
 

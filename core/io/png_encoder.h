@@ -45,7 +45,7 @@ public:
         PngFilter filter = PngFilter::Adaptive;
         int isal_level = 1;           // ISA-L's level, 0 to 3, for pieces that are not flat
         bool zlib_for_flat = true;    // flat pieces through zlib (see png_encoder.cpp)
-        bool try_unfiltered = true;   // each piece also deflated unfiltered, the smaller kept
+        bool try_unfiltered = true;   // flat and noise-like pieces also deflated unfiltered, the smaller kept
     };
 
     // Receives the file's bytes in order. It may throw to stop the encoder (a full disk).
