@@ -224,9 +224,10 @@ struct Projection {
 template <typename AtVertex, typename AtEdge>
 void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout& layout, uint32_t vertices,
                     uint32_t edges, Projection& work, AtVertex at_vertex, AtEdge at_edge) {
-    // Every total from 0; so is every shared slot, as the second side of a hull edge is never written.
-    work.vertex_sums.assign(size_t(vertices) * c, 0.0f);
-    work.edge_sums.assign(size_t(edges) * c, 0.0f);
+    // Every total from 0 (the gather below leaves them so for the next call); so is every
+    // shared slot, as the second side of a hull edge is never written.
+    if (work.vertex_sums.empty()) work.vertex_sums.assign(size_t(vertices) * c, 0.0f);
+    if (work.edge_sums.empty()) work.edge_sums.assign(size_t(edges) * c, 0.0f);
     work.partial.assign(size_t(layout.slots) * c, 0.0f);
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
@@ -268,10 +269,16 @@ void projectOnBasis(const std::vector<float>& g, uint32_t c, const SampleLayout&
             }
         });
         parallelFor(vertices, kGrain, [&](size_t begin, size_t end) {
-            for (size_t v = begin; v < end; ++v) at_vertex(v, vertex_sums + v * cc);
+            for (size_t v = begin; v < end; ++v) {
+                at_vertex(v, vertex_sums + v * cc);
+                std::fill_n(vertex_sums + v * cc, cc, 0.0f);
+            }
         });
         parallelFor(edges, kGrain, [&](size_t begin, size_t end) {
-            for (size_t e = begin; e < end; ++e) at_edge(e, edge_sums + e * cc);
+            for (size_t e = begin; e < end; ++e) {
+                at_edge(e, edge_sums + e * cc);
+                std::fill_n(edge_sums + e * cc, cc, 0.0f);
+            }
         });
     });
 }
