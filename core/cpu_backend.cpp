@@ -16,9 +16,11 @@ namespace {
 const size_t kRowsPerBand = 16;
 
 // What the CPU backend may hold at once: by memoryNeeded's estimate enough for a 512² RGB
-// input's consistent reconstruction in one piece (about 280 MB, with the 1/8 that tiling keeps
-// spare), where tiles would cost a quarter more work.
-const uint64_t kWorkingMemory = uint64_t(320) << 20;
+// input's consistent reconstruction in one piece (about 135 MB, with the 1/8 that tiling keeps
+// spare), where tiles would cost a quarter more work. Larger inputs go in 256-pixel tiles, two
+// at a time on two threads: the e2e bench's jobs stay under 300 MB of peak resident size, an
+// idle process linked to OpenImageIO's libraries taking 125 MB of it.
+const uint64_t kWorkingMemory = uint64_t(160) << 20;
 
 // Renders `window` in bands of rows in parallel: each band writes only its own rows, so the
 // result does not depend on the split.
@@ -106,18 +108,19 @@ public:
     std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(); }
     const Image& preparedImage() const override { return *image_; }
 
-    // A rough count of the host arrays: the mesh's two records per edge (32 bytes), the
-    // renderer's triangle list (about two 24-byte triangles per vertex), the cost field and
-    // the sweeps' per-edge state (about 16 bytes per edge, ~3 edges per vertex); then the
-    // reconstruction's (core/reconstruct.cpp, per pixel: 9 supersamples, 2 triangles, 3
-    // edges; it locates with the renderer's triangle list): the supersamples' indices and
-    // weights (144 bytes), the triangles' sample ends and sum slots and the vertices' corner
-    // ranges (about 65), and per channel 120 bytes of floats (the supersamples' values, each
-    // triangle's six sums, the values, bubbles, residuals and weights).
+    // A rough count of the host arrays at their peak, per vertex. Optimizing: the mesh's two
+    // 32-byte records per edge and the sweeps' state (16 bytes per edge, about three edges per
+    // vertex), the renderer's triangle list (about two 24-byte triangles), the cost field (4)
+    // and the input (4 per channel). Reconstructing (core/reconstruct.cpp), after the sweeps
+    // and the mesh are released: the triangle list, the supersamples' indices and weights (9 ×
+    // 16 bytes) and their ends (8), the cost field, the normalisers (one float per vertex and
+    // per edge, 16), and per channel 76 bytes of floats (the supersamples' values, 36; the
+    // vertex values, bubbles, residuals and the projection's totals, 36; the input).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t surface = reconstruction ? 210 + 120 * channels : 0;
-        return vertices * (3 * (32 + 16) + 2 * 24 + 4 * (channels + 2) + surface);
+        const uint64_t optimizing = 3 * (32 + 16) + 2 * 24 + 4 + 4 * channels;
+        const uint64_t reconstructing = 2 * 24 + 9 * 16 + 8 + 4 + 16 + 76 * channels;
+        return vertices * (reconstruction ? std::max(optimizing, reconstructing) : optimizing);
     }
 
     // A fixed working set, at most half the machine's memory: larger inputs go in tiles

@@ -352,16 +352,20 @@ Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel
     const uint32_t vertices = mesh.vertexCount(), edges = mesh.edgeCount();
     release();
 
-    // SART's normalisers: ⟨φ_u, Dᵀ1⟩.
-    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c);
+    // SART's normalisers: ⟨φ_u, Dᵀ1⟩, the same for every channel (the same operations on the
+    // same values), so worked out on one.
+    std::vector<float> vertex_weight(vertices), edge_weight(edges);
+    {
+        Degradation one_channel(input.width, input.height, 1, model);
+        std::vector<float> ones(size_t(input.width) * input.height, 1.0f), sub;
+        one_channel.transpose(ones, sub);
+        Projection projection;
+        projectOnBasis(
+            sub, 1, layout, vertices, edges, projection, [&](size_t vertex, const float* sum) { vertex_weight[vertex] = *sum; },
+            [&](size_t edge, const float* sum) { edge_weight[edge] = *sum; });
+    }
+    std::vector<float> sub(size_t(degradation.subWidth()) * degradation.subHeight() * c), residual(input.pixels.size());
     Projection projection;
-    std::vector<float> residual(input.pixels.size(), 1.0f);
-    std::vector<float> vertex_weight(input.pixels.size()), edge_weight(surface.bubbles.size());
-    degradation.transpose(residual, sub);
-    projectOnBasis(
-        sub, c, layout, vertices, edges, projection,
-        [&](size_t vertex, const float* sum) { std::copy_n(sum, c, vertex_weight.data() + vertex * c); },
-        [&](size_t edge, const float* sum) { std::copy_n(sum, c, edge_weight.data() + edge * c); });
 
     // Each step moves every unknown by ω·⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩ as soon as its projection is
     // summed up (nothing else reads it): a vertex value within its bounds and premultiplied
@@ -382,14 +386,14 @@ Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel
                 const uint32_t x = uint32_t(vertex % input.width), y = uint32_t(vertex / input.width);
                 withChannelCount(c, [&](auto channels) { boundsAt<decltype(channels)::value>(input, x, y, low, high); });
                 for (uint32_t k = 0; k < c; ++k)
-                    v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[p + k], low[k], high[k]);
+                    v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[vertex], low[k], high[k]);
                 if (input.hasAlpha())
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
             },
             [&](size_t edge, const float* step) {
                 for (uint32_t k = 0; k < c; ++k) {
                     const size_t i = edge * c + k;
-                    if (edge_weight[i] > 0.0f) surface.bubbles[i] += kRelaxation * step[k] / edge_weight[i];
+                    if (edge_weight[edge] > 0.0f) surface.bubbles[i] += kRelaxation * step[k] / edge_weight[edge];
                 }
             });
     }
