@@ -16,7 +16,7 @@ namespace {
 const size_t kRowsPerBand = 16;
 
 // What the CPU backend may hold at once: by memoryNeeded's estimate enough for a 512² RGB
-// input's consistent reconstruction in one piece (about 135 MB, with the 1/8 that tiling keeps
+// input's consistent reconstruction in one piece (about 141 MB, with the 1/8 that tiling keeps
 // spare), where tiles would cost a quarter more work. Larger inputs go in 256-pixel tiles, two
 // at a time on two threads: the e2e bench's jobs stay under 300 MB of peak resident size, an
 // idle process linked to OpenImageIO's libraries taking 125 MB of it.
@@ -114,12 +114,13 @@ public:
     // and the input (4 per channel). Reconstructing (core/reconstruct.cpp), after the sweeps
     // and the mesh are released: the triangle list, the supersamples' indices and weights (9 ×
     // 16 bytes) and their ends (8), the cost field, the normalisers (one float per vertex and
-    // per edge, 16), and per channel 76 bytes of floats (the supersamples' values, 36; the
-    // vertex values, bubbles, residuals and the projection's totals, 36; the input).
+    // per edge, 16), and per channel 84 bytes of floats (the supersamples' values, 36; the
+    // vertex values, bubbles, residuals and the projection's totals, 36; the bounds, 8; the
+    // input).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
         const uint64_t optimizing = 3 * (32 + 16) + 2 * 24 + 4 + 4 * channels;
-        const uint64_t reconstructing = 2 * 24 + 9 * 16 + 8 + 4 + 16 + 76 * channels;
+        const uint64_t reconstructing = 2 * 24 + 9 * 16 + 8 + 4 + 16 + 84 * channels;
         return vertices * (reconstruction ? std::max(optimizing, reconstructing) : optimizing);
     }
 

@@ -34,37 +34,55 @@ float beyondTolerance(float residual, float tolerance) {
     return residual > tolerance ? residual - tolerance : residual < -tolerance ? residual + tolerance : 0.0f;
 }
 
-// The range vertex (x, y)'s values must stay in: its 3 × 3 input neighbourhood's, within
-// [0, 1] for integer sample types; low and high get C values each. Scanned in row-major
-// order with std::min and std::max, which keep the first of equal values (down to the sign of
-// a zero). Worked out where it is needed rather than stored: two arrays the size of the input
-// for nine loads per vertex and step.
-template <uint32_t C>
-void boundsAt(const Image& input, uint32_t x, uint32_t y, float* low, float* high) {
-    const uint32_t x0 = x ? x - 1 : 0, y0 = y ? y - 1 : 0;
-    const uint32_t columns = std::min(input.width - 1, x + 1) - x0 + 1, rows = std::min(input.height - 1, y + 1) - y0 + 1;
-    // In locals, which the compiler keeps in registers (the arguments might alias the rows).
-    float lo[C], hi[C];
-    std::fill_n(lo, C, INFINITY);
-    std::fill_n(hi, C, -INFINITY);
-    auto scan = [&](uint32_t columns, uint32_t rows) {
-        for (uint32_t j = 0; j < rows; ++j) {
-            const float* row = input.row(y0 + j) + size_t(x0) * C;
-            for (uint32_t i = 0; i < columns * C; ++i) {
-                lo[i % C] = std::min(lo[i % C], row[i]);
-                hi[i % C] = std::max(hi[i % C], row[i]);
-            }
+// The range each vertex value must stay in: its 3 × 3 input neighbourhood's, within [0, 1]
+// for integer sample types.
+struct Bounds {
+    std::vector<float> low, high;
+};
+
+// Separable: the 3-wide range of each row, then of three rows of those. std::min and std::max
+// keep the first of equal values, so this picks the same value (down to the sign of a zero)
+// as a scan of the 3 × 3 pixels in row-major order.
+Bounds boundsOf(const Image& input) {
+    const uint32_t w = input.width, h = input.height, c = input.channels;
+    const size_t row_floats = size_t(w) * c;
+    const bool integer = boundedToUnit(input.sample_type);
+    Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
+    parallelFor(h, kGrain, [&](size_t begin, size_t end) {
+        // The rows' own ranges, for rows [first, last] of this task.
+        const size_t first = begin ? begin - 1 : 0, last = std::min<size_t>(h - 1, end);
+        std::vector<float> row_low((last - first + 1) * row_floats), row_high(row_low.size());
+        for (size_t y = first; y <= last; ++y) {
+            const float* row = input.row(uint32_t(y));
+            float* low = row_low.data() + (y - first) * row_floats;
+            float* high = row_high.data() + (y - first) * row_floats;
+            for (uint32_t x = 0; x < w; ++x)
+                for (uint32_t k = 0; k < c; ++k) {
+                    float lo = INFINITY, hi = -INFINITY;
+                    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
+                        lo = std::min(lo, row[nx * c + k]);
+                        hi = std::max(hi, row[nx * c + k]);
+                    }
+                    low[x * c + k] = lo;
+                    high[x * c + k] = hi;
+                }
         }
-    };
-    if (columns == 3 && rows == 3)
-        scan(3, 3);  // the same loop with constant bounds, unrolled: most vertices
-    else
-        scan(columns, rows);
-    const bool unit = boundedToUnit(input.sample_type);
-    for (uint32_t k = 0; k < C; ++k) {
-        low[k] = unit ? std::max(lo[k], 0.0f) : lo[k];
-        high[k] = unit ? std::min(hi[k], 1.0f) : hi[k];
-    }
+        for (size_t y = begin; y < end; ++y)
+            for (size_t i = 0; i < row_floats; ++i) {
+                float lo = INFINITY, hi = -INFINITY;
+                for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny) {
+                    lo = std::min(lo, row_low[(ny - first) * row_floats + i]);
+                    hi = std::max(hi, row_high[(ny - first) * row_floats + i]);
+                }
+                if (integer) {
+                    lo = std::max(lo, 0.0f);
+                    hi = std::min(hi, 1.0f);
+                }
+                bounds.low[y * row_floats + i] = lo;
+                bounds.high[y * row_floats + i] = hi;
+            }
+    });
+    return bounds;
 }
 
 // Each triangle's partial sums of ⟨φ, g⟩ (projectOnBasis): per channel, its corners' hat
@@ -351,6 +369,7 @@ Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel
     const float tolerance = quantisationTolerance(input.sample_type);
     const uint32_t vertices = mesh.vertexCount(), edges = mesh.edgeCount();
     release();
+    const Bounds bounds = boundsOf(input);
 
     // SART's normalisers: ⟨φ_u, Dᵀ1⟩, the same for every channel (the same operations on the
     // same values), so worked out on one.
@@ -382,11 +401,9 @@ Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel
             sub, c, layout, vertices, edges, projection,
             [&](size_t vertex, const float* step) {
                 const size_t p = vertex * c;
-                float low[4], high[4];
-                const uint32_t x = uint32_t(vertex % input.width), y = uint32_t(vertex / input.width);
-                withChannelCount(c, [&](auto channels) { boundsAt<decltype(channels)::value>(input, x, y, low, high); });
                 for (uint32_t k = 0; k < c; ++k)
-                    v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[vertex], low[k], high[k]);
+                    v[p + k] = std::clamp(v[p + k] + kRelaxation * step[k] / vertex_weight[vertex], bounds.low[p + k],
+                                          bounds.high[p + k]);
                 if (input.hasAlpha())
                     for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
             },
