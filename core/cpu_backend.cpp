@@ -130,12 +130,13 @@ public:
 
 private:
     void requireMesh() const {
-        if (mesh_released_) throw std::logic_error("CpuBackend: prepare again after reconstruct");
+        if (mesh_released_) throw std::logic_error("CpuBackend: the mesh was given up (reconstruct, takeSurface); prepare again");
     }
 
     // The renderer of the current surface, built on first use.
     const MeshRenderer& renderer() {
         if (!renderer_) {
+            requireMesh();
             if (surface_)
                 renderer_.emplace(mesh_, surface_->values, &surface_->bubbles);
             else

@@ -1,9 +1,7 @@
 #include "reconstruct.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <functional>
 
 #include "channel_count.h"
 #include "degradation.h"
@@ -157,13 +155,13 @@ SampleLayout layoutOf(const Mesh& mesh, const MeshRenderer& renderer, OutputSize
         }
     });
     // Which vertices and edges more than one run touches: their index among the shared ones
-    // (kOwned for the others), from the run each was first seen in.
+    // (kOwned for the others), from the run each was first seen in (kNone: not seen yet).
     const uint32_t vertices = mesh.vertexCount(), edges = mesh.edgeCount();
     std::vector<uint32_t> vertex_index(vertices, kOwned), edge_index(edges, kOwned);
     {
-        std::vector<uint32_t> vertex_run(vertices, kOwned), edge_run(edges, kOwned);
+        std::vector<uint32_t> vertex_run(vertices, kNone), edge_run(edges, kNone);
         auto see = [](uint32_t& first_run, uint32_t& index, uint32_t run) {
-            if (first_run == kOwned) first_run = run;
+            if (first_run == kNone) first_run = run;
             else if (first_run != run) index = 0;  // numbered below
         };
         for (uint32_t t = 0; t < triangles; ++t) {
@@ -356,8 +354,8 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
 
 namespace {
 
-// The reconstruction; `release`, if given, is called once the mesh is no longer read (its
-// arrays can make room for the solver's).
+// The reconstruction; `release()` is called once the mesh is no longer read, so that a caller
+// that gives the mesh up can free it before the solver's arrays are made.
 template <typename Release>
 Surface reconstruct(const Mesh& mesh, const Image& input, const DegradationModel& model, const MeshRenderer& locator,
                     uint32_t iterations, Release release) {

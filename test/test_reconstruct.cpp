@@ -9,6 +9,7 @@
 
 #include "backend.h"
 #include "lawson.h"
+#include "parallel.h"
 #include "reconstruct.h"
 #include "render.h"
 #include "test_support.h"
@@ -208,6 +209,39 @@ TEST_CASE("reconstruct: the same surface on every run (no order-dependent sums)"
     const Surface b = reconstructSurface(mesh, input, degradationFor(3.0, 2.0));
     CHECK(test::samePixels(a.values.pixels, b.values.pixels));
     CHECK(test::samePixels(a.bubbles, b.bubbles));
+}
+
+// The triangles are split into runs by the thread count (core/reconstruct.cpp), and the
+// vertices and edges on the runs' borders are summed apart from the rest: another split must
+// still give every sum in the same order. 300×200 pixels is 119 000 triangles: 4 runs on one
+// thread, 12 on three.
+TEST_CASE("reconstruct: the same surface whatever the thread count splits the work into") {
+    const Image input = test::photoCrop();
+    const Mesh mesh = optimisedMesh(input);
+    const unsigned threads = threadCount();
+    setThreadCount(1);
+    const Surface one = reconstructSurface(mesh, input, degradationFor(3.0, 2.0));
+    setThreadCount(3);
+    const Surface three = reconstructSurface(mesh, input, degradationFor(3.0, 2.0));
+    setThreadCount(threads);
+    CHECK(test::samePixels(one.values.pixels, three.values.pixels));
+    CHECK(test::samePixels(one.bubbles, three.bubbles));
+}
+
+// The CPU backend gives up its mesh in reconstruct (core/backend.h): what needs the mesh
+// afterwards is refused rather than run on an empty one.
+TEST_CASE("reconstruct: the CPU backend refuses optimize and mesh after reconstruct, until prepared again") {
+    const Image input = test::photoCrop();
+    std::unique_ptr<Backend> backend = makeCpuBackend();
+    backend->prepare(input);
+    backend->optimize();
+    backend->reconstruct(degradationFor(2.0, 2.0));
+    CHECK_THROWS_AS(backend->optimize(), std::logic_error);
+    CHECK_THROWS_AS(backend->mesh(), std::logic_error);
+    std::vector<float> rows(size_t(input.width) * 2 * input.channels);
+    backend->renderRows({input.width * 2, input.height * 2}, 0, 1, rows.data());  // its surface still renders
+    backend->prepare(input);
+    CHECK(backend->mesh().edgeCount() == gridEdgeCount(input.width, input.height));
 }
 
 TEST_CASE("reconstruct: tiled and untiled consistent upscales agree (CPU)") {
