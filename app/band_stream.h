@@ -11,9 +11,9 @@
 #include <exception>
 #include <mutex>
 #include <optional>
-#include <vector>
 
 #include "memory_budget.h"
+#include "output_rows.h"
 
 namespace ddt {
 
@@ -23,8 +23,7 @@ struct OutputClosed : std::exception {
 };
 
 struct Band {
-    uint32_t y_begin = 0, y_end = 0;
-    std::vector<float> rows;
+    OutputRows rows;
     MemoryBudget::Lease lease;  // the band's bytes in the run's budget
 };
 
@@ -32,11 +31,11 @@ class BandStream {
 public:
     explicit BandStream(MemoryBudget& budget) : budget_(budget) {}
 
-    // Renderer: sends rows [y_begin, y_end); waits while the budget is spent. Throws
+    // Renderer: sends `rows` of `floats` floats in all; waits while the budget is spent. Throws
     // OutputClosed once the encoder has given up.
-    void send(uint32_t y_begin, uint32_t y_end, const float* rows, size_t floats) {
+    void send(OutputRows&& rows, size_t floats) {
         if (refused()) throw OutputClosed();
-        Band band{y_begin, y_end, std::vector<float>(rows, rows + floats), budget_.acquire(floats * sizeof(float))};
+        Band band{std::move(rows), budget_.acquire(floats * sizeof(float))};
         std::lock_guard lock(mutex_);
         if (refused_) throw OutputClosed();
         bands_.push_back(std::move(band));

@@ -23,18 +23,21 @@ const size_t kBandFloats = size_t(2) << 20;  // 8 MiB
 // square tiles would exceed this.
 const size_t kStripFloats = size_t(128) << 20;  // 512 MiB
 
-using Sink = std::function<void(uint32_t y_begin, uint32_t y_end, const float* rows)>;
+using Sink = std::function<void(OutputRows&& rows)>;
 
 // Hands rows to the sink once each: rows already sent before a retry are skipped.
 class RowEmitter {
 public:
     RowEmitter(const Sink& sink, size_t row_floats) : sink_(sink), row_floats_(row_floats) {}
 
-    void emit(uint32_t y_begin, uint32_t y_end, const float* rows) {
-        if (y_end <= next_row_) return;
-        const uint32_t first = std::max(y_begin, next_row_);
-        sink_(first, y_end, rows + size_t(first - y_begin) * row_floats_);
-        next_row_ = y_end;
+    void emit(OutputRows&& rows) {
+        if (rows.y_end <= next_row_) return;
+        if (rows.y_begin < next_row_) {  // rare: after a retry
+            std::copy(rows.row(next_row_, row_floats_), rows.row(rows.y_end, row_floats_), rows.floats.get());
+            rows.y_begin = next_row_;
+        }
+        next_row_ = rows.y_end;
+        sink_(std::move(rows));
     }
 
     uint32_t nextRow() const { return next_row_; }
@@ -191,8 +194,7 @@ RenderWindow windowOf(const Job& job, const Tile& tile, uint32_t y_begin, uint32
 // Output rows per band for rows of `row_floats` floats.
 uint32_t bandRows(size_t row_floats) { return uint32_t(std::max<size_t>(1, kBandFloats / row_floats)); }
 
-// Optimises one tile's crop on `backend` and renders its output, in bands, to
-// `deliver(y_begin, y_end, rows)`.
+// Optimises one tile's crop on `backend` and renders its output, in bands, to `deliver(rows)`.
 template <typename Deliver>
 OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t index, uint32_t total,
                           Deliver deliver) {
@@ -202,11 +204,10 @@ OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t
     job.step(index, total, TilePhase::Render);
     const size_t row_floats = size_t(tile.output.width()) * job.image.channels;
     const uint32_t band_rows = bandRows(row_floats);
-    std::vector<float> band(std::min<size_t>(band_rows, tile.output.height()) * row_floats);
     for (uint32_t y = tile.output.y0; y < tile.output.y1; y += band_rows) {
-        const RenderWindow window = windowOf(job, tile, y, std::min(tile.output.y1, y + band_rows));
-        backend.renderWindow(window, band.data());
-        deliver(window.y_begin, window.y_end, band.data());
+        OutputRows band(y, std::min(tile.output.y1, y + band_rows), row_floats);
+        backend.renderWindow(windowOf(job, tile, band.y_begin, band.y_end), band.floats.get());
+        deliver(std::move(band));
     }
     return stats;
 }
@@ -236,20 +237,20 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
     const uint32_t y0 = tiles[0].output.y0, y1 = tiles[0].output.y1, band_rows = bandRows(row_floats);
     for (uint32_t i = 0; i < tiles.size(); ++i)
         if (surfaces[i]) job.step(first_index + i, total, TilePhase::Render);
-    std::vector<float> band(std::min(band_rows, y1 - y0) * row_floats), tile_rows;
+    std::vector<float> tile_rows;
     for (uint32_t y = y0; y < y1; y += band_rows) {
-        const uint32_t y_end = std::min(y1, y + band_rows);
+        OutputRows band(y, std::min(y1, y + band_rows), row_floats);
         for (uint32_t i = 0; i < tiles.size(); ++i) {
             if (!surfaces[i]) continue;
-            const RenderWindow window = windowOf(job, tiles[i], y, y_end);
+            const RenderWindow window = windowOf(job, tiles[i], band.y_begin, band.y_end);
             const size_t tile_row_floats = size_t(window.width()) * c;
             tile_rows.resize(window.height() * tile_row_floats);
             surfaces[i]->renderWindow(window, tile_rows.data());
-            for (uint32_t row = 0; row < window.height(); ++row)
-                std::copy_n(tile_rows.data() + row * tile_row_floats, tile_row_floats,
-                            band.data() + row * row_floats + size_t(window.x_begin) * c);
+            for (uint32_t y = band.y_begin; y < band.y_end; ++y)
+                std::copy_n(tile_rows.data() + (y - band.y_begin) * tile_row_floats, tile_row_floats,
+                            band.row(y, row_floats) + size_t(window.x_begin) * c);
         }
-        job.rows.emit(y, y_end, band.data());
+        job.rows.emit(std::move(band));
     }
     return stats;
 }
@@ -263,24 +264,23 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
     if (tiles.size() == 1) {
         addStats(stats, job.backends.withBackend([&](Backend& backend) {
             return upscaleTile(job, backend, tiles[0], first_index, total,
-                               [&](uint32_t y_begin, uint32_t y_end, const float* rows) { job.rows.emit(y_begin, y_end, rows); });
+                               [&](OutputRows&& rows) { job.rows.emit(std::move(rows)); });
         }));
         return stats;
     }
     if (job.backends.handOverSurfaces()) return upscaleStripInBands(job, tiles, first_index, total);
     const PixelRect strip = {0, tiles[0].output.y0, job.out.width, tiles[0].output.y1};
-    std::vector<float> strip_rows(size_t(strip.height()) * row_floats);
+    OutputRows strip_rows(strip.y0, strip.y1, row_floats);
     std::mutex stats_mutex;
     auto upscaleTileInStrip = [&](uint32_t i) {
         const Tile& tile = tiles[i];
         const size_t tile_row_floats = size_t(tile.output.width()) * c;
         const OptimizeStats tile_stats = job.backends.withBackend([&](Backend& backend) {
             return upscaleTile(job, backend, tile, first_index + i, total,
-                               [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-                                   for (uint32_t y = y_begin; y < y_end; ++y)
-                                       std::copy_n(rows + (y - y_begin) * tile_row_floats, tile_row_floats,
-                                                   strip_rows.data() + (y - strip.y0) * row_floats +
-                                                       size_t(tile.output.x0) * c);
+                               [&](OutputRows&& rows) {
+                                   for (uint32_t y = rows.y_begin; y < rows.y_end; ++y)
+                                       std::copy_n(rows.row(y, tile_row_floats), tile_row_floats,
+                                                   strip_rows.row(y, row_floats) + size_t(tile.output.x0) * c);
                                });
         });
         std::lock_guard lock(stats_mutex);
@@ -294,7 +294,7 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
         });
     else
         for (uint32_t i = 0; i < tiles.size(); ++i) upscaleTileInStrip(i);
-    if (strip.height() > 0) job.rows.emit(strip.y0, strip.y1, strip_rows.data());
+    if (strip.height() > 0) job.rows.emit(std::move(strip_rows));
     return stats;
 }
 

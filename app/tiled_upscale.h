@@ -10,6 +10,7 @@
 #include <functional>
 
 #include "backend.h"
+#include "output_rows.h"
 
 namespace ddt {
 
@@ -48,13 +49,13 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
                            uint32_t overlap, bool reconstruction);
 
 // Upscales `image` to `out` and hands the output rows to `sink` in order, each row exactly
-// once: sink(y_begin, y_end, rows) with out.width × channels floats per row. `on_step` is
+// once, out.width × channels floats per row. `on_step` is
 // called before each tile is optimised and before it is rendered (the tile count may grow
 // after a retry with smaller tiles); with tiles in parallel, from their threads in turn.
 // Returns the optimisation statistics summed over the tiles (overlaps counted in each tile).
 // Throws UserError when even kMinTileSide tiles do not fit the device.
 OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,
-                          const std::function<void(uint32_t y_begin, uint32_t y_end, const float* rows)>& sink,
+                          const std::function<void(OutputRows&& rows)>& sink,
                           const TileStepCallback& on_step = {});
 
 }  // namespace ddt

@@ -125,8 +125,9 @@ void ImageJob::process(Backend& backend) {
 void ImageJob::render(Backend& backend) {
     const OutputSize out = report_.out;
     const size_t row_floats = size_t(out.width) * state_->image.channels;
-    auto sink = [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-        state_->bands->send(y_begin, y_end, rows, size_t(y_end - y_begin) * row_floats);
+    auto sink = [&](OutputRows&& rows) {
+        const size_t floats = rows.rows() * row_floats;
+        state_->bands->send(std::move(rows), floats);
     };
     // Time spent in each phase, for --stats: optimize (with building and uploading each
     // tile's mesh), reconstruct and render.
@@ -167,7 +168,7 @@ void ImageJob::render(Backend& backend) {
 bool ImageJob::write() {
     try {
         while (std::optional<Band> band = state_->bands->receive())
-            state_->writer->writeRows(band->y_begin, band->y_end, band->rows.data());
+            state_->writer->writeRows(band->rows.y_begin, band->rows.y_end, band->rows.floats.get());
     } catch (...) {
         state_->bands->refuse();
         throw;

@@ -253,9 +253,9 @@ TEST_CASE("reconstruct: tiled and untiled consistent upscales agree (CPU)") {
         TileOptions options;
         options.tile = tile;
         options.reconstruct = true;
-        upscaleRows(*backend, input, out, options, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-            std::copy_n(rows, size_t(y_end - y_begin) * out.width * input.channels,
-                        result.begin() + size_t(y_begin) * out.width * input.channels);
+        upscaleRows(*backend, input, out, options, [&](OutputRows&& rows) {
+            std::copy_n(rows.floats.get(), size_t(rows.rows()) * out.width * input.channels,
+                        result.begin() + size_t(rows.y_begin) * out.width * input.channels);
         });
         return result;
     };

@@ -82,13 +82,13 @@ std::vector<float> upscale(Backend& backend, const Image& image, OutputSize out,
     uint32_t next_row = 0;
     upscaleRows(
         backend, image, out, options,
-        [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
+        [&](OutputRows&& rows) {
             // Every row once, in order.
-            REQUIRE(y_begin == next_row);
-            REQUIRE(y_end > y_begin);
-            REQUIRE(y_end <= out.height);
-            std::copy_n(rows, (y_end - y_begin) * row_floats, result.begin() + y_begin * row_floats);
-            next_row = y_end;
+            REQUIRE(rows.y_begin == next_row);
+            REQUIRE(rows.y_end > rows.y_begin);
+            REQUIRE(rows.y_end <= out.height);
+            std::copy_n(rows.floats.get(), rows.rows() * row_floats, result.begin() + rows.y_begin * row_floats);
+            next_row = rows.y_end;
         },
         [&](const TileStep& step) {
             if (tiles) *tiles = step.tiles;
@@ -305,14 +305,15 @@ void checkLargeUpscale(uint32_t side_px) {
     const auto start = std::chrono::steady_clock::now();
     const OptimizeStats stats = upscaleRows(
         backend, image, out, {},
-        [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-            REQUIRE(y_begin == next_row);
-            next_row = y_end;
-            for (size_t i = 0; i < (y_end - y_begin) * row_floats; ++i) {
-                non_finite += !std::isfinite(rows[i]);
-                low = std::min(low, rows[i]);
-                high = std::max(high, rows[i]);
-                sum += rows[i];
+        [&](OutputRows&& rows) {
+            REQUIRE(rows.y_begin == next_row);
+            next_row = rows.y_end;
+            for (size_t i = 0; i < rows.rows() * row_floats; ++i) {
+                const float value = rows.floats[i];
+                non_finite += !std::isfinite(value);
+                low = std::min(low, value);
+                high = std::max(high, value);
+                sum += value;
             }
         },
         [&](const TileStep& step) { tiles = step.tiles; });

@@ -162,8 +162,8 @@ TEST_CASE("vulkan reconstruct: tiles agree with the untiled upscale") {
         options.reconstruct = true;
         const size_t row_floats = size_t(out.width) * photo.channels;
         std::vector<float> result(row_floats * out.height);
-        upscaleRows(backend, photo, out, options, [&](uint32_t y_begin, uint32_t y_end, const float* rows) {
-            std::copy_n(rows, (y_end - y_begin) * row_floats, result.begin() + y_begin * row_floats);
+        upscaleRows(backend, photo, out, options, [&](OutputRows&& rows) {
+            std::copy_n(rows.floats.get(), rows.rows() * row_floats, result.begin() + rows.y_begin * row_floats);
         });
         return result;
     };
