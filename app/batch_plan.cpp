@@ -10,6 +10,7 @@
 
 #include "image.h"
 #include "image_formats.h"
+#include "mesh_file.h"
 #include "user_error.h"
 
 namespace ddt {
@@ -72,6 +73,9 @@ ImageTask readyTask(const std::string& input, const std::string& output) {
     return task;
 }
 
+// The extension of the mesh format `name` ("ply", ".OBJ") names, lower case, with the dot.
+const char* meshExtension(const std::string& name) { return *meshFormatOf(name) == MeshFormat::Ply ? ".ply" : ".obj"; }
+
 bool sameFile(const std::string& a, const std::string& b) {
     std::error_code error;
     if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
@@ -117,6 +121,11 @@ std::vector<ImageTask> planBatch(const Settings& settings) {
                 tasks.push_back(readyTask(input, outputPathFor(output_folder, fs::path(input).filename(), settings.format)));
         }
     }
+    // A batch's meshes go beside their outputs, named like them.
+    if (!settings.mesh.empty())
+        for (ImageTask& task : tasks)
+            task.mesh = settings.singleForm() ? settings.mesh
+                                              : fs::path(task.output).replace_extension(meshExtension(settings.mesh)).string();
     decideStates(tasks, settings.skip_existing);
     return tasks;
 }

@@ -13,6 +13,7 @@ namespace ddt {
 struct ImageTask {
     std::string input;   // as given, or found under the input folder; "-": standard input
     std::string output;  // "-": standard output
+    std::string mesh;    // where the optimised mesh goes (--mesh); "" = nowhere
     enum class State { Ready, Skipped, Refused } state = State::Ready;
     std::string reason;  // why skipped or refused; a refusal names the file first
 };

@@ -13,6 +13,7 @@
 #include "image.h"
 #include "image_formats.h"
 #include "json_line.h"
+#include "mesh_file.h"
 #include "tiled_upscale.h"
 
 namespace ddt {
@@ -34,6 +35,37 @@ const char* const kDescription =
     "\n"
     "Exit codes: 0 all done, 1 some images failed, 2 bad usage, 3 no usable Vulkan device,\n"
     "4 internal error, 130/143 interrupted.";
+
+// Whether two paths name the same file (or would, once made).
+bool sameFile(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
+    return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+}
+
+// "" if --mesh and --mesh-height make sense with the rest, else the message.
+std::string validateMesh(const CLI::App& app, const Settings& settings) {
+    if (app.count("--mesh-height") && settings.mesh.empty()) return "--mesh-height needs --mesh";
+    if (!std::isfinite(settings.mesh_height)) return "--mesh-height must be a finite number";
+    if (settings.mesh.empty()) return "";
+    if (!settings.singleForm()) {
+        // In the batch forms each mesh goes beside its output: only the format is given.
+        const std::string name = settings.mesh.starts_with('.') ? settings.mesh.substr(1) : settings.mesh;
+        if (name.find('.') != std::string::npos || name.find('/') != std::string::npos || !meshFormatOf(name))
+            return "--mesh " + settings.mesh + ": in the batch forms give a format, " + meshFormatNames() +
+                   " (each mesh goes beside its output, named like it)";
+        return "";
+    }
+    if (!std::filesystem::path(settings.mesh).has_extension() || !meshFormatOf(settings.mesh))
+        return "--mesh " + settings.mesh + ": unknown mesh format (the extension must name " + meshFormatNames() + ")";
+    for (const std::string& input : settings.inputs)
+        if (input != kStandardStream && sameFile(input, settings.mesh))
+            return "--mesh " + settings.mesh + ": is the input; refusing to overwrite it";
+    if (settings.output != kStandardStream && sameFile(settings.output, settings.mesh))
+        return "--mesh " + settings.mesh + ": is also the image's output";
+    return "";
+}
 
 // "" if the parsed values make sense together, else the message.
 std::string validateSettings(const CLI::App& app, const Settings& settings) {
@@ -77,7 +109,7 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
         return "standard output is a terminal; redirect it to a file or a pipe";
     if (settings.output == kStandardStream && settings.format.empty() && !std::filesystem::path(settings.inputs.front()).has_extension())
         return "writing to standard output needs -f FORMAT (the input has no extension to follow)";
-    return "";
+    return validateMesh(app, settings);
 }
 
 // CLI11 messages are one line today; keep it that way whatever it says.
@@ -119,6 +151,17 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         ->capture_default_str();
     app.add_option("--depth", settings.depth, "Output sample type: 8, 16, half or float")->default_str("the input's");
     app.add_flag("--skip-existing", settings.skip_existing, "Skip images whose output already exists (default: off)");
+    app.add_option("--mesh", settings.mesh,
+                   "Also write the optimized mesh: FILE.ply (binary) or FILE.obj; in the batch forms ply or obj, "
+                   "each mesh beside its output, named like it. Positions in output pixels, y up (input pixel "
+                   "centre x at (x + 0.5)·scale), counter-clockwise triangles, a border ring out to the image "
+                   "rectangle; straight vertex colours (PLY: as the input's 8, 16 bits or float; OBJ: 0 to 1, no "
+                   "alpha) from the input's pixels, i.e. plain DDT's surface whatever --reconstruct says")
+        ->default_str("none");
+    app.add_option("--mesh-height", settings.mesh_height,
+                   "With --mesh: z = luma × this, in output pixels (Rec. 709 weights on the stored values), a "
+                   "2.5-D relief; 0 keeps the mesh flat")
+        ->capture_default_str();
     app.add_option("-s,--scale", settings.scale, "Magnification factor, a real number >= 1 (used when no --width/--height)")
         ->default_str("2");
     app.add_option("--width", settings.width,

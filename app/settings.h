@@ -23,6 +23,8 @@ struct Settings {
     int quality = 95;           // lossy formats
     std::string depth;          // 8, 16, half, float; "" = the input's
     bool skip_existing = false;
+    std::string mesh;          // --mesh: single form, a file (.ply, .obj); batch forms, a format; "" = none
+    double mesh_height = 0.0;  // --mesh-height: z = luma × this, in output pixels; 0 = flat
 
     double scale = 0.0;       // 0: not given
     uint32_t width = 0;       // 0: not given

@@ -4,6 +4,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -150,7 +151,9 @@ struct Job {
     bool reconstruct;
     const TileStepCallback& on_step;
     RowEmitter& rows;
+    StitchedMesh* strip_mesh;  // the current strip's tiles' meshes, if the caller wants them
     std::mutex step_mutex;  // tiles in parallel report their steps one at a time
+    std::mutex mesh_mutex;  // and add their meshes one at a time
 
     void step(uint32_t tile, uint32_t tiles, TilePhase phase) {
         std::lock_guard lock(step_mutex);
@@ -166,6 +169,11 @@ OptimizeStats shapeTile(Job& job, Backend& backend, const Tile& tile, uint32_t i
     if (!whole) crop = cropOf(job.image, tile.crop);
     backend.prepare(whole ? job.image : crop);
     const OptimizeStats stats = backend.optimize();
+    if (job.strip_mesh) {
+        const Mesh mesh = backend.mesh();  // before the reconstruction, which may give it up
+        std::lock_guard lock(job.mesh_mutex);
+        job.strip_mesh->add(mesh, tile.crop, tile.core);
+    }
     // The model follows the whole image's factors; each crop is reconstructed on its own, and
     // the overlap keeps the crop's border out of the core's output (test/test_tiling.cpp).
     if (job.reconstruct) {
@@ -328,7 +336,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
     BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
-    Job job{backends, image, out, options.reconstruct, on_step, rows, {}};
+    Job job{backends, image, out, options.reconstruct, on_step, rows, nullptr, {}, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {
@@ -336,6 +344,10 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
         const uint32_t y1 = stripEnd(image.height, y0, strip_side);
         const std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap);
         std::string out_of_memory;
+        // A strip's meshes count once it succeeds: a retry gives them again.
+        std::optional<StitchedMesh> strip_mesh;
+        if (options.mesh) strip_mesh.emplace(image.width, image.height);
+        job.strip_mesh = strip_mesh ? &*strip_mesh : nullptr;
         try {
             addStats(stats, upscaleStrip(job, tiles, tiles_done,
                                          tiles_done + tilesFrom(image.width, image.height, y0, side, strip_side)));
@@ -352,6 +364,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
             side = std::max(kMinTileSide, side / 2);
             continue;
         }
+        if (strip_mesh) options.mesh->append(std::move(*strip_mesh));
         tiles_done += uint32_t(tiles.size());
         y0 = y1;
     }

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 
+#include "indexed_mesh.h"
+#include "mesh_file.h"
 #include "tiled_upscale.h"
 
 namespace ddt {
@@ -153,16 +156,38 @@ void ImageJob::render(Backend& backend) {
             told_tiles = true;
         }
     };
+    std::optional<StitchedMesh> mesh;
+    if (!task_.mesh.empty()) mesh.emplace(state_->image.width, state_->image.height);
     try {
         TileOptions options;
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
+        options.mesh = mesh ? &*mesh : nullptr;
         report_.stats = upscaleRows(backend, state_->image, out, options, sink, on_step);
     } catch (const UserError& error) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }
     timeOf(phase) += secondsSince(mark);
+    if (mesh) writeMesh(mesh->take());
     state_->image.pixels = {};  // the next image may need the memory
+}
+
+void ImageJob::writeMesh(std::vector<uint32_t> triangles) {
+    const Image& image = state_->image;
+    if (std::string problem = StitchedMesh::check(triangles, image.width, image.height); !problem.empty())
+        throw UserError(task_.mesh + ": the tiles' meshes do not join (" + problem +
+                        "); a larger --tile, or none, avoids it");
+    const OutputSize out = report_.out;
+    char factors[160];
+    std::snprintf(factors, sizeof(factors), "sx = %.9g, sy = %.9g; colours straight, %s samples; z = luma * %.9g",
+                  double(out.width) / image.width, double(out.height) / image.height, sampleTypeName(image.sample_type),
+                  settings_.mesh_height);
+    std::string comment = std::string("ddtup ") + DDTUP_VERSION + ": the optimised DDT mesh of " +
+                          inputName(task_.input) + " for a " + std::to_string(out.width) + "x" +
+                          std::to_string(out.height) + " output; x, y in output pixels, y up, the vertex at input " +
+                          "pixel centre (x, y) at ((x + 0.5) sx, " + std::to_string(out.height) + " - (y + 0.5) sy), " +
+                          factors;
+    writeMeshFile(task_.mesh, indexedMeshOf(triangles, image, out, settings_.mesh_height), comment);
 }
 
 bool ImageJob::write() {

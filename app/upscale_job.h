@@ -66,6 +66,8 @@ public:
 private:
     WriteOptions writeOptions() const;
     void render(Backend& backend);
+    // Writes the task's mesh file from the stitched triangles of the optimised mesh.
+    void writeMesh(std::vector<uint32_t> triangles);
 
     struct State;
     size_t index_;

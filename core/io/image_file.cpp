@@ -23,6 +23,7 @@
 #include "image_formats.h"
 #include "input_check.h"
 #include "parallel.h"
+#include "output_file.h"
 #include "png_writer.h"
 #include "temp_files.h"
 
@@ -468,23 +469,6 @@ std::vector<std::string> channelNames(uint32_t channels) {
     }
 }
 
-// Creates the temporary file the image is written to: a hidden sibling of `path`, so the
-// final rename stays within one file system, or for standard output one in $TMPDIR. Throws
-// with the system's reason when the folder is not writable.
-std::unique_ptr<TempFile> createTempFile(const std::string& path) {
-    const bool to_stdout = path == kStandardStream;
-    const fs::path target(path);
-    const std::string folder = to_stdout ? tempFolder()
-                               : target.parent_path().empty() ? std::string(".")
-                                                              : target.parent_path().string();
-    const std::string prefix = to_stdout ? "ddtup-stdout" : "." + target.filename().string() + ".ddtup";
-    try {
-        return std::make_unique<TempFile>(folder, prefix);
-    } catch (const std::system_error& error) {
-        throw UserError(outputName(path) + ": cannot write in folder " + folder + " (" + std::strerror(error.code().value()) + ")");
-    }
-}
-
 // Copies the finished temporary file to standard output.
 void copyToStandardOutput(const std::string& file) {
     auto fail = [](int error) { return UserError(std::string("standard output: ") + std::strerror(error)); };
@@ -494,22 +478,6 @@ void copyToStandardOutput(const std::string& file) {
         copyAll(fd, [](const char* data, size_t size) { return writeAll(STDOUT_FILENO, data, size); });
     ::close(fd);
     if (failure.read_error || failure.write_error) throw fail(failure.write_error ? failure.write_error : failure.read_error);
-}
-
-// Refuses outputs that are not a plain replaceable file in an existing folder.
-void checkOutputPath(const std::string& path) {
-    std::error_code ec;
-    const fs::path target(path);
-    const fs::file_status status = fs::status(target, ec);  // through symlinks
-    if (fs::is_directory(status)) throw UserError(path + ": is a folder");
-    if (fs::exists(status) && !fs::is_regular_file(status))
-        throw UserError(path + ": not a regular file; refusing to replace it");
-    if (fs::exists(status) && ::access(path.c_str(), W_OK) != 0)
-        throw UserError(path + ": the file is read-only; refusing to replace it");
-    const fs::path folder = target.parent_path();
-    if (folder.empty() || fs::is_directory(folder, ec)) return;
-    if (fs::exists(folder, ec)) throw UserError(path + ": " + folder.string() + " is not a folder");
-    throw UserError(path + ": folder " + folder.string() + " does not exist");
 }
 
 // The extension that names the output format: `format` if given, else the path's.
@@ -777,10 +745,7 @@ void ImageWriter::commit() {
         copyToStandardOutput(s.temp->path());
         return;
     }
-    std::error_code ec;
-    fs::rename(s.temp->path(), s.path, ec);
-    if (ec) throw UserError(s.name + ": cannot replace the file (" + ec.message() + ")");
-    s.temp->release();
+    moveIntoPlace(*s.temp, s.path, s.name);
 }
 
 std::vector<std::string> writeImage(const std::string& path, const Image& image, const WriteOptions& options) {

@@ -1,0 +1,103 @@
+#include "indexed_mesh.h"
+
+#include <cassert>
+
+namespace ddt {
+
+namespace {
+
+// Builds the file's vertex and face arrays: positions and colours in, faces wound
+// counter-clockwise whatever order they are given in.
+class MeshBuilder {
+public:
+    MeshBuilder(const Image& input, OutputSize out, double height)
+        : input_(input), sx_(double(out.width) / input.width), sy_(double(out.height) / input.height),
+          height_(height) {
+        mesh_.channels = input.channels;
+        mesh_.colour_type = input.sample_type;
+        mesh_.out = out;
+    }
+
+    // A vertex at (x, y) of the output, y down, with the colour of input pixel (px, py).
+    uint32_t addVertex(double x, double y, uint32_t px, uint32_t py) {
+        const uint32_t c = input_.channels;
+        const float* pixel = input_.row(py) + size_t(px) * c;
+        float straight[4];
+        const float alpha = input_.hasAlpha() ? pixel[c - 1] : 1.0f;
+        for (uint32_t k = 0; k < c; ++k)
+            straight[k] = !input_.hasAlpha() || k + 1 == c ? pixel[k] : alpha > 0.0f ? pixel[k] / alpha : 0.0f;
+        mesh_.colours.insert(mesh_.colours.end(), straight, straight + c);
+        const double luma = c < 3 ? straight[0] : 0.2126 * straight[0] + 0.7152 * straight[1] + 0.0722 * straight[2];
+        mesh_.positions.insert(mesh_.positions.end(), {x, double(mesh_.out.height) - y, height_ * luma});
+        return mesh_.vertexCount() - 1;
+    }
+    // The vertex at input pixel centre (px, py).
+    uint32_t addPixelVertex(uint32_t px, uint32_t py) { return addVertex((px + 0.5) * sx_, (py + 0.5) * sy_, px, py); }
+
+    void addFace(uint32_t a, uint32_t b, uint32_t c) {
+        const double* p = &mesh_.positions[3 * size_t(a)];
+        const double* q = &mesh_.positions[3 * size_t(b)];
+        const double* r = &mesh_.positions[3 * size_t(c)];
+        const double orient = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+        assert(orient != 0.0);
+        if (orient < 0.0) std::swap(b, c);
+        mesh_.faces.insert(mesh_.faces.end(), {a, b, c});
+    }
+
+    IndexedMesh take() { return std::move(mesh_); }
+
+private:
+    const Image& input_;
+    double sx_, sy_, height_;
+    IndexedMesh mesh_;
+};
+
+}  // namespace
+
+IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& input, OutputSize out, double height) {
+    const uint32_t w = input.width, h = input.height;
+    const double W = out.width, H = out.height;
+    MeshBuilder builder(input, out, height);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) builder.addPixelVertex(x, y);
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3) builder.addFace(triangles[t], triangles[t + 1], triangles[t + 2]);
+
+    // The ring: each hull vertex's copy on the rectangle's side, then the four corners. A side
+    // of n hull vertices gets n copies and 2(n − 1) triangles.
+    const double sx = W / w, sy = H / h;
+    auto side = [&](uint32_t n, auto pixel_of, auto copy_at) {
+        uint32_t previous_pixel = 0, previous_copy = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            const auto [px, py] = pixel_of(i);
+            const auto [cx, cy] = copy_at(i);
+            const uint32_t pixel = py * w + px, copy = builder.addVertex(cx, cy, px, py);
+            if (i) {
+                builder.addFace(previous_pixel, pixel, copy);
+                builder.addFace(previous_pixel, copy, previous_copy);
+            }
+            previous_pixel = pixel;
+            previous_copy = copy;
+        }
+    };
+    using Pair = std::pair<uint32_t, uint32_t>;
+    using Point = std::pair<double, double>;
+    const uint32_t top = w * h;  // the first copy of each side: top, bottom, left, right
+    side(w, [&](uint32_t i) { return Pair{i, 0}; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, 0.0}; });
+    side(w, [&](uint32_t i) { return Pair{i, h - 1}; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, H}; });
+    side(h, [&](uint32_t i) { return Pair{0, i}; }, [&](uint32_t i) { return Point{0.0, (i + 0.5) * sy}; });
+    side(h, [&](uint32_t i) { return Pair{w - 1, i}; }, [&](uint32_t i) { return Point{W, (i + 0.5) * sy}; });
+    const uint32_t bottom = top + w, left = bottom + w, right = left + h;
+    // Each corner square: the corner pixel, its copies on the two sides, the rectangle's corner.
+    auto corner = [&](uint32_t px, uint32_t py, uint32_t horizontal_copy, uint32_t vertical_copy, double cx, double cy) {
+        const uint32_t c = builder.addVertex(cx, cy, px, py), pixel = py * w + px;
+        builder.addFace(pixel, horizontal_copy, c);
+        builder.addFace(pixel, c, vertical_copy);
+    };
+    corner(0, 0, top, left, 0.0, 0.0);
+    corner(w - 1, 0, top + w - 1, right, W, 0.0);
+    corner(0, h - 1, bottom, left + h - 1, 0.0, H);
+    corner(w - 1, h - 1, bottom + w - 1, right + h - 1, W, H);
+    return builder.take();
+}
+
+}  // namespace ddt

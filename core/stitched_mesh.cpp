@@ -1,0 +1,95 @@
+#include "stitched_mesh.h"
+
+#include <algorithm>
+#include <array>
+
+namespace ddt {
+
+void StitchedMesh::add(const Mesh& mesh, const PixelRect& crop, const PixelRect& core) {
+    const uint32_t cw = crop.width();
+    forEachTriangle(mesh, [&](const Triangle& t) {
+        uint32_t ids[3], sum_x = 0, sum_y = 0;
+        const uint32_t local[3] = {t.v0, t.v1, t.v2};
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t x = crop.x0 + local[k] % cw, y = crop.y0 + local[k] / cw;
+            ids[k] = y * width_ + x;
+            sum_x += x;
+            sum_y += y;
+        }
+        // The centroid (sum / 3) in [x0, x1) × [y0, y1), in integers.
+        if (sum_x >= 3 * core.x0 && sum_x < 3 * core.x1 && sum_y >= 3 * core.y0 && sum_y < 3 * core.y1)
+            triangles_.insert(triangles_.end(), ids, ids + 3);
+    });
+}
+
+void StitchedMesh::append(StitchedMesh&& other) {
+    triangles_.insert(triangles_.end(), other.triangles_.begin(), other.triangles_.end());
+    other.triangles_ = {};
+}
+
+std::vector<uint32_t> StitchedMesh::take() {
+    std::vector<std::array<uint32_t, 3>> sorted(triangles_.size() / 3);
+    for (size_t i = 0; i < sorted.size(); ++i) {
+        const uint32_t* t = &triangles_[3 * i];
+        const int first = t[0] <= t[1] && t[0] <= t[2] ? 0 : t[1] <= t[2] ? 1 : 2;
+        sorted[i] = {t[first], t[(first + 1) % 3], t[(first + 2) % 3]};  // a rotation keeps the orientation
+    }
+    std::sort(sorted.begin(), sorted.end());
+    triangles_.clear();
+    triangles_.shrink_to_fit();
+    std::vector<uint32_t> result;
+    result.reserve(3 * sorted.size());
+    for (const auto& t : sorted) result.insert(result.end(), t.begin(), t.end());
+    return result;
+}
+
+std::string StitchedMesh::check(const std::vector<uint32_t>& triangles, uint32_t width, uint32_t height) {
+    const uint32_t vertices = width * height;
+    const size_t count = triangles.size() / 3;
+    if (count == 0) return "no triangles";
+    auto where = [&](uint32_t v) {  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "(" + ...
+        std::string text = "(";
+        return text.append(std::to_string(v % width)).append(", ").append(std::to_string(v / width)).append(")");
+    };
+    int64_t doubled_area = 0;
+    // The directed edges by their start vertex (compressed rows), to find each one's reverse.
+    std::vector<uint32_t> first(size_t(vertices) + 1, 0);
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t* t = &triangles[3 * i];
+        if (t[0] >= vertices || t[1] >= vertices || t[2] >= vertices) return "a vertex outside the grid";
+        const int64_t px = t[0] % width, py = t[0] / width, qx = t[1] % width, qy = t[1] / width;
+        const int64_t rx = t[2] % width, ry = t[2] / width;
+        const int64_t orient = (qx - px) * (ry - py) - (qy - py) * (rx - px);
+        if (orient <= 0) return "the triangle " + where(t[0]) + " " + where(t[1]) + " " + where(t[2]) + " is not positive";
+        doubled_area += orient;
+        for (int k = 0; k < 3; ++k) ++first[t[k] + 1];
+    }
+    if (doubled_area != 2 * int64_t(width - 1) * (height - 1)) return "the triangles' area is not the grid's";
+    for (uint32_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
+    std::vector<uint32_t> ends(first.begin(), first.end() - 1), targets(3 * count);
+    for (size_t i = 0; i < count; ++i)
+        for (int k = 0; k < 3; ++k) targets[ends[triangles[3 * i + k]]++] = triangles[3 * i + (k + 1) % 3];
+    auto has = [&](uint32_t from, uint32_t to) {
+        return std::find(targets.begin() + first[from], targets.begin() + first[from + 1], to) !=
+               targets.begin() + first[from + 1];
+    };
+    // A unit step along one side of the rectangle.
+    auto onBorder = [&](uint32_t u, uint32_t v) {
+        const uint32_t ux = u % width, uy = u / width, vx = v % width, vy = v / width;
+        const bool along_x = uy == vy && (uy == 0 || uy == height - 1) && (ux + 1 == vx || vx + 1 == ux);
+        const bool along_y = ux == vx && (ux == 0 || ux == width - 1) && (uy + 1 == vy || vy + 1 == uy);
+        return along_x || along_y;
+    };
+    for (uint32_t u = 0; u < vertices; ++u) {
+        std::sort(targets.begin() + first[u], targets.begin() + first[u + 1]);
+        if (std::adjacent_find(targets.begin() + first[u], targets.begin() + first[u + 1]) != targets.begin() + first[u + 1])
+            return "two triangles share the edge from " + where(u) + " the same way round (an overlap)";
+    }
+    for (uint32_t u = 0; u < vertices; ++u)
+        for (uint32_t j = first[u]; j < first[u + 1]; ++j)
+            if (!has(targets[j], u) && !onBorder(u, targets[j]))
+                return "the edge " + where(u) + "–" + where(targets[j]) + " has a triangle on one side only (a gap)";
+    return "";
+}
+
+}  // namespace ddt
