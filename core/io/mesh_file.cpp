@@ -145,7 +145,7 @@ void writeMeshFile(const std::string& path, const IndexedMesh& mesh, const std::
         if (!file.failure()) file.write(data, size);
     });
     file.close();
-    if (file.failure()) throw UserError(path + ": cannot write the mesh (" + std::strerror(file.failure()) + ")");
+    if (file.failure()) throw UserError(path + ": " + std::strerror(file.failure()));
     moveIntoPlace(*temp, path, path);
 }
 

@@ -1,0 +1,110 @@
+// --mesh through the real executable: files a real reader (assimp) takes with the counts the
+// mesh must have, one per image in the batch forms, and the bad values refused in one line.
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <regex>
+
+#include "run_ddtup.h"
+#include "temp_folder.h"
+#include "test_support.h"
+
+namespace {
+
+const std::string kInput = ddt::test::testDataPath("crop32_astronaut.png");  // 32 × 32 RGB
+
+// A count `assimp info FILE` reports ("Vertices:", "Faces:"). assimp-utils' `info` imports
+// without post-processing, so it neither joins nor splits vertices.
+long assimpCount(const std::string& file, const std::string& what) {
+    const Run run = runShell("assimp info " + shellQuoted(file));
+    REQUIRE(run.exit_code == 0);
+    std::smatch match;
+    REQUIRE(std::regex_search(run.out, match, std::regex(what + ":\\s+(\\d+)")));
+    return std::stol(match[1]);
+}
+
+}  // namespace
+
+TEST_CASE("cli mesh: PLY and OBJ files that assimp reads, with the grid, its ring and their faces") {
+    TempFolder work;
+    for (const std::string name : {"mesh.ply", "mesh.obj"}) {
+        INFO(name);
+        const Run run = runDdtup({kInput, "-s", "3", work / "out.png", "--mesh", work / name, "--backend", "cpu", "-q"});
+        REQUIRE(run.exit_code == 0);
+        CHECK(run.err.empty());
+        // 32 × 32 vertices, a copy of each of the 4 × 32 hull vertices, 4 corners; 2 triangles
+        // per grid cell, per hull segment and per corner.
+        CHECK(assimpCount(work / name, "Vertices") == 32 * 32 + 4 * 32 + 4);
+        CHECK(assimpCount(work / name, "Faces") == 2 * 31 * 31 + 8 * 31 + 8);
+    }
+    CHECK(work.names() == std::set<std::string>{"mesh.obj", "mesh.ply", "out.png"});
+}
+
+TEST_CASE("cli mesh: the Vulkan backend's mesh file has the CPU backend's layout") {
+    // The serial and the parallel flip orders may end in different meshes, so only the layout
+    // is compared: same size, same header. (Every file's mesh is checked to tile the image
+    // before it is written: core/stitched_mesh.h.)
+    TempFolder work;
+    REQUIRE(runDdtup({kInput, work / "cpu.png", "--mesh", work / "cpu.ply", "--backend", "cpu", "-q"}).exit_code == 0);
+    REQUIRE(runDdtup({kInput, work / "gpu.png", "--mesh", work / "gpu.ply", "--backend", "vulkan", "-q"}).exit_code == 0);
+    const std::string cpu = readFile(work / "cpu.ply"), gpu = readFile(work / "gpu.ply");
+    CHECK(cpu.size() == gpu.size());
+    CHECK(cpu.substr(0, cpu.find("end_header")) == gpu.substr(0, gpu.find("end_header")));
+}
+
+TEST_CASE("cli mesh: a tiled image's mesh file is the untiled one's") {
+    TempFolder work;
+    const std::string photo = ddt::test::testDataPath("../../bench/data/real/astronaut.png");
+    for (const std::string tile : {"0", "128"})
+        REQUIRE(runDdtup({photo, "-s", "1.5", work / ("out" + tile + ".png"), "--mesh", work / ("mesh" + tile + ".ply"),
+                          "--tile", tile, "--reconstruct", "plain", "--backend", "cpu", "-q"})
+                    .exit_code == 0);
+    CHECK(readFile(work / "mesh0.ply") == readFile(work / "mesh128.ply"));
+}
+
+TEST_CASE("cli mesh: the batch forms write one mesh beside each output, named like it") {
+    TempFolder work;
+    const Run run = runDdtup({kInput, ddt::test::testDataPath("diag16_rgb.png"), "-o", work / "out", "--mesh", "OBJ",
+                              "--backend", "cpu", "-q"});
+    REQUIRE(run.exit_code == 0);
+    CHECK(std::filesystem::exists(work / "out/crop32_astronaut.obj"));
+    CHECK(std::filesystem::exists(work / "out/diag16_rgb.obj"));
+}
+
+TEST_CASE("cli mesh: bad --mesh values get one line") {
+    TempFolder work;
+    const std::string out = work / "out.png";
+    requireExactError(runDdtup({kInput, out, "--mesh", work / "mesh.stl"}), 2,
+                      "--mesh " + work / "mesh.stl" + ": unknown mesh format (the extension must name ply or obj)");
+    requireExactError(runDdtup({kInput, out, "--mesh", kInput}), 2,
+                      "--mesh " + kInput + ": unknown mesh format (the extension must name ply or obj)");
+    requireExactError(runDdtup({kInput, out, "--mesh-height", "5"}), 2, "--mesh-height needs --mesh");
+    // An image may be named anything: OpenImageIO reads by content.
+    std::filesystem::copy_file(kInput, work / "in.ply");
+    requireExactError(runDdtup({work / "in.ply", out, "--mesh", work / "in.ply"}), 2,
+                      "--mesh " + work / "in.ply" + ": is the input; refusing to overwrite it");
+    std::filesystem::remove(work / "in.ply");
+    requireExactError(runDdtup({kInput, out, "--mesh", out}), 2, "--mesh " + out + ": unknown mesh format (the extension must name ply or obj)");
+    requireExactError(runDdtup({kInput, work / "out.ply", "--mesh", work / "out.ply"}), 2,
+                      "--mesh " + work / "out.ply" + ": is also the image's output");
+    requireExactError(runDdtup({kInput, "-o", work / "dir", "--mesh", work / "m.ply"}), 2,
+                      "--mesh " + work / "m.ply" + ": in the batch forms give a format, ply or obj (each mesh goes "
+                      "beside its output, named like it)");
+    CHECK(work.names().empty());
+}
+
+TEST_CASE("cli mesh: an unwritable mesh fails its image, and no file is left") {
+    TempFolder work;
+    const std::string out = work / "out.png";
+    requireExactError(runDdtup({kInput, out, "--mesh", work / "missing/mesh.ply", "--backend", "cpu", "-q"}), 1,
+                      work / "missing/mesh.ply" + ": folder " + work / "missing" + " does not exist");
+    CHECK(work.names().empty());
+    // A full disk, injected through the writers' test hook (core/io/checked_file.h): a file
+    // takes at most 20 000 bytes, which the image (8.6 kB) fits and the mesh (46 kB) does not.
+    requireExactError(runDdtup({kInput, out, "--mesh", work / "mesh.ply", "--backend", "cpu", "-q"},
+                               {"DDTUP_TEST_WRITE_LIMIT=20000"}),
+                      1, work / "mesh.ply" + ": No space left on device");
+    CHECK(work.names().empty());
+}
