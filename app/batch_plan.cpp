@@ -74,7 +74,10 @@ ImageTask readyTask(const std::string& input, const std::string& output) {
 }
 
 // The extension of the mesh format `name` ("ply", ".OBJ") names, lower case, with the dot.
-const char* meshExtension(const std::string& name) { return *meshFormatOf(name) == MeshFormat::Ply ? ".ply" : ".obj"; }
+const char* meshExtension(const std::string& name) {
+    const MeshFormat format = *meshFormatOf(name);
+    return format == MeshFormat::Ply ? ".ply" : format == MeshFormat::Obj ? ".obj" : ".svg";
+}
 
 bool sameFile(const std::string& a, const std::string& b) {
     std::error_code error;

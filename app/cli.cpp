@@ -152,11 +152,12 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_option("--depth", settings.depth, "Output sample type: 8, 16, half or float")->default_str("the input's");
     app.add_flag("--skip-existing", settings.skip_existing, "Skip images whose output already exists (default: off)");
     app.add_option("--mesh", settings.mesh,
-                   "Also write the optimized mesh: FILE.ply (binary) or FILE.obj; in the batch forms ply or obj, "
-                   "each mesh beside its output, named like it. Positions in output pixels, y up (input pixel "
-                   "centre x at (x + 0.5)·scale), counter-clockwise triangles, a border ring out to the image "
-                   "rectangle; straight vertex colours (PLY: as the input's 8, 16 bits or float; OBJ: 0 to 1, no "
-                   "alpha) from the input's pixels, i.e. plain DDT's surface whatever --reconstruct says")
+                   "Also write the optimized mesh: FILE.ply (binary), FILE.obj or FILE.svg; in the batch forms ply, "
+                   "obj or svg, each mesh beside its output, named like it. Positions in output pixels (input pixel "
+                   "centre x at (x + 0.5)·scale), y up in PLY and OBJ, counter-clockwise triangles, a border ring "
+                   "out to the image rectangle; straight vertex colours (PLY: as the input's 8, 16 bits or float; "
+                   "OBJ: 0 to 1, no alpha; SVG: a linear gradient per triangle, at most 200000 triangles) from the "
+                   "input's pixels, i.e. plain DDT's surface whatever --reconstruct says")
         ->default_str("none");
     app.add_option("--mesh-height", settings.mesh_height,
                    "With --mesh: z = luma × this, in output pixels (Rec. 709 weights on the stored values), a "

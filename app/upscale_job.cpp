@@ -83,6 +83,10 @@ void ImageJob::open() {
     checkOutputLimit(task_.output, report_.out);
     if (std::string problem = checkOutputSize(header.width, header.height, report_.out); !problem.empty())
         throw UserError(inputName(task_.input) + ": " + problem);
+    if (!task_.mesh.empty())
+        if (std::string problem = checkMeshSize(*meshFormatOf(task_.mesh), indexedFaceCount(header.width, header.height));
+            !problem.empty())
+            throw UserError(task_.mesh + ": " + problem);
     // A batch writes into sub-folders that mirror the input folder's.
     if (task_.output != kStandardStream) {
         std::error_code error;
@@ -178,15 +182,16 @@ void ImageJob::writeMesh(std::vector<uint32_t> triangles) {
         throw UserError(task_.mesh + ": the tiles' meshes do not join (" + problem +
                         "); a larger --tile, or none, avoids it");
     const OutputSize out = report_.out;
-    char factors[160];
-    std::snprintf(factors, sizeof(factors), "sx = %.9g, sy = %.9g; colours straight, %s samples; z = luma * %.9g",
-                  double(out.width) / image.width, double(out.height) / image.height, sampleTypeName(image.sample_type),
-                  settings_.mesh_height);
-    std::string comment = std::string("ddtup ") + DDTUP_VERSION + ": the optimised DDT mesh of " +
-                          inputName(task_.input) + " for a " + std::to_string(out.width) + "x" +
-                          std::to_string(out.height) + " output; x, y in output pixels, y up, the vertex at input " +
-                          "pixel centre (x, y) at ((x + 0.5) sx, " + std::to_string(out.height) + " - (y + 0.5) sy), " +
-                          factors;
+    char details[256];
+    std::snprintf(details, sizeof(details),
+                  "sx = %.9g, sy = %.9g; y up in PLY and OBJ (y = %u - that), down in SVG; colours straight, %s "
+                  "samples; z = luma * %.9g",
+                  double(out.width) / image.width, double(out.height) / image.height, out.height,
+                  sampleTypeName(image.sample_type), settings_.mesh_height);
+    const std::string comment = std::string("ddtup ") + DDTUP_VERSION + ": the optimised DDT mesh of " +
+                                inputName(task_.input) + " for a " + std::to_string(out.width) + "x" +
+                                std::to_string(out.height) + " output; x, y in output pixels, the vertex at input " +
+                                "pixel centre (x, y) at ((x + 0.5) sx, (y + 0.5) sy) from the top left; " + details;
     writeMeshFile(task_.mesh, indexedMeshOf(triangles, image, out, settings_.mesh_height), comment);
 }
 

@@ -47,4 +47,10 @@ struct IndexedMesh {
 // i; the ring's vertices follow.
 IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& input, OutputSize out, double height = 0.0);
 
+// The triangles indexedMeshOf makes from a triangulation of a width × height grid: the grid's
+// 2(w − 1)(h − 1), two per hull segment and two per corner.
+inline uint64_t indexedFaceCount(uint32_t width, uint32_t height) {
+    return 2 * uint64_t(width - 1) * (height - 1) + 4 * uint64_t(width - 1) + 4 * uint64_t(height - 1) + 8;
+}
+
 }  // namespace ddt

@@ -3,11 +3,10 @@
 // core/indexed_mesh.h says what the vertices, colours and triangles mean.
 #pragma once
 
-#include <cstddef>
-#include <functional>
 #include <optional>
 #include <string>
 
+#include "byte_buffer.h"
 #include "indexed_mesh.h"
 
 namespace ddt {
@@ -15,15 +14,22 @@ namespace ddt {
 enum class MeshFormat {
     Ply,  // binary little-endian: float x y z, colours as the input's type (uchar, ushort or float), int faces
     Obj,  // text: `v x y z r g b` (the widely read vertex-colour extension; alpha is dropped), `f` 1-based
+    Svg,  // one path per triangle, a linear gradient where the colour varies (core/io/svg_format.cpp)
 };
 
 // The format a path's extension (or a bare name: "ply", ".obj") names, any case; nullopt if none.
 std::optional<MeshFormat> meshFormatOf(const std::string& path_or_name);
-// The formats' names for messages: "ply or obj".
+// The formats' names for messages: "ply, obj or svg".
 const char* meshFormatNames();
 
-// Where the file's bytes go, in pieces of any size.
-using ByteSink = std::function<void(const char* data, size_t size)>;
+// The most triangles an SVG file holds. librsvg refuses documents of more than 1 000 000
+// elements or 500 000 references by url() (its src/limits.rs: a defence against malicious
+// files), and a triangle with a gradient takes four elements (path, gradient, two stops) and
+// one reference. Larger meshes are for PLY and OBJ (or simplification).
+constexpr uint64_t kMaxSvgTriangles = 200000;
+// "" if a mesh of `faces` triangles can be written as `format`, else the reason.
+std::string checkMeshSize(MeshFormat format, uint64_t faces);
+
 // The file in `format`, with `comment` (one line) in its header.
 void writeMesh(MeshFormat format, const IndexedMesh& mesh, const std::string& comment, const ByteSink& sink);
 
