@@ -2,6 +2,8 @@
 //
 // Glossary (the code uses these words only in these senses):
 // - vertex: a pixel centre (x, y), integer coordinates, id = y * width + x. y grows downwards.
+//   A simplified mesh (core/simplify/) uses a subset of the vertices, which keep their ids;
+//   its edges are any triangulation of them that still covers the grid's rectangle.
 // - orientation: orient(p, q, r) = (q - p) × (r - p) = (qx-px)(ry-py) - (qy-py)(rx-px).
 //   "Positive" triangles have orient > 0 (counter-clockwise in a y-up frame, clockwise on
 //   screen). Every triangle of a valid mesh is positive.
@@ -98,8 +100,9 @@ void forEachTriangle(const Mesh& mesh, F f) {
 }
 
 // Checks the mesh: every record consistent with its neighbours, every triangle positive,
-// interior edges shared by two triangles, boundary edges on the hull with one, total area
-// (w−1)(h−1), no duplicate edge. Returns "" if valid, else the first problem found.
+// interior edges shared by two triangles, boundary edges along the rectangle's sides with
+// one, Euler's count for a disk, total area (w−1)(h−1), no duplicate edge. Returns "" if
+// valid, else the first problem found.
 std::string checkMesh(const Mesh& mesh);
 
 }  // namespace ddt

@@ -1,0 +1,185 @@
+#include "edge_collapse.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace ddt {
+
+namespace {
+
+uint32_t otherEnd(const EdgeVertices& v, uint32_t p) { return v.a == p ? v.b : v.a; }
+
+// The rectangle's sides vertex v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
+uint32_t sidesOf(uint32_t v, uint32_t width, uint32_t height) {
+    const uint32_t x = v % width, y = v / width;
+    return uint32_t(x == 0) | uint32_t(x == width - 1) << 1 | uint32_t(y == 0) << 2 | uint32_t(y == height - 1) << 3;
+}
+
+int64_t orient(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r) {
+    const int64_t w = mesh.width;
+    const int64_t px = p % w, py = p / w, qx = q % w, qy = q / w, rx = r % w, ry = r / w;
+    return (qx - px) * (ry - py) - (qy - py) * (rx - px);
+}
+
+// The triangles on the sides of edge f, positive: (a, b, l) and (b, a, r) where they exist.
+template <typename Visit>
+void forEachSide(const EdgeVertices& v, Visit visit) {
+    if (v.l != kNone) visit(v.a, v.b, v.l);
+    if (v.r != kNone) visit(v.b, v.a, v.r);
+}
+
+void replaceLink(Mesh& mesh, uint32_t edge, uint32_t old_link, uint32_t new_link) {
+    EdgeNeighbours& n = mesh.neighbours[edge];
+    for (uint32_t* slot : {&n.bl, &n.la, &n.ar, &n.rb})
+        if (*slot == old_link) *slot = new_link;
+}
+
+void removeFrom(std::vector<uint32_t>& list, uint32_t value) { list.erase(std::find(list.begin(), list.end(), value)); }
+
+}  // namespace
+
+VertexEdges::VertexEdges(const Mesh& mesh) : at(mesh.vertexCount()) {
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        if (removedEdge(mesh, e)) continue;
+        at[mesh.vertices[e].a].push_back(e);
+        at[mesh.vertices[e].b].push_back(e);
+    }
+}
+
+bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) {
+    const EdgeVertices& ev = mesh.vertices[collapse.edge];
+    const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+    const uint32_t from_sides = sidesOf(from, mesh.width, mesh.height);
+    if (std::popcount(from_sides) >= 2) return false;  // a corner
+    if (from_sides && ev.l != kNone && ev.r != kNone) return false;  // a border vertex leaves its side
+    // Link condition: the common neighbours of a and b are e's adjacent vertices.
+    uint32_t common = 0;
+    for (uint32_t f : edges.at[from]) {
+        const uint32_t x = otherEnd(mesh.vertices[f], from);
+        if (x == to) continue;
+        for (uint32_t g : edges.at[to])
+            if (otherEnd(mesh.vertices[g], to) == x) {
+                if (x != ev.l && x != ev.r) return false;
+                ++common;
+            }
+    }
+    if (common != uint32_t(ev.l != kNone) + uint32_t(ev.r != kNone)) return false;
+    // No fold-over: the triangles at `from` that stay, with `to` in its place, stay positive.
+    for (uint32_t f : edges.at[from]) {
+        if (f == collapse.edge) continue;
+        bool folds = false;
+        forEachSide(mesh.vertices[f], [&](uint32_t p, uint32_t q, uint32_t r) {
+            if (p == to || q == to || r == to) return;  // one of e's triangles, which go
+            auto moved = [&](uint32_t v) { return v == from ? to : v; };
+            folds = folds || orient(mesh, moved(p), moved(q), moved(r)) <= 0;
+        });
+        if (folds) return false;
+    }
+    return true;
+}
+
+void collapseEdge(Mesh& mesh, VertexEdges& edges, Collapse collapse) {
+    const uint32_t e = collapse.edge;
+    const EdgeVertices ev = mesh.vertices[e];
+    const EdgeNeighbours en = mesh.neighbours[e];
+    const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+    // Each of e's triangles (a, b, l), (b, a, r): its edge from–third goes, to–third stays.
+    struct Side {
+        uint32_t third, kept, removed;
+    };
+    std::vector<Side> sides;
+    if (ev.l != kNone) sides.push_back({ev.l, collapse.b_into_a ? en.la : en.bl, collapse.b_into_a ? en.bl : en.la});
+    if (ev.r != kNone) sides.push_back({ev.r, collapse.b_into_a ? en.ar : en.rb, collapse.b_into_a ? en.rb : en.ar});
+
+    for (const Side& side : sides) {
+        // The removed edge's outer triangle (from, third, x) becomes the kept edge's (to, third, x).
+        const EdgeVertices rv = mesh.vertices[side.removed];
+        const EdgeNeighbours rn = mesh.neighbours[side.removed];
+        const bool outer_is_right = rv.l == to;
+        const uint32_t x = outer_is_right ? rv.r : rv.l;
+        const uint32_t outer[2] = {outer_is_right ? rn.ar : rn.bl, outer_is_right ? rn.rb : rn.la};
+        EdgeVertices& kv = mesh.vertices[side.kept];
+        EdgeNeighbours& kn = mesh.neighbours[side.kept];
+        const bool kept_left = kv.l == from;
+        if (x == kNone) {
+            (kept_left ? kv.l : kv.r) = kNone;
+            if (kept_left) kn.bl = kn.la = kNone;
+            else kn.ar = kn.rb = kNone;
+            continue;
+        }
+        // The outer edge at `to` (from–x, renamed below) and the one at the third vertex.
+        const bool first_at_from = mesh.vertices[outer[0]].a == from || mesh.vertices[outer[0]].b == from;
+        uint32_t at_to = first_at_from ? outer[0] : outer[1];
+        const uint32_t at_third = first_at_from ? outer[1] : outer[0];
+        // Where `from` has three neighbours, the outer triangle is (from, l, r): its edge at
+        // `from` is the other side's removed edge, whose kept edge takes its place.
+        for (const Side& other : sides)
+            if (at_to == other.removed) at_to = other.kept;
+        auto edgeAt = [&](uint32_t v) { return v == to ? at_to : at_third; };
+        if (kept_left) {  // (a, b, l): bl = b–l, la = l–a
+            kv.l = x;
+            kn.bl = edgeAt(kv.b);
+            kn.la = edgeAt(kv.a);
+        } else {  // (b, a, r): ar = a–r, rb = r–b
+            kv.r = x;
+            kn.ar = edgeAt(kv.a);
+            kn.rb = edgeAt(kv.b);
+        }
+        replaceLink(mesh, at_to, side.removed, side.kept);
+        replaceLink(mesh, at_third, side.removed, side.kept);
+        // The triangle's edge opposite `to` saw `from` there (also reached below, unless every
+        // edge at `from` goes: the three-neighbour case).
+        EdgeVertices& opposite = mesh.vertices[at_third];
+        if (opposite.l == from) opposite.l = to;
+        if (opposite.r == from) opposite.r = to;
+    }
+
+    // `to` takes `from`'s place in its edges and in the triangles around it.
+    auto removed = [&](uint32_t f) {
+        return f == e || std::any_of(sides.begin(), sides.end(), [&](const Side& s) { return s.removed == f; });
+    };
+    for (uint32_t f : edges.at[from]) {
+        if (removed(f)) continue;
+        EdgeVertices& fv = mesh.vertices[f];
+        const EdgeNeighbours& fn = mesh.neighbours[f];
+        (fv.a == from ? fv.a : fv.b) = to;
+        // The edge opposite `to` in each of f's triangles sees `from` as its adjacent vertex.
+        const bool to_is_a = fv.a == to;
+        for (uint32_t opposite : {fv.l != kNone ? (to_is_a ? fn.bl : fn.la) : kNone,
+                                  fv.r != kNone ? (to_is_a ? fn.rb : fn.ar) : kNone}) {
+            if (opposite == kNone) continue;
+            EdgeVertices& ov = mesh.vertices[opposite];
+            if (ov.l == from) ov.l = to;
+            if (ov.r == from) ov.r = to;
+        }
+    }
+
+    removeFrom(edges.at[to], e);
+    for (uint32_t f : edges.at[from])
+        if (!removed(f)) edges.at[to].push_back(f);
+    edges.at[from].clear();
+    for (const Side& side : sides) removeFrom(edges.at[side.third], side.removed);
+    for (uint32_t f : {e, sides.size() > 0 ? sides[0].removed : kNone, sides.size() > 1 ? sides[1].removed : kNone}) {
+        if (f == kNone) continue;
+        mesh.vertices[f] = {kNone, kNone, kNone, kNone};
+        mesh.neighbours[f] = {kNone, kNone, kNone, kNone};
+    }
+}
+
+void compactEdges(Mesh& mesh) {
+    std::vector<uint32_t> new_id(mesh.edgeCount(), kNone);
+    uint32_t next = 0;
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e)
+        if (!removedEdge(mesh, e)) new_id[e] = next++;
+    auto renumber = [&](uint32_t f) { return f == kNone ? kNone : new_id[f]; };
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        if (new_id[e] == kNone) continue;
+        const EdgeNeighbours& n = mesh.neighbours[e];
+        mesh.vertices[new_id[e]] = mesh.vertices[e];
+        mesh.neighbours[new_id[e]] = {renumber(n.bl), renumber(n.la), renumber(n.ar), renumber(n.rb)};
+    }
+    mesh.vertices.resize(next);
+    mesh.neighbours.resize(next);
+}
+
+}  // namespace ddt
