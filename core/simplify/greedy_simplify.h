@@ -1,0 +1,32 @@
+// Serial greedy simplification, the quality reference for the parallel rule (as
+// core/lawson.h is for the flips): Garland and Heckbert's loop — always the legal collapse of
+// least quadric error next (core/simplify/quadric.h), ties by edge id and then b into a first —
+// until at most the target count of vertices is left. Each vertex starts with the quadric of
+// its triangles; a collapse adds `from`'s quadric to `to`'s. The cost of collapsing `from` into
+// `to` is the summed quadric at `to`'s point: `to` stays where it is (the best endpoint, see
+// edge_collapse.h), so no quadric is ever inverted and flat regions, whose quadrics are
+// singular, need no fallback.
+#pragma once
+
+#include <cstdint>
+
+#include "image.h"
+#include "mesh.h"
+
+namespace ddt {
+
+struct SimplifyStats {
+    uint32_t vertices_before = 0, vertices_after = 0;
+    uint64_t collapses = 0;
+    double last_cost = 0.0;  // the error of the last collapse: what the next vertex would have cost at least
+};
+
+// The vertices a mesh uses (a simplified mesh keeps a subset of the grid's).
+uint32_t usedVertexCount(const Mesh& mesh);
+
+// Simplifies `mesh` (of `image`, whose pixels give the vertices' colours) down to at most
+// `target` vertices, or as far as legal collapses go (the four corners stay). The result is
+// compacted (core/simplify/edge_collapse.h).
+SimplifyStats simplifySerial(Mesh& mesh, const Image& image, uint32_t target);
+
+}  // namespace ddt

@@ -1,0 +1,69 @@
+#include "quadric.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace ddt {
+
+namespace {
+
+// Index of A[i][j], i <= j, in the upper triangle stored row by row for n = kMaxQuadricDimensions.
+constexpr uint32_t upper(uint32_t i, uint32_t j) {
+    return i * kMaxQuadricDimensions - i * (i - 1) / 2 + (j - i);
+}
+
+double dot(const double* u, const double* v, uint32_t n) {
+    double sum = 0.0;
+    for (uint32_t k = 0; k < n; ++k) sum += u[k] * v[k];
+    return sum;
+}
+
+}  // namespace
+
+Quadric& Quadric::operator+=(const Quadric& other) {
+    for (uint32_t k = 0; k < std::size(a); ++k) a[k] += other.a[k];
+    for (uint32_t k = 0; k < kMaxQuadricDimensions; ++k) b[k] += other.b[k];
+    c += other.c;
+    return *this;
+}
+
+double Quadric::at(const double* v, uint32_t n) const {
+    double sum = c;
+    for (uint32_t i = 0; i < n; ++i) {
+        sum += 2.0 * b[i] * v[i] + a[upper(i, i)] * v[i] * v[i];
+        for (uint32_t j = i + 1; j < n; ++j) sum += 2.0 * a[upper(i, j)] * v[i] * v[j];
+    }
+    return std::max(0.0, sum);
+}
+
+Quadric planeQuadric(const double* p, const double* q, const double* r, uint32_t n, double area) {
+    // An orthonormal basis e1, e2 of the plane (Gram–Schmidt); then the squared distance of v
+    // is |v − p|² − ((v − p)·e1)² − ((v − p)·e2)²: A = I − e1e1ᵀ − e2e2ᵀ, b = −A p, c = pᵀA p.
+    double e1[kMaxQuadricDimensions], e2[kMaxQuadricDimensions];
+    for (uint32_t k = 0; k < n; ++k) {
+        e1[k] = q[k] - p[k];
+        e2[k] = r[k] - p[k];
+    }
+    const double length1 = std::sqrt(dot(e1, e1, n));
+    Quadric quadric;
+    if (length1 == 0.0) return quadric;
+    for (uint32_t k = 0; k < n; ++k) e1[k] /= length1;
+    const double along = dot(e1, e2, n);
+    for (uint32_t k = 0; k < n; ++k) e2[k] -= along * e1[k];
+    const double length2 = std::sqrt(dot(e2, e2, n));
+    if (length2 == 0.0) return quadric;
+    for (uint32_t k = 0; k < n; ++k) e2[k] /= length2;
+    double ap[kMaxQuadricDimensions] = {};  // A p
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j) {
+            const double aij = (i == j ? 1.0 : 0.0) - e1[i] * e1[j] - e2[i] * e2[j];
+            if (i <= j) quadric.a[upper(i, j)] = area * aij;
+            ap[i] += aij * p[j];
+        }
+    for (uint32_t i = 0; i < n; ++i) quadric.b[i] = -area * ap[i];
+    quadric.c = area * dot(p, ap, n);
+    return quadric;
+}
+
+}  // namespace ddt

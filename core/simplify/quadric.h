@@ -1,0 +1,35 @@
+// Garland and Heckbert's quadric error metric, in the generalised form of their 1998 paper
+// "Simplifying surfaces with color and texture using quadric error metrics": a mesh vertex is
+// a point (x, y, colour channels) in n = 2 + channels dimensions, a triangle spans a plane
+// there, and the quadric of a set of triangles gives the sum of squared distances from a point
+// to their planes, Q(v) = vᵀAv + 2bᵀv + c, each plane weighted by its triangle's area.
+//
+// The picture is planar (all z = 0), so without colour every quadric would vanish: the colour
+// axes carry the error. Positions are in input pixels, times kPositionWeight, against colour
+// values in [0, 1]: one pixel of displacement weighs as much as the whole colour range, so in
+// smooth regions (gradients well below one range per pixel) a plane's distance is nearly the
+// colour error, and across hard edges it is still within a factor √2 of it.
+#pragma once
+
+#include <cstdint>
+
+namespace ddt {
+
+constexpr uint32_t kMaxQuadricDimensions = 6;  // x, y and up to four channels
+constexpr double kPositionWeight = 1.0;
+
+struct Quadric {
+    double a[kMaxQuadricDimensions * (kMaxQuadricDimensions + 1) / 2] = {};  // A's upper triangle, row by row
+    double b[kMaxQuadricDimensions] = {};
+    double c = 0.0;
+
+    Quadric& operator+=(const Quadric& other);
+    // Q(v) for a point v of `n` coordinates (never below 0: rounding is clamped away).
+    double at(const double* v, uint32_t n) const;
+};
+
+// The area-weighted quadric of the plane through p, q and r (n coordinates each); `area` is
+// the triangle's area in the picture (input pixels²). A degenerate triangle gives zero.
+Quadric planeQuadric(const double* p, const double* q, const double* r, uint32_t n, double area);
+
+}  // namespace ddt

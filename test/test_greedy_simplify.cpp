@@ -1,0 +1,87 @@
+// The serial greedy simplifier (core/simplify/greedy_simplify.h): targets reached with a valid
+// mesh, the same result every run, and the collapse order the quadrics call for.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "cost.h"
+#include "greedy_simplify.h"
+#include "lawson.h"
+#include "test_support.h"
+
+using namespace ddt;
+using namespace ddt::test;
+
+namespace {
+
+// A 100 × 70 piece of the photo crop: the serial reference is slow (a few seconds for 512²).
+Image smallPhoto() {
+    const Image photo = photoCrop();
+    std::vector<float> pixels;
+    for (uint32_t y = 60; y < 130; ++y)
+        pixels.insert(pixels.end(), photo.row(y) + 100 * photo.channels, photo.row(y) + 200 * photo.channels);
+    return makeImage(100, 70, photo.channels, pixels);
+}
+
+// The mesh the optimizer makes for `image`, as simplification gets it.
+Mesh optimisedMesh(const Image& image) {
+    Mesh mesh = buildGridMesh(image.width, image.height);
+    optimizeSerial(mesh, costFieldOf(image));
+    return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("greedy simplify: reaches each target with a valid mesh, the same every run") {
+    const Image photo = smallPhoto();
+    const Mesh optimised = optimisedMesh(photo);
+    const uint32_t all = photo.width * photo.height;
+    for (double fraction : {0.5, 0.1, 0.02}) {
+        INFO("fraction " << fraction);
+        const uint32_t target = uint32_t(fraction * all);
+        Mesh mesh = optimised, again = optimised;
+        const SimplifyStats stats = simplifySerial(mesh, photo, target);
+        simplifySerial(again, photo, target);
+        CHECK(checkMesh(mesh) == "");
+        CHECK(usedVertexCount(mesh) == target);
+        CHECK(stats.vertices_before == all);
+        CHECK(stats.vertices_after == target);
+        CHECK(stats.collapses == all - target);
+        CHECK(sameRecords(mesh, again));
+    }
+}
+
+TEST_CASE("greedy simplify: a flat picture keeps only its corners") {
+    const Image flat = makeImage(9, 7, 3, std::vector<float>(9 * 7 * 3, 0.25f));
+    Mesh mesh = buildGridMesh(9, 7);
+    const SimplifyStats stats = simplifySerial(mesh, flat, 0);
+    CHECK(checkMesh(mesh) == "");
+    CHECK(stats.vertices_after == 4);
+    CHECK(stats.last_cost == 0.0);
+}
+
+TEST_CASE("greedy simplify: a plane costs nothing, a bump on it its error") {
+    // A linear ramp is one plane in (x, y, value): every collapse lies on it and costs nothing,
+    // down to the corners. A bump of 0.5 on it costs about 0.5² times its triangles' area.
+    const uint32_t w = 8, h = 6, bump = 3 * w + 4;
+    std::vector<float> values(w * h);
+    for (uint32_t v = 0; v < w * h; ++v) values[v] = 0.05f * float(v % w) + 0.02f * float(v / w);
+    Mesh plane = buildGridMesh(w, h);
+    const SimplifyStats flat = simplifySerial(plane, makeImage(w, h, 1, values), 4);
+    CHECK(flat.vertices_after == 4);
+    CHECK(flat.last_cost < 1e-12);  // rounding only
+    values[bump] += 0.5f;
+    Mesh bumpy = buildGridMesh(w, h);
+    const SimplifyStats with_bump = simplifySerial(bumpy, makeImage(w, h, 1, values), 4);
+    CHECK(checkMesh(bumpy) == "");
+    CHECK(with_bump.last_cost > 0.1);
+}
+
+TEST_CASE("greedy simplify: the flips run again on the simplified mesh") {
+    const Image photo = smallPhoto();
+    Mesh mesh = optimisedMesh(photo);
+    simplifySerial(mesh, photo, photo.width * photo.height / 10);
+    const OptimizeStats stats = optimizeSerial(mesh, costFieldOf(photo));
+    CHECK(checkMesh(mesh) == "");
+    CHECK(stats.cost_final <= stats.cost_init);
+}
