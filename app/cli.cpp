@@ -46,6 +46,10 @@ bool sameFile(const std::string& a, const std::string& b) {
 
 // "" if --mesh and --mesh-height make sense with the rest, else the message.
 std::string validateMesh(const CLI::App& app, const Settings& settings) {
+    if (app.count("--simplify") && !(settings.simplify > 0.0 && settings.simplify <= 1.0))
+        return "--simplify must be a fraction in (0, 1] (got " + app.get_option("--simplify")->as<std::string>() + ")";
+    if (settings.simplify > 0.0 && app.count("--reconstruct") && settings.reconstruct == "consistent")
+        return "--simplify renders the linear surface on the simplified mesh; --reconstruct consistent does not apply";
     if (app.count("--mesh-height") && settings.mesh.empty()) return "--mesh-height needs --mesh";
     if (!std::isfinite(settings.mesh_height)) return "--mesh-height must be a finite number";
     if (settings.mesh.empty()) return "";
@@ -158,6 +162,12 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "out to the image rectangle; straight vertex colours (PLY: as the input's 8, 16 bits or float; "
                    "OBJ: 0 to 1, no alpha; SVG: a linear gradient per triangle, at most 200000 triangles) from the "
                    "input's pixels, i.e. plain DDT's surface whatever --reconstruct says")
+        ->default_str("none");
+    app.add_option("--simplify", settings.simplify,
+                   "Keep this fraction of the mesh's vertices, in (0, 1]: edge collapses in order of least quadric "
+                   "error over position and colour (Garland-Heckbert), each vertex kept where it was, then the flips "
+                   "again; the output is the linear surface on the simplified mesh with each vertex's best colour, "
+                   "and --mesh writes that mesh. Runs on the CPU (serial), on images the backend holds in one piece")
         ->default_str("none");
     app.add_option("--mesh-height", settings.mesh_height,
                    "With --mesh: z = luma × this, in output pixels (Rec. 709 weights on the stored values), a "

@@ -25,6 +25,7 @@ struct Settings {
     bool skip_existing = false;
     std::string mesh;          // --mesh: single form, a file (.ply, .obj); batch forms, a format; "" = none
     double mesh_height = 0.0;  // --mesh-height: z = luma × this, in output pixels; 0 = flat
+    double simplify = 0.0;     // --simplify: the fraction of the vertices kept, in (0, 1]; 0 = no simplification
 
     double scale = 0.0;       // 0: not given
     uint32_t width = 0;       // 0: not given

@@ -8,6 +8,7 @@
 
 #include "indexed_mesh.h"
 #include "mesh_file.h"
+#include "simplified_upscale.h"
 #include "tiled_upscale.h"
 
 namespace ddt {
@@ -167,7 +168,12 @@ void ImageJob::render(Backend& backend) {
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
         options.mesh = mesh ? &*mesh : nullptr;
-        report_.stats = upscaleRows(backend, state_->image, out, options, sink, on_step);
+        if (settings_.simplify > 0.0) {
+            SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify, options, sink, on_step);
+            report_.stats = simplified.optimize;
+            state_->image = std::move(simplified.values);  // the mesh file's colours; the input is not read again
+        } else
+            report_.stats = upscaleRows(backend, state_->image, out, options, sink, on_step);
     } catch (const UserError& error) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }

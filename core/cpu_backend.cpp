@@ -12,27 +12,12 @@ namespace ddt {
 
 namespace {
 
-// Rows a rendering task takes at least: enough to amortise finding the band's triangles.
-const size_t kRowsPerBand = 16;
-
 // What the CPU backend may hold at once: by memoryNeeded's estimate enough for a 512² RGB
 // input's consistent reconstruction in one piece (about 141 MB, with the 1/8 that tiling keeps
 // spare), where tiles would cost a quarter more work. Larger inputs go in 256-pixel tiles, two
 // at a time on two threads: the e2e bench's jobs stay under 300 MB of peak resident size, an
 // idle process linked to OpenImageIO's libraries taking 125 MB of it.
 const uint64_t kWorkingMemory = uint64_t(160) << 20;
-
-// Renders `window` in bands of rows in parallel: each band writes only its own rows, so the
-// result does not depend on the split.
-void renderInBands(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows) {
-    const size_t row_floats = size_t(window.width()) * channels;
-    parallelFor(window.height(), kRowsPerBand, [&](size_t begin, size_t end) {
-        RenderWindow band = window;
-        band.y_begin = window.y_begin + uint32_t(begin);
-        band.y_end = window.y_begin + uint32_t(end);
-        renderer.renderWindow(band, rows + begin * row_floats);
-    });
-}
 
 // A surface taken out of the backend with its triangle tables: it owns what the renderer reads.
 class TakenSurface final : public HostSurface {
@@ -44,7 +29,7 @@ public:
     TakenSurface& operator=(const TakenSurface&) = delete;
 
     void renderWindow(const RenderWindow& window, float* rows) const override {
-        renderInBands(renderer_, window, surface_.values.channels, rows);
+        renderInParallel(renderer_, window, surface_.values.channels, rows);
     }
 
 private:
@@ -83,7 +68,7 @@ public:
     }
 
     void renderWindow(const RenderWindow& window, float* rows) override {
-        renderInBands(renderer(), window, image_->channels, rows);
+        renderInParallel(renderer(), window, image_->channels, rows);
     }
 
     bool handsOverSurface() const override { return true; }

@@ -1,6 +1,9 @@
 #include "indexed_mesh.h"
 
 #include <cassert>
+#include <utility>
+
+#include "mesh.h"
 
 namespace ddt {
 
@@ -58,45 +61,50 @@ IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& i
     const uint32_t w = input.width, h = input.height;
     const double W = out.width, H = out.height;
     MeshBuilder builder(input, out, height);
-    for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) builder.addPixelVertex(x, y);
-    for (size_t t = 0; t + 2 < triangles.size(); t += 3) builder.addFace(triangles[t], triangles[t + 1], triangles[t + 2]);
+    // The vertices the triangles use, in id order (all of the grid's but for a simplified mesh).
+    std::vector<uint32_t> index(size_t(w) * h, kNone);
+    for (uint32_t v : triangles) index[v] = 0;
+    for (uint32_t v = 0; v < w * h; ++v)
+        if (index[v] != kNone) index[v] = builder.addPixelVertex(v % w, v / w);
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+        builder.addFace(index[triangles[t]], index[triangles[t + 1]], index[triangles[t + 2]]);
 
     // The ring: each hull vertex's copy on the rectangle's side, then the four corners. A side
-    // of n hull vertices gets n copies and 2(n − 1) triangles.
+    // with n vertices gets n copies and 2(n − 1) triangles; a corner is on two sides.
     const double sx = W / w, sy = H / h;
-    auto side = [&](uint32_t n, auto pixel_of, auto copy_at) {
-        uint32_t previous_pixel = 0, previous_copy = 0;
+    using Point = std::pair<double, double>;
+    // Walks one side's used vertices in order; returns its first and last copies.
+    auto side = [&](uint32_t n, auto pixel_at, auto copy_at) {
+        uint32_t previous_pixel = kNone, previous_copy = kNone, first_copy = kNone;
         for (uint32_t i = 0; i < n; ++i) {
-            const auto [px, py] = pixel_of(i);
+            const uint32_t pixel_id = pixel_at(i);
+            if (index[pixel_id] == kNone) continue;
             const auto [cx, cy] = copy_at(i);
-            const uint32_t pixel = py * w + px, copy = builder.addVertex(cx, cy, px, py);
-            if (i) {
+            const uint32_t pixel = index[pixel_id], copy = builder.addVertex(cx, cy, pixel_id % w, pixel_id / w);
+            if (previous_pixel != kNone) {
                 builder.addFace(previous_pixel, pixel, copy);
                 builder.addFace(previous_pixel, copy, previous_copy);
             }
+            if (first_copy == kNone) first_copy = copy;
             previous_pixel = pixel;
             previous_copy = copy;
         }
+        return std::pair<uint32_t, uint32_t>{first_copy, previous_copy};
     };
-    using Pair = std::pair<uint32_t, uint32_t>;
-    using Point = std::pair<double, double>;
-    const uint32_t top = w * h;  // the first copy of each side: top, bottom, left, right
-    side(w, [&](uint32_t i) { return Pair{i, 0}; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, 0.0}; });
-    side(w, [&](uint32_t i) { return Pair{i, h - 1}; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, H}; });
-    side(h, [&](uint32_t i) { return Pair{0, i}; }, [&](uint32_t i) { return Point{0.0, (i + 0.5) * sy}; });
-    side(h, [&](uint32_t i) { return Pair{w - 1, i}; }, [&](uint32_t i) { return Point{W, (i + 0.5) * sy}; });
-    const uint32_t bottom = top + w, left = bottom + w, right = left + h;
+    const auto top = side(w, [&](uint32_t i) { return i; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, 0.0}; });
+    const auto bottom = side(w, [&](uint32_t i) { return (h - 1) * w + i; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, H}; });
+    const auto left = side(h, [&](uint32_t i) { return i * w; }, [&](uint32_t i) { return Point{0.0, (i + 0.5) * sy}; });
+    const auto right = side(h, [&](uint32_t i) { return i * w + w - 1; }, [&](uint32_t i) { return Point{W, (i + 0.5) * sy}; });
     // Each corner square: the corner pixel, its copies on the two sides, the rectangle's corner.
     auto corner = [&](uint32_t px, uint32_t py, uint32_t horizontal_copy, uint32_t vertical_copy, double cx, double cy) {
-        const uint32_t c = builder.addVertex(cx, cy, px, py), pixel = py * w + px;
+        const uint32_t c = builder.addVertex(cx, cy, px, py), pixel = index[py * w + px];
         builder.addFace(pixel, horizontal_copy, c);
         builder.addFace(pixel, c, vertical_copy);
     };
-    corner(0, 0, top, left, 0.0, 0.0);
-    corner(w - 1, 0, top + w - 1, right, W, 0.0);
-    corner(0, h - 1, bottom, left + h - 1, 0.0, H);
-    corner(w - 1, h - 1, bottom + w - 1, right + h - 1, W, H);
+    corner(0, 0, top.first, left.first, 0.0, 0.0);
+    corner(w - 1, 0, top.second, right.first, W, 0.0);
+    corner(0, h - 1, bottom.first, left.second, 0.0, H);
+    corner(w - 1, h - 1, bottom.second, right.second, W, H);
     return builder.take();
 }
 

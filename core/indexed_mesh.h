@@ -43,12 +43,13 @@ struct IndexedMesh {
 // The mesh of `triangles` (three vertex ids each, positive in the grid's y-down frame, as
 // core/mesh.h's triangles are) over the pixel grid of `input` (vertex id y·width + x of the
 // whole input, which tiles stitched together use too), coloured by `input`'s pixels, for an
-// output of size `out`, with z = luma × `height` (0: flat). Vertex i < width·height is pixel
-// i; the ring's vertices follow.
+// output of size `out`, with z = luma × `height` (0: flat). The vertices the triangles use
+// come first, in id order (all the pixels, unless the mesh was simplified); the ring's follow.
 IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& input, OutputSize out, double height = 0.0);
 
-// The triangles indexedMeshOf makes from a triangulation of a width × height grid: the grid's
-// 2(w − 1)(h − 1), two per hull segment and two per corner.
+// The triangles indexedMeshOf makes from a triangulation of all a width × height grid's
+// vertices: the grid's 2(w − 1)(h − 1), two per hull segment and two per corner (a simplified
+// mesh makes fewer).
 inline uint64_t indexedFaceCount(uint32_t width, uint32_t height) {
     return 2 * uint64_t(width - 1) * (height - 1) + 4 * uint64_t(width - 1) + 4 * uint64_t(height - 1) + 8;
 }

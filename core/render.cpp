@@ -7,6 +7,7 @@
 
 #include "channel_count.h"
 #include "divide_by.h"
+#include "parallel.h"
 #include "raster.h"
 
 namespace ddt {
@@ -303,6 +304,17 @@ void MeshRenderer::locateSamples(OutputSize out, uint32_t first, uint32_t end, s
     });
     uint32_t total = start;
     for (uint32_t i = 0; i < end - first; ++i) ends[i] = total += ends[i];
+}
+
+void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows) {
+    const size_t rows_per_band = 16;  // at least: enough to amortise finding a band's triangles
+    const size_t row_floats = size_t(window.width()) * channels;
+    parallelFor(window.height(), rows_per_band, [&](size_t begin, size_t end) {
+        RenderWindow band = window;
+        band.y_begin = window.y_begin + uint32_t(begin);
+        band.y_end = window.y_begin + uint32_t(end);
+        renderer.renderWindow(band, rows + begin * row_floats);
+    });
 }
 
 Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles) {

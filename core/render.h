@@ -97,6 +97,10 @@ private:
     uint32_t tallest_ = 0;                   // most rows any triangle spans
 };
 
+// Renders `window` with `renderer` in bands of rows on the threads of core/parallel.h: each
+// band writes only its own rows, so the result does not depend on the split.
+void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows);
+
 // Renders the whole image in memory (tests, bench); `bubbles` as for MeshRenderer.
 Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles = nullptr);
 

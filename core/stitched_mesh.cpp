@@ -73,12 +73,11 @@ std::string StitchedMesh::check(const std::vector<uint32_t>& triangles, uint32_t
         return std::find(targets.begin() + first[from], targets.begin() + first[from + 1], to) !=
                targets.begin() + first[from + 1];
     };
-    // A unit step along one side of the rectangle.
+    // A segment along one side of the rectangle (longer than a step where simplification
+    // removed the border vertices between).
     auto onBorder = [&](uint32_t u, uint32_t v) {
         const uint32_t ux = u % width, uy = u / width, vx = v % width, vy = v / width;
-        const bool along_x = uy == vy && (uy == 0 || uy == height - 1) && (ux + 1 == vx || vx + 1 == ux);
-        const bool along_y = ux == vx && (ux == 0 || ux == width - 1) && (uy + 1 == vy || vy + 1 == uy);
-        return along_x || along_y;
+        return (uy == vy && (uy == 0 || uy == height - 1)) || (ux == vx && (ux == 0 || ux == width - 1));
     };
     for (uint32_t u = 0; u < vertices; ++u) {
         std::sort(targets.begin() + first[u], targets.begin() + first[u + 1]);

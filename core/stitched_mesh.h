@@ -34,8 +34,9 @@ public:
     // "" if the triangles tile the input's rectangle of pixel centres exactly once, else what
     // is wrong. Sufficient: every triangle positive, every directed edge in one triangle at
     // most, and each edge's reverse in another triangle unless the edge runs along the
-    // rectangle's border (then it covers the inside of the border once, and crossing an edge
-    // never changes how often a point is covered).
+    // rectangle's border. Then crossing an inner edge never changes how often a point is
+    // covered, so every inner point is covered equally often, and the total area, which is
+    // checked too, makes that once.
     static std::string check(const std::vector<uint32_t>& triangles, uint32_t width, uint32_t height);
 
 private:

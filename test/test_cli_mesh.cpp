@@ -106,6 +106,35 @@ TEST_CASE("cli mesh: the batch forms write one mesh beside each output, named li
     CHECK(std::filesystem::exists(work / "out/diag16_rgb.obj"));
 }
 
+TEST_CASE("cli mesh: --simplify keeps the fraction of the vertices asked for, and the file has them") {
+    TempFolder work;
+    const Run run = runDdtup({kInput, "-s", "2", work / "out.png", "--simplify", "0.25", "--mesh", work / "mesh.ply",
+                              "--backend", "cpu", "-q"});
+    REQUIRE(run.exit_code == 0);
+    CHECK(run.err.empty());
+    // 256 of the 1024 vertices, at most a copy of each kept hull vertex and the 4 corners' copies.
+    const long vertices = assimpCount(work / "mesh.ply", "Vertices");
+    CHECK(vertices > 256 + 4 + 4);
+    CHECK(vertices <= 256 + 4 * 32 + 4);
+    const ddt::Image out = ddt::readImage(work / "out.png");
+    CHECK(out.width == 64);
+    CHECK(out.height == 64);
+}
+
+TEST_CASE("cli mesh: bad --simplify values get one line") {
+    TempFolder work;
+    const std::string out = work / "out.png";
+    for (const std::string value : {"0", "1.5", "-0.1", "nan"})
+        requireExactError(runDdtup({kInput, out, "--simplify", value}), 2,
+                          "--simplify must be a fraction in (0, 1] (got " + value + ")");
+    requireExactError(runDdtup({kInput, out, "--simplify", "0.5", "--reconstruct", "consistent"}), 2,
+                      "--simplify renders the linear surface on the simplified mesh; --reconstruct consistent does not apply");
+    const std::string photo = ddt::test::testDataPath("../../bench/data/real/astronaut.png");
+    requireExactError(runDdtup({photo, out, "--simplify", "0.5", "--backend", "cpu", "--tile", "128", "-q"}), 1,
+                      photo + ": --simplify needs the image in one piece, and 512×512 is larger than --tile");
+    CHECK(work.names().empty());
+}
+
 TEST_CASE("cli mesh: bad --mesh values get one line") {
     TempFolder work;
     const std::string out = work / "out.png";

@@ -40,21 +40,25 @@ TEST_CASE("greedy simplify: reaches each target with a valid mesh, the same ever
         INFO("fraction " << fraction);
         const uint32_t target = uint32_t(fraction * all);
         Mesh mesh = optimised, again = optimised;
-        const SimplifyStats stats = simplifySerial(mesh, photo, target);
-        simplifySerial(again, photo, target);
+        Image values = photo, values_again = photo;
+        const SimplifyStats stats = simplifySerial(mesh, values, target);
+        simplifySerial(again, values_again, target);
         CHECK(checkMesh(mesh) == "");
         CHECK(usedVertexCount(mesh) == target);
         CHECK(stats.vertices_before == all);
         CHECK(stats.vertices_after == target);
         CHECK(stats.collapses == all - target);
         CHECK(sameRecords(mesh, again));
+        CHECK(samePixels(values.pixels, values_again.pixels));
+        for (float value : values.pixels) CHECK((value >= 0.0f && value <= 1.0f));
     }
 }
 
 TEST_CASE("greedy simplify: a flat picture keeps only its corners") {
-    const Image flat = makeImage(9, 7, 3, std::vector<float>(9 * 7 * 3, 0.25f));
+    Image flat = makeImage(9, 7, 3, std::vector<float>(9 * 7 * 3, 0.25f));
     Mesh mesh = buildGridMesh(9, 7);
     const SimplifyStats stats = simplifySerial(mesh, flat, 0);
+    for (float value : flat.pixels) CHECK(value == Approx(0.25f).margin(1e-6));  // the best colour of a flat picture
     CHECK(checkMesh(mesh) == "");
     CHECK(stats.vertices_after == 4);
     CHECK(stats.last_cost == 0.0);
@@ -67,12 +71,16 @@ TEST_CASE("greedy simplify: a plane costs nothing, a bump on it its error") {
     std::vector<float> values(w * h);
     for (uint32_t v = 0; v < w * h; ++v) values[v] = 0.05f * float(v % w) + 0.02f * float(v / w);
     Mesh plane = buildGridMesh(w, h);
-    const SimplifyStats flat = simplifySerial(plane, makeImage(w, h, 1, values), 4);
+    Image ramp = makeImage(w, h, 1, values);
+    const SimplifyStats flat = simplifySerial(plane, ramp, 4);
     CHECK(flat.vertices_after == 4);
     CHECK(flat.last_cost < 1e-12);  // rounding only
+    // The corners keep their values: the plane's colour where they stand.
+    for (uint32_t corner : {0u, w - 1, (h - 1) * w, h * w - 1}) CHECK(ramp.pixels[corner] == Approx(values[corner]).margin(1e-6));
     values[bump] += 0.5f;
     Mesh bumpy = buildGridMesh(w, h);
-    const SimplifyStats with_bump = simplifySerial(bumpy, makeImage(w, h, 1, values), 4);
+    Image bumped = makeImage(w, h, 1, values);
+    const SimplifyStats with_bump = simplifySerial(bumpy, bumped, 4);
     CHECK(checkMesh(bumpy) == "");
     CHECK(with_bump.last_cost > 0.1);
 }
@@ -80,7 +88,8 @@ TEST_CASE("greedy simplify: a plane costs nothing, a bump on it its error") {
 TEST_CASE("greedy simplify: the flips run again on the simplified mesh") {
     const Image photo = smallPhoto();
     Mesh mesh = optimisedMesh(photo);
-    simplifySerial(mesh, photo, photo.width * photo.height / 10);
+    Image values = photo;
+    simplifySerial(mesh, values, photo.width * photo.height / 10);
     const OptimizeStats stats = optimizeSerial(mesh, costFieldOf(photo));
     CHECK(checkMesh(mesh) == "");
     CHECK(stats.cost_final <= stats.cost_init);

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "backend.h"
+#include "greedy_simplify.h"
 #include "indexed_mesh.h"
 #include "mesh_file.h"
 #include "render.h"
@@ -135,6 +136,39 @@ TEST_CASE("mesh export: the file's linear surface is plain DDT's render, out to 
                 // Both are the same interpolation in double, with weights computed in different
                 // ways (the renderer's exact integers, this test's coordinates), rounded to float.
                 CHECK(value[k] == Approx(plain.row(y)[x * 3 + k]).margin(1e-6));
+        }
+}
+
+TEST_CASE("mesh export: a simplified mesh's file has only its vertices and is still its render") {
+    std::mt19937 rng(13);
+    const uint32_t w = 12, h = 9;
+    Mesh mesh = shuffledMesh(w, h, rng);
+    Image values = randomImage(rng, w, h, 3);
+    simplifySerial(mesh, values, 30);
+    REQUIRE(checkMesh(mesh) == "");
+    const OutputSize out{29, 20};
+    const Image plain = renderImage(mesh, values, out);
+    const IndexedMesh m = indexedMeshOf(triangleIds(mesh), values, out);
+    // The kept vertices, a copy of each kept hull vertex (a corner on two sides), four corners.
+    uint32_t hull = 0;
+    std::vector<bool> used(w * h, false);
+    for (const EdgeVertices& v : mesh.vertices) used[v.a] = used[v.b] = true;
+    for (uint32_t v = 0; v < w * h; ++v) {
+        const uint32_t x = v % w, y = v / w;
+        if (used[v]) hull += uint32_t(x == 0) + uint32_t(x == w - 1) + uint32_t(y == 0) + uint32_t(y == h - 1);
+    }
+    CHECK(m.vertexCount() == usedVertexCount(mesh) + hull + 4);
+    double area = 0.0;
+    for (uint32_t f = 0; f < m.faceCount(); ++f) {
+        CHECK(twiceFaceArea(m, f) > 0.0);
+        area += twiceFaceArea(m, f) / 2;
+    }
+    CHECK(area == Approx(double(out.width) * out.height).epsilon(1e-12));
+    for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x) {
+            INFO("output pixel (" << x << ", " << y << ")");
+            const std::vector<double> value = valueAt(m, x + 0.5, out.height - (y + 0.5));
+            for (uint32_t k = 0; k < 3; ++k) CHECK(value[k] == Approx(plain.row(y)[x * 3 + k]).margin(1e-6));  // as above
         }
 }
 

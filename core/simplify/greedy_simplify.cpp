@@ -6,6 +6,7 @@
 
 #include "edge_collapse.h"
 #include "quadric.h"
+#include "reconstruct.h"
 
 namespace ddt {
 
@@ -38,6 +39,26 @@ std::vector<Quadric> vertexQuadrics(const Mesh& mesh, const Points& points) {
     return quadrics;
 }
 
+// Each kept vertex's colour: its quadric's minimum where it stands.
+void setBestColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const Points& points, Image& image) {
+    std::vector<bool> used(mesh.vertexCount(), false);
+    for (const EdgeVertices& v : mesh.vertices) used[v.a] = used[v.b] = true;
+    const uint32_t c = image.channels;
+    const bool bounded = boundedToUnit(image.sample_type);
+    std::vector<float> best(image.pixels);
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+        if (!used[v]) continue;
+        double point[kMaxQuadricDimensions];
+        points.of(v, point);
+        if (!quadrics[v].minimiseTail(point, 2, points.n)) continue;
+        float* colour = &best[size_t(v) * c];
+        for (uint32_t k = 0; k < c; ++k) colour[k] = bounded ? float(std::clamp(point[2 + k], 0.0, 1.0)) : float(point[2 + k]);
+        if (image.hasAlpha())
+            for (uint32_t k = 0; k + 1 < c; ++k) colour[k] = std::min(colour[k], colour[c - 1]);
+    }
+    image.pixels = std::move(best);
+}
+
 struct Candidate {
     double cost;
     uint32_t edge;
@@ -61,7 +82,7 @@ uint32_t usedVertexCount(const Mesh& mesh) {
     return uint32_t(std::count(used.begin(), used.end(), true));
 }
 
-SimplifyStats simplifySerial(Mesh& mesh, const Image& image, uint32_t target) {
+SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target) {
     SimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     const Points points{image, 2 + image.channels};
@@ -112,6 +133,7 @@ SimplifyStats simplifySerial(Mesh& mesh, const Image& image, uint32_t target) {
         }
     }
     compactEdges(mesh);
+    setBestColours(mesh, quadrics, points, image);
     return stats;
 }
 

@@ -24,9 +24,11 @@ struct SimplifyStats {
 // The vertices a mesh uses (a simplified mesh keeps a subset of the grid's).
 uint32_t usedVertexCount(const Mesh& mesh);
 
-// Simplifies `mesh` (of `image`, whose pixels give the vertices' colours) down to at most
-// `target` vertices, or as far as legal collapses go (the four corners stay). The result is
-// compacted (core/simplify/edge_collapse.h).
-SimplifyStats simplifySerial(Mesh& mesh, const Image& image, uint32_t target);
+// Simplifies `mesh` down to at most `target` vertices, or as far as legal collapses go (the
+// four corners stay); the result is compacted (core/simplify/edge_collapse.h). `values` holds
+// the picture's pixels, the vertices' colours, on entry; on return each kept vertex has the
+// colour its quadric calls for where it stands (the least-squares colour of the planes it
+// absorbed), within [0, 1] for integer sample types and, premultiplied, within its alpha.
+SimplifyStats simplifySerial(Mesh& mesh, Image& values, uint32_t target);
 
 }  // namespace ddt

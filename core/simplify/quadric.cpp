@@ -37,6 +37,42 @@ double Quadric::at(const double* v, uint32_t n) const {
     return std::max(0.0, sum);
 }
 
+bool Quadric::minimiseTail(double* v, uint32_t fixed, uint32_t n) const {
+    // ∂Q/∂v_t = 2 (A_tt v_t + A_tf v_f + b_t) = 0: Gaussian elimination with partial pivoting
+    // on the tail block (at most four unknowns).
+    const uint32_t m = n - fixed;
+    double system[kMaxQuadricDimensions][kMaxQuadricDimensions + 1];
+    for (uint32_t i = 0; i < m; ++i) {
+        const uint32_t ti = fixed + i;
+        double rhs = -b[ti];
+        for (uint32_t f = 0; f < fixed; ++f) rhs -= a[upper(f, ti)] * v[f];
+        for (uint32_t j = 0; j < m; ++j) {
+            const uint32_t tj = fixed + j;
+            system[i][j] = a[ti <= tj ? upper(ti, tj) : upper(tj, ti)];
+        }
+        system[i][m] = rhs;
+    }
+    for (uint32_t col = 0; col < m; ++col) {
+        uint32_t pivot = col;
+        for (uint32_t r = col + 1; r < m; ++r)
+            if (std::abs(system[r][col]) > std::abs(system[pivot][col])) pivot = r;
+        if (std::abs(system[pivot][col]) < 1e-12) return false;
+        std::swap(system[col], system[pivot]);
+        for (uint32_t r = col + 1; r < m; ++r) {
+            const double factor = system[r][col] / system[col][col];
+            for (uint32_t j = col; j <= m; ++j) system[r][j] -= factor * system[col][j];
+        }
+    }
+    double tail[kMaxQuadricDimensions];
+    for (uint32_t i = m; i-- > 0;) {
+        double sum = system[i][m];
+        for (uint32_t j = i + 1; j < m; ++j) sum -= system[i][j] * tail[j];
+        tail[i] = sum / system[i][i];
+    }
+    for (uint32_t i = 0; i < m; ++i) v[fixed + i] = tail[i];
+    return true;
+}
+
 Quadric planeQuadric(const double* p, const double* q, const double* r, uint32_t n, double area) {
     // An orthonormal basis e1, e2 of the plane (Gram–Schmidt); then the squared distance of v
     // is |v − p|² − ((v − p)·e1)² − ((v − p)·e2)²: A = I − e1e1ᵀ − e2e2ᵀ, b = −A p, c = pᵀA p.

@@ -26,6 +26,10 @@ struct Quadric {
     Quadric& operator+=(const Quadric& other);
     // Q(v) for a point v of `n` coordinates (never below 0: rounding is clamped away).
     double at(const double* v, uint32_t n) const;
+    // The coordinates fixed..n−1 of v that minimise Q(v) with v's first `fixed` ones given: a
+    // vertex's best colour where it stands. False (v unchanged) if that block of A is singular,
+    // which needs planes that all contain a colour axis: vertical ones, not a picture's.
+    bool minimiseTail(double* v, uint32_t fixed, uint32_t n) const;
 };
 
 // The area-weighted quadric of the plane through p, q and r (n coordinates each); `area` is

@@ -1,0 +1,47 @@
+#include "simplified_upscale.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cost.h"
+#include "lawson.h"
+#include "user_error.h"
+
+namespace ddt {
+
+SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction,
+                                    const TileOptions& options, const std::function<void(OutputRows&& rows)>& sink,
+                                    const TileStepCallback& on_step) {
+    if (options.tile ? options.tile < std::max(image.width, image.height)
+                     : automaticTileSide(backend, image.width, image.height, image.channels, options.overlap, false) != 0)
+        throw UserError("--simplify needs the image in one piece, and " + std::to_string(image.width) + "×" +
+                        std::to_string(image.height) + (options.tile ? " is larger than --tile"
+                                                                     : " is larger than the backend's memory holds at once"));
+    SimplifiedUpscale result;
+    if (on_step) on_step({0, 1, TilePhase::Optimize});
+    backend.prepare(image);
+    result.optimize = backend.optimize();
+    Mesh mesh = backend.mesh();
+    const uint64_t pixels = uint64_t(image.width) * image.height;
+    const uint32_t target = uint32_t(std::max<uint64_t>(4, uint64_t(std::ceil(fraction * double(pixels)))));
+    result.values = image;
+    result.simplify = simplifySerial(mesh, result.values, target);
+    const OptimizeStats again = optimizeSerial(mesh, costFieldOf(image));
+    result.optimize.flips += again.flips;
+    result.optimize.cost_final = again.cost_final;
+    if (options.mesh) options.mesh->add(mesh, {0, 0, image.width, image.height}, {0, 0, image.width, image.height});
+
+    const MeshRenderer renderer(mesh, result.values);
+    if (on_step) on_step({0, 1, TilePhase::Render});
+    const size_t row_floats = size_t(out.width) * image.channels;
+    const uint32_t band_rows = uint32_t(std::max<size_t>(1, (size_t(2) << 20) / row_floats));  // 8 MiB bands, as tiles have
+    for (uint32_t y = 0; y < out.height; y += band_rows) {
+        OutputRows band(y, std::min(out.height, y + band_rows), row_floats);
+        renderInParallel(renderer, wholeRows(image.width, image.height, out, band.y_begin, band.y_end), image.channels,
+                         band.floats.get());
+        sink(std::move(band));
+    }
+    return result;
+}
+
+}  // namespace ddt
