@@ -5,10 +5,12 @@
 // to their planes, Q(v) = vᵀAv + 2bᵀv + c, each plane weighted by its triangle's area.
 //
 // The picture is planar (all z = 0), so without colour every quadric would vanish: the colour
-// axes carry the error. Positions are in input pixels, times kPositionWeight, against colour
-// values in [0, 1]: one pixel of displacement weighs as much as the whole colour range, so in
-// smooth regions (gradients well below one range per pixel) a plane's distance is nearly the
-// colour error, and across hard edges it is still within a factor √2 of it.
+// axes carry the error. Positions are in input pixels times kPositionWeight, against colour
+// values in [0, 1]. With a weight w, a plane of colour gradient g (range per pixel) measures
+// a colour error δ as δ / √(1 + (g/w)²): a large w makes the metric the colour error alone,
+// a small one lets vertices slide freely along hard edges. Measured (PSNR against the
+// original, five photographs at ×4 from quarter size, --simplify 0.1 and 0.05): w = 0.25
+// 22.99 / 21.29 dB on average, 1: 23.14 / 21.36, 4: 23.19 / 21.57, 16: 23.17 / 21.49.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +18,7 @@
 namespace ddt {
 
 constexpr uint32_t kMaxQuadricDimensions = 6;  // x, y and up to four channels
-constexpr double kPositionWeight = 1.0;
+constexpr double kPositionWeight = 4.0;
 
 struct Quadric {
     double a[kMaxQuadricDimensions * (kMaxQuadricDimensions + 1) / 2] = {};  // A's upper triangle, row by row
