@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <sstream>
+#include <unordered_map>
 
 namespace ddt {
 
@@ -111,6 +112,27 @@ Mesh buildGridMesh(uint32_t width, uint32_t height) {
             attachTriangle3(mesh, p00, p10, p11, ids.right(x, y), ids.down(x + 1, y), ids.diagonal(x, y));
             attachTriangle3(mesh, p00, p11, p01, ids.diagonal(x, y), ids.right(x, y + 1), ids.down(x, y));
         }
+    }
+    return mesh;
+}
+
+Mesh meshFromTriangles(uint32_t width, uint32_t height, const std::vector<uint32_t>& triangles) {
+    Mesh mesh;
+    mesh.width = width;
+    mesh.height = height;
+    std::unordered_map<uint64_t, uint32_t> ids;  // by (smaller vertex, larger vertex)
+    auto edgeOf = [&](uint32_t p, uint32_t q) {
+        const auto [it, inserted] = ids.emplace(uint64_t(std::min(p, q)) << 32 | std::max(p, q), mesh.edgeCount());
+        if (inserted) {
+            mesh.vertices.push_back({p, q, kNone, kNone});
+            mesh.neighbours.push_back({kNone, kNone, kNone, kNone});
+        }
+        return it->second;
+    };
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+        const uint32_t p0 = triangles[t], p1 = triangles[t + 1], p2 = triangles[t + 2];
+        const uint32_t e01 = edgeOf(p0, p1), e12 = edgeOf(p1, p2), e20 = edgeOf(p2, p0);
+        attachTriangle3(mesh, p0, p1, p2, e01, e12, e20);
     }
     return mesh;
 }

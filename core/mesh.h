@@ -61,6 +61,11 @@ uint64_t gridEdgeCount(uint32_t width, uint32_t height);
 // Needs width, height >= 2.
 Mesh buildGridMesh(uint32_t width, uint32_t height);
 
+// The mesh of `triangles` (three vertex ids each, positive) over the width × height grid's
+// vertices: edges numbered in the order the triangles first name them. For triangulations
+// made elsewhere (a peer's simplifier in the bench); checkMesh says whether they are valid.
+Mesh meshFromTriangles(uint32_t width, uint32_t height, const std::vector<uint32_t>& triangles);
+
 // Flips edge e (the caller checks that its quadrilateral is strictly convex).
 void flipEdge(Mesh& mesh, uint32_t e);
 

@@ -371,3 +371,25 @@ TEST_CASE("mesh: listTriangles gives 2(w-1)(h-1) positive triangles, each once")
         CHECK(twice_area == 2 * int64_t(w - 1) * (h - 1));
     }
 }
+
+TEST_CASE("mesh: built from its own triangles, a mesh has the same triangles") {
+    std::mt19937 rng(21);
+    ddt::Mesh mesh = ddt::buildGridMesh(7, 5);
+    ddt::test::flipRandomEdges(mesh, rng, 40);
+    std::vector<uint32_t> ids;
+    for (const ddt::Triangle& t : ddt::listTriangles(mesh)) ids.insert(ids.end(), {t.v0, t.v1, t.v2});
+    const ddt::Mesh rebuilt = ddt::meshFromTriangles(7, 5, ids);
+    CHECK(ddt::checkMesh(rebuilt) == "");
+    CHECK(rebuilt.edgeCount() == mesh.edgeCount());
+    std::vector<std::array<uint32_t, 3>> before, after;
+    auto canonical = [](const ddt::Triangle& t) {
+        std::array<uint32_t, 3> v{t.v0, t.v1, t.v2};
+        std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+        return v;
+    };
+    for (const ddt::Triangle& t : ddt::listTriangles(mesh)) before.push_back(canonical(t));
+    for (const ddt::Triangle& t : ddt::listTriangles(rebuilt)) after.push_back(canonical(t));
+    std::sort(before.begin(), before.end());
+    std::sort(after.begin(), after.end());
+    CHECK(before == after);
+}
