@@ -139,7 +139,8 @@ Row meshoptimizerRow(const Mesh& optimised, const Image& original, double share)
         const size_t target_triangles = size_t(2.0 * share * double(vertex_count));
         const auto start = std::chrono::steady_clock::now();
         const size_t count = meshopt_simplify(result.data(), indices.data(), indices.size(), positions.data(), vertex_count,
-                                              3 * sizeof(float), 3 * target_triangles, 1e9f, meshopt_SimplifyLockBorder, nullptr);
+                                              3 * sizeof(float), std::min(indices.size(), 3 * target_triangles), 1e9f,
+                                              meshopt_SimplifyLockBorder, nullptr);
         const double seconds = secondsSince(start);
         result.resize(count);
         // Three border vertices in a row make a triangle of no area in the picture (they are
