@@ -165,8 +165,7 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         ->default_str("none");
     app.add_option("--simplify", settings.simplify,
                    "Keep this fraction of the mesh's vertices, in (0, 1]: edge collapses in order of least quadric "
-                   "error over position and colour (Garland-Heckbert), each vertex kept where it was, then the flips "
-                   "again; the output is the linear surface on the simplified mesh with each vertex's best colour, "
+                   "error over position and colour (Garland-Heckbert), each vertex kept where it was; the output is the linear surface on the simplified mesh with each vertex's best colour, "
                    "and --mesh writes that mesh. Runs on the CPU (serial), on images the backend holds in one piece")
         ->default_str("none");
     app.add_option("--mesh-height", settings.mesh_height,

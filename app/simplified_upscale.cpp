@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cost.h"
-#include "lawson.h"
 #include "user_error.h"
 
 namespace ddt {
@@ -26,9 +24,6 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
     const uint32_t target = uint32_t(std::max<uint64_t>(4, uint64_t(std::ceil(fraction * double(pixels)))));
     result.values = image;
     result.simplify = simplifySerial(mesh, result.values, target);
-    const OptimizeStats again = optimizeSerial(mesh, costFieldOf(image));
-    result.optimize.flips += again.flips;
-    result.optimize.cost_final = again.cost_final;
     if (options.mesh) options.mesh->add(mesh, {0, 0, image.width, image.height}, {0, 0, image.width, image.height});
 
     const MeshRenderer renderer(mesh, result.values);

@@ -84,13 +84,3 @@ TEST_CASE("greedy simplify: a plane costs nothing, a bump on it its error") {
     CHECK(checkMesh(bumpy) == "");
     CHECK(with_bump.last_cost > 0.1);
 }
-
-TEST_CASE("greedy simplify: the flips run again on the simplified mesh") {
-    const Image photo = smallPhoto();
-    Mesh mesh = optimisedMesh(photo);
-    Image values = photo;
-    simplifySerial(mesh, values, photo.width * photo.height / 10);
-    const OptimizeStats stats = optimizeSerial(mesh, costFieldOf(photo));
-    CHECK(checkMesh(mesh) == "");
-    CHECK(stats.cost_final <= stats.cost_init);
-}

@@ -217,7 +217,6 @@ int main(int argc, char** argv) {
             const auto start = std::chrono::steady_clock::now();
             const uint32_t target = uint32_t(std::max(4.0, std::ceil(share * original.width * original.height)));
             simplifySerial(mesh, values, target);
-            optimizeSerial(mesh, costFieldOf(original));
             ours.seconds = secondsSince(start);
             ours.vertices = usedVertexCount(mesh);
             const Image rendered = renderImage(mesh, values, {original.width, original.height});
