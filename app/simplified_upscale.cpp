@@ -7,6 +7,10 @@
 
 namespace ddt {
 
+uint32_t simplifiedVertexCount(uint32_t width, uint32_t height, double fraction) {
+    return uint32_t(std::max<uint64_t>(4, uint64_t(std::ceil(fraction * double(width) * height))));
+}
+
 SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction,
                                     const TileOptions& options, const std::function<void(OutputRows&& rows)>& sink,
                                     const TileStepCallback& on_step) {
@@ -20,10 +24,8 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
     backend.prepare(image);
     result.optimize = backend.optimize();
     Mesh mesh = backend.mesh();
-    const uint64_t pixels = uint64_t(image.width) * image.height;
-    const uint32_t target = uint32_t(std::max<uint64_t>(4, uint64_t(std::ceil(fraction * double(pixels)))));
     result.values = image;
-    result.simplify = simplifySerial(mesh, result.values, target);
+    result.simplify = simplifySerial(mesh, result.values, simplifiedVertexCount(image.width, image.height, fraction));
     if (options.mesh) options.mesh->add(mesh, {0, 0, image.width, image.height}, {0, 0, image.width, image.height});
 
     const MeshRenderer renderer(mesh, result.values);

@@ -30,6 +30,9 @@ struct SimplifiedUpscale {
     Image values;             // the vertices' colours (greedy_simplify.h): what a mesh file holds
 };
 
+// The vertices `fraction` of a width × height image's asks for: at least the four corners.
+uint32_t simplifiedVertexCount(uint32_t width, uint32_t height, double fraction);
+
 SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction,
                                     const TileOptions& options, const std::function<void(OutputRows&& rows)>& sink,
                                     const TileStepCallback& on_step = {});

@@ -84,10 +84,16 @@ void ImageJob::open() {
     checkOutputLimit(task_.output, report_.out);
     if (std::string problem = checkOutputSize(header.width, header.height, report_.out); !problem.empty())
         throw UserError(inputName(task_.input) + ": " + problem);
-    if (!task_.mesh.empty())
-        if (std::string problem = checkMeshSize(*meshFormatOf(task_.mesh), indexedFaceCount(header.width, header.height));
-            !problem.empty())
+    if (!task_.mesh.empty()) {
+        // A simplified mesh of V vertices has fewer than 2V triangles (a triangulated disk),
+        // plus its ring's, at most two per hull pixel and corner.
+        const uint64_t faces = settings_.simplify > 0.0
+                                   ? 2 * simplifiedVertexCount(header.width, header.height, settings_.simplify) +
+                                         4 * (uint64_t(header.width) + header.height) + 8
+                                   : indexedFaceCount(header.width, header.height);
+        if (std::string problem = checkMeshSize(*meshFormatOf(task_.mesh), faces); !problem.empty())
             throw UserError(task_.mesh + ": " + problem);
+    }
     // A batch writes into sub-folders that mirror the input folder's.
     if (task_.output != kStandardStream) {
         std::error_code error;
