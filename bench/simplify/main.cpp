@@ -17,6 +17,7 @@
 // counted as folded.
 //
 //   ddtup-bench-simplify [--data DIR] [--out DIR] [--quick]
+//   ddtup-bench-simplify --from-csv FILE [--out DIR]   the table and plot again from a run's CSV
 #include <meshoptimizer.h>
 #include <zlib.h>
 
@@ -27,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -171,22 +173,126 @@ Row meshoptimizerRow(const Mesh& optimised, const Image& original, double share)
     return best;
 }
 
+// The rows of a CSV that a run wrote.
+std::vector<Row> readRows(const std::string& path) {
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);  // the header
+    std::vector<Row> rows;
+    while (std::getline(in, line)) {
+        std::vector<std::string> fields;
+        size_t start = 0;
+        for (size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1)
+            fields.push_back(line.substr(start, comma - start));
+        fields.push_back(line.substr(start));
+        if (fields.size() != 11) continue;
+        Row r;
+        r.image = fields[0];
+        r.share = std::stod(fields[1]);
+        r.method = fields[2];
+        r.vertices = uint32_t(std::stoul(fields[3]));
+        r.psnr = std::stod(fields[4]);
+        r.folded = fields[5] == "1";
+        r.seconds = std::stod(fields[6]);
+        r.ply = std::stoull(fields[7]);
+        r.svg = std::stoull(fields[8]);
+        r.svg_gz = std::stoull(fields[9]);
+        r.png = std::stoull(fields[10]);
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+// simplify.md and simplify.svg from the rows: means over the images per share.
+void writeSummary(const std::vector<Row>& rows, const std::vector<double>& shares, size_t images, const std::string& data,
+                  const std::string& out);
+
+}  // namespace
+
+namespace {
+
+void writeSummary(const std::vector<Row>& rows, const std::vector<double>& shares, size_t images, const std::string& data,
+                  const std::string& out) {
+    std::ofstream md(out + "/simplify.md");
+    md << "| vertices asked | ddtup kept | ddtup PSNR dB | ddtup s | meshopt kept | meshopt PSNR dB | meshopt s | PLY MB | SVG MB | SVG.gz MB | PNG MB |\n"
+          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    bench::PlotSeries ours_series{"ddtup (greedy QEM, colour)", "#1f77b4", "", true, false, {}};
+    bench::PlotSeries peer_series{"meshoptimizer (height field, best k)", "#d62728", "6 3", true, true, {}};
+    for (double share : shares) {
+        double sums[2][3] = {};  // per method: kept share, PSNR, seconds
+        int counts[2] = {}, unrenderable = 0;
+        double ply = 0, svg = 0, svg_gz = 0, png = 0;
+        bool all_svg = true;
+        for (const Row& r : rows) {
+            if (r.share != share) continue;
+            const int m = r.method == "ddtup" ? 0 : 1;
+            if (r.folded) ++unrenderable;
+            sums[m][0] += r.vertices;
+            sums[m][1] += r.psnr;
+            sums[m][2] += r.seconds;
+            ++counts[m];
+            if (m == 0) {
+                ply += r.ply;
+                svg += r.svg;
+                svg_gz += r.svg_gz;
+                png += r.png;
+                all_svg = all_svg && r.svg > 0;
+            }
+        }
+        char line[512];
+        const double n0 = std::max(1, counts[0]), n1 = std::max(1, counts[1]);
+        std::snprintf(line, sizeof(line), "| %g %% | %.0f | %.2f | %.2f | %.0f | %.2f%s | %.3f | %.2f | %s | %s | %.2f |\n",
+                      100 * share, sums[0][0] / n0, sums[0][1] / n0, sums[0][2] / n0, sums[1][0] / n1, sums[1][1] / n1,
+                      unrenderable ? (" (" + std::to_string(unrenderable) + " folded)").c_str() : "", sums[1][2] / n1,
+                      ply / n0 / 1e6, all_svg ? std::to_string(svg / n0 / 1e6).substr(0, 5).c_str() : "over limit",
+                      all_svg ? std::to_string(svg_gz / n0 / 1e6).substr(0, 5).c_str() : "over limit", png / n0 / 1e6);
+        md << line;
+        // All the vertices give the picture itself: an infinite PSNR, off the plot.
+        if (std::isfinite(sums[0][1])) ours_series.points.push_back({100 * share, sums[0][1] / n0});
+        if (counts[1] && std::isfinite(sums[1][1])) peer_series.points.push_back({100 * share, sums[1][1] / n1});
+    }
+    md << "\nMeans over " << images << " images of " << data << "; PSNR of the mesh rendered at the original's size "
+       << "against the original (8-bit RGB; inf: the mesh is the picture). meshopt: k of {1, 4, 16, 64, 256} best per image and share; "
+          "border locked; folded: not a valid triangulation of the picture, rendered as a triangle soup.\n";
+    bench::Plot plot;
+    plot.title = "Simplified meshes: picture kept against vertices kept";
+    plot.x_label = "vertices kept (%)";
+    plot.y_label = "PSNR against the original (dB)";
+    for (double share : shares) plot.x_ticks.push_back({100 * share, std::to_string(100 * share).substr(0, 4)});
+    plot.series = {ours_series, peer_series};
+    plot.notes = {"means over the bench's photographs; rendered at the original's size"};
+    std::ofstream(out + "/simplify.svg") << bench::renderLogLogSvg(plot);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::string data = std::string(DDTUP_BENCH_DATA) + "/real", out = "simplify-results";
+    std::string from_csv;
     bool quick = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--data" && i + 1 < argc) data = argv[++i];
         else if (arg == "--out" && i + 1 < argc) out = argv[++i];
+        else if (arg == "--from-csv" && i + 1 < argc) from_csv = argv[++i];
         else if (arg == "--quick") quick = true;
         else {
-            std::fprintf(stderr, "usage: ddtup-bench-simplify [--data DIR] [--out DIR] [--quick]\n");
+            std::fprintf(stderr, "usage: ddtup-bench-simplify [--data DIR] [--out DIR] [--quick] | --from-csv FILE [--out DIR]\n");
             return 2;
         }
     }
     fs::create_directories(out);
+    if (!from_csv.empty()) {
+        const std::vector<Row> rows = readRows(from_csv);
+        std::vector<double> shares;
+        std::set<std::string> names;
+        for (const Row& r : rows) {
+            if (std::find(shares.begin(), shares.end(), r.share) == shares.end()) shares.push_back(r.share);
+            names.insert(r.image);
+        }
+        writeSummary(rows, shares, names.size(), from_csv, out);
+        return 0;
+    }
     std::vector<fs::path> images;
     for (const auto& entry : fs::directory_iterator(data))
         if (entry.path().extension() == ".png") images.push_back(entry.path());
@@ -246,54 +352,7 @@ int main(int argc, char** argv) {
         csv << r.image << "," << r.share << "," << r.method << "," << r.vertices << "," << r.psnr << "," << r.folded << "," << r.seconds << ","
             << r.ply << "," << r.svg << "," << r.svg_gz << "," << r.png << "\n";
 
-    // Means over the images per share: the table and the plot.
-    std::ofstream md(out + "/simplify.md");
-    md << "| vertices asked | ddtup kept | ddtup PSNR dB | ddtup s | meshopt kept | meshopt PSNR dB | meshopt s | PLY MB | SVG MB | SVG.gz MB | PNG MB |\n"
-          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    bench::PlotSeries ours_series{"ddtup (greedy QEM, colour)", "#1f77b4", "", true, false, {}};
-    bench::PlotSeries peer_series{"meshoptimizer (height field, best k)", "#d62728", "6 3", true, true, {}};
-    for (double share : shares) {
-        double sums[2][3] = {};  // per method: kept share, PSNR, seconds
-        int counts[2] = {}, unrenderable = 0;
-        double ply = 0, svg = 0, svg_gz = 0, png = 0;
-        bool all_svg = true;
-        for (const Row& r : rows) {
-            if (r.share != share) continue;
-            const int m = r.method == "ddtup" ? 0 : 1;
-            if (r.folded) ++unrenderable;
-            sums[m][0] += r.vertices;
-            sums[m][1] += r.psnr;
-            sums[m][2] += r.seconds;
-            ++counts[m];
-            if (m == 0) {
-                ply += r.ply;
-                svg += r.svg;
-                svg_gz += r.svg_gz;
-                png += r.png;
-                all_svg = all_svg && r.svg > 0;
-            }
-        }
-        char line[512];
-        const double n0 = std::max(1, counts[0]), n1 = std::max(1, counts[1]);
-        std::snprintf(line, sizeof(line), "| %g %% | %.0f | %.2f | %.2f | %.0f | %.2f%s | %.3f | %.2f | %s | %s | %.2f |\n",
-                      100 * share, sums[0][0] / n0, sums[0][1] / n0, sums[0][2] / n0, sums[1][0] / n1, sums[1][1] / n1,
-                      unrenderable ? (" (" + std::to_string(unrenderable) + " folded)").c_str() : "", sums[1][2] / n1,
-                      ply / n0 / 1e6, all_svg ? std::to_string(svg / n0 / 1e6).substr(0, 5).c_str() : "over limit",
-                      all_svg ? std::to_string(svg_gz / n0 / 1e6).substr(0, 5).c_str() : "over limit", png / n0 / 1e6);
-        md << line;
-        ours_series.points.push_back({100 * share, sums[0][1] / n0});
-        if (counts[1]) peer_series.points.push_back({100 * share, sums[1][1] / n1});
-    }
-    md << "\nMeans over " << images.size() << " images of " << data << "; PSNR of the mesh rendered at the original's size "
-       << "against the original (8-bit RGB). meshopt: k of {1, 4, 16, 64, 256} best per image and share; border locked.\n";
-    bench::Plot plot;
-    plot.title = "Simplified meshes: picture kept against vertices kept";
-    plot.x_label = "vertices kept (%)";
-    plot.y_label = "PSNR against the original (dB)";
-    for (double share : shares) plot.x_ticks.push_back({100 * share, std::to_string(100 * share).substr(0, 4)});
-    plot.series = {ours_series, peer_series};
-    plot.notes = {"means over the bench's photographs; rendered at the original's size"};
-    std::ofstream(out + "/simplify.svg") << bench::renderLogLogSvg(plot);
+    writeSummary(rows, shares, images.size(), data, out);
     std::printf("wrote %s/simplify.md, simplify.csv, simplify.svg\n", out.c_str());
     return 0;
 }
