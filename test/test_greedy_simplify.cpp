@@ -12,29 +12,9 @@
 using namespace ddt;
 using namespace ddt::test;
 
-namespace {
-
-// A 100 × 70 piece of the photo crop: the serial reference is slow (a few seconds for 512²).
-Image smallPhoto() {
-    const Image photo = photoCrop();
-    std::vector<float> pixels;
-    for (uint32_t y = 60; y < 130; ++y)
-        pixels.insert(pixels.end(), photo.row(y) + 100 * photo.channels, photo.row(y) + 200 * photo.channels);
-    return makeImage(100, 70, photo.channels, pixels);
-}
-
-// The mesh the optimizer makes for `image`, as simplification gets it.
-Mesh optimisedMesh(const Image& image) {
-    Mesh mesh = buildGridMesh(image.width, image.height);
-    optimizeSerial(mesh, costFieldOf(image));
-    return mesh;
-}
-
-}  // namespace
-
 TEST_CASE("greedy simplify: reaches each target with a valid mesh, the same every run") {
-    const Image photo = smallPhoto();
-    const Mesh optimised = optimisedMesh(photo);
+    const Image photo = photoPiece();
+    const Mesh optimised = optimisedGridMesh(photo);
     const uint32_t all = photo.width * photo.height;
     for (double fraction : {0.5, 0.1, 0.02}) {
         INFO("fraction " << fraction);

@@ -1,5 +1,7 @@
 #include "test_support.h"
+#include "cost.h"
 #include "image_file.h"
+#include "lawson.h"
 
 #include <catch2/catch.hpp>
 
@@ -171,6 +173,20 @@ Image photoCrop() {
         pixels.insert(pixels.end(), photo.row(y) + size_t(x0) * photo.channels,
                       photo.row(y) + size_t(x0 + w) * photo.channels);
     return makeImage(w, h, photo.channels, pixels);
+}
+
+Image photoPiece() {
+    const Image photo = photoCrop();
+    std::vector<float> pixels;
+    for (uint32_t y = 60; y < 130; ++y)
+        pixels.insert(pixels.end(), photo.row(y) + 100 * photo.channels, photo.row(y) + 200 * photo.channels);
+    return makeImage(100, 70, photo.channels, pixels);
+}
+
+Mesh optimisedGridMesh(const Image& image) {
+    Mesh mesh = buildGridMesh(image.width, image.height);
+    optimizeSerial(mesh, costFieldOf(image));
+    return mesh;
 }
 
 Agreement compareSamples(const std::vector<float>& a, const std::vector<float>& b) {

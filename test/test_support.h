@@ -58,6 +58,12 @@ bool samePixels(const std::vector<float>& a, const std::vector<float>& b);
 // A 300×200 crop of bench/data's astronaut photo: texture, soft and hard edges.
 Image photoCrop();
 
+// A 100 × 70 piece of photoCrop(), for the slower reference algorithms.
+Image photoPiece();
+
+// The mesh the serial optimizer makes for `image`.
+Mesh optimisedGridMesh(const Image& image);
+
 // How closely two renderings of one image agree, sample by sample (for tiled vs untiled).
 struct Agreement {
     float max_difference = 0.0f;

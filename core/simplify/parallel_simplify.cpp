@@ -1,0 +1,123 @@
+#include "parallel_simplify.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+
+#include "parallel.h"
+#include "vertex_quadrics.h"
+
+namespace ddt {
+
+namespace {
+
+constexpr uint64_t kNoKey = UINT64_MAX;
+
+// A round collapses at most 1/kRoundShare of the vertices left: every local minimum at once
+// strays from the global order. Measured on chelsea.png at 10 % of the vertices (PSNR of the
+// render against the original; the serial reference 36.46 dB): no cap 35.69 dB in 136 rounds,
+// 1/16 the same, 1/64 36.36 dB in 147 rounds.
+constexpr uint32_t kRoundShare = 64;
+
+// (cost rounded to float, edge id) in one ordered integer: a non-negative float's bits order
+// as the float does.
+uint64_t keyOf(double cost, uint32_t edge) {
+    return uint64_t(std::bit_cast<uint32_t>(float(cost))) << 32 | edge;
+}
+
+// The vertices whose records and triangles a collapse of edge e reads or writes: its two
+// vertices and all their neighbours.
+template <typename Visit>
+void forEachRegionVertex(const Mesh& mesh, const VertexEdges& edges, uint32_t e, Visit visit) {
+    for (uint32_t v : {mesh.vertices[e].a, mesh.vertices[e].b}) {
+        visit(v);
+        for (uint32_t f : edges.at[v]) visit(mesh.vertices[f].a == v ? mesh.vertices[f].b : mesh.vertices[f].a);
+    }
+}
+
+void lowerTo(std::atomic<uint64_t>& slot, uint64_t key) {
+    uint64_t current = slot.load(std::memory_order_relaxed);
+    while (key < current && !slot.compare_exchange_weak(current, key, std::memory_order_relaxed)) {
+    }
+}
+
+}  // namespace
+
+ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target) {
+    ParallelSimplifyStats stats;
+    stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
+    SimplifyStart start(mesh, values);
+    auto& [points, quadrics, edges] = start;
+    const uint32_t edge_count = mesh.edgeCount();
+    std::vector<uint64_t> key(edge_count);
+    std::vector<uint8_t> b_into_a(edge_count);
+    std::vector<std::atomic<uint64_t>> vertex_least(mesh.vertexCount());
+    // The vertices in the regions of the last round's collapses: an edge whose region holds
+    // one has a new cost or legality; the others keep their candidates (all are new at first).
+    std::vector<uint8_t> changed(mesh.vertexCount(), 1);
+    const size_t grain = 4096;
+
+    while (stats.vertices_after > target) {
+        // 1. Candidates: each edge's best legal collapse.
+        parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
+            for (size_t e = begin; e < end; ++e) {
+                if (removedEdge(mesh, uint32_t(e))) {
+                    key[e] = kNoKey;
+                    continue;
+                }
+                bool stale = false;
+                forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { stale = stale || changed[v]; });
+                if (!stale) continue;
+                key[e] = kNoKey;
+                for (bool direction : {true, false}) {
+                    const Collapse collapse{uint32_t(e), direction};
+                    if (!canCollapse(mesh, edges, collapse)) continue;
+                    const uint64_t k = keyOf(collapseCost(mesh, quadrics, points, collapse), uint32_t(e));
+                    if (k < key[e]) {  // equal keys: b into a, tried first, stays
+                        key[e] = k;
+                        b_into_a[e] = direction;
+                    }
+                }
+            }
+        });
+        // 2. Select: each vertex's least key over the regions that hold it; the winners.
+        parallelFor(vertex_least.size(), grain, [&](size_t begin, size_t end) {
+            for (size_t v = begin; v < end; ++v) vertex_least[v].store(kNoKey, std::memory_order_relaxed);
+        });
+        parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
+            for (size_t e = begin; e < end; ++e)
+                if (key[e] != kNoKey)
+                    forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { lowerTo(vertex_least[v], key[e]); });
+        });
+        std::vector<uint32_t> winners;
+        for (uint32_t e = 0; e < edge_count; ++e) {
+            if (key[e] == kNoKey) continue;
+            bool least = true;
+            forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { least = least && vertex_least[v].load() == key[e]; });
+            if (least) winners.push_back(e);
+        }
+        if (winners.empty()) break;  // no legal collapse left
+        // 3. Collapse the least of them, as many as the target still needs.
+        std::fill(changed.begin(), changed.end(), 0);
+        std::sort(winners.begin(), winners.end(), [&](uint32_t x, uint32_t y) { return key[x] < key[y]; });
+        const size_t cap = std::max<size_t>(1, stats.vertices_after / kRoundShare);
+        winners.resize(std::min<size_t>({winners.size(), size_t(stats.vertices_after - target), cap}));
+        for (uint32_t e : winners) {
+            const Collapse collapse{e, bool(b_into_a[e])};
+            const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+            forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { changed[v] = 1; });
+            stats.last_cost = std::max(stats.last_cost, double(std::bit_cast<float>(uint32_t(key[e] >> 32))));
+            collapseEdge(mesh, edges, collapse);
+            quadrics[to] += quadrics[from];
+        }
+        stats.collapses += winners.size();
+        stats.vertices_after -= uint32_t(winners.size());
+        ++stats.rounds;
+    }
+    compactEdges(mesh);
+    setBestColours(mesh, quadrics, points, values);
+    return stats;
+}
+
+}  // namespace ddt

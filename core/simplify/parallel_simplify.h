@@ -1,0 +1,34 @@
+// The parallel simplification rule, on the CPU: what the Vulkan kernels are to compute too,
+// round by round, with the same result whatever the number of threads. It replaces the
+// paper's lock-free skip list and k-d tree partitions, which make the order of collapses, and
+// so the mesh, depend on thread timing.
+//
+// Each round:
+// 1. candidates: every edge's best legal collapse (canCollapse; the cheaper direction, b into
+//    a on ties), keyed by (its cost rounded to float, its edge id);
+// 2. select: a collapse's region is its two vertices and all their neighbours, which holds
+//    every record the collapse writes and everything its legality reads (edge_collapse.h).
+//    Each vertex takes the least key among the regions that hold it; a collapse wins where it
+//    holds the least key of every vertex of its region, so winners' regions are disjoint and
+//    they collapse in any order to the same mesh;
+// 3. collapse: the winners with the least keys, as many as the target still needs; then
+//    their quadrics are merged.
+// Until the target is reached or no legal collapse is left; the mesh is then compacted by a
+// stable prefix sum (edge_collapse.h), not by the paper's swap-with-last, so ids keep their
+// order and "ties by id" keeps its meaning.
+#pragma once
+
+#include <cstdint>
+
+#include "greedy_simplify.h"
+
+namespace ddt {
+
+struct ParallelSimplifyStats : SimplifyStats {
+    uint32_t rounds = 0;
+};
+
+// As simplifySerial, by the parallel rule.
+ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target);
+
+}  // namespace ddt

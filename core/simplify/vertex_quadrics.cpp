@@ -1,0 +1,59 @@
+#include "vertex_quadrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reconstruct.h"
+
+namespace ddt {
+
+std::vector<Quadric> vertexQuadrics(const Mesh& mesh, const QuadricPoints& points) {
+    std::vector<Quadric> quadrics(mesh.vertexCount());
+    forEachTriangle(mesh, [&](const Triangle& t) {
+        double p[kMaxQuadricDimensions], q[kMaxQuadricDimensions], r[kMaxQuadricDimensions];
+        points.of(t.v0, p);
+        points.of(t.v1, q);
+        points.of(t.v2, r);
+        const double area = 0.5 * std::abs((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])) /
+                            (kPositionWeight * kPositionWeight);
+        const Quadric plane = planeQuadric(p, q, r, points.n, area);
+        for (uint32_t v : {t.v0, t.v1, t.v2}) quadrics[v] += plane;
+    });
+    return quadrics;
+}
+
+double collapseCost(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Collapse collapse) {
+    const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+    Quadric sum = quadrics[from];
+    sum += quadrics[to];
+    double point[kMaxQuadricDimensions];
+    points.of(to, point);
+    return sum.at(point, points.n);
+}
+
+std::vector<bool> usedVertices(const Mesh& mesh) {
+    std::vector<bool> used(mesh.vertexCount(), false);
+    for (const EdgeVertices& v : mesh.vertices)
+        if (v.a != kNone) used[v.a] = used[v.b] = true;
+    return used;
+}
+
+void setBestColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image) {
+    const std::vector<bool> used = usedVertices(mesh);
+    const uint32_t c = image.channels;
+    const bool bounded = boundedToUnit(image.sample_type);
+    std::vector<float> best(image.pixels);
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+        if (!used[v]) continue;
+        double point[kMaxQuadricDimensions];
+        points.of(v, point);
+        if (!quadrics[v].minimiseTail(point, 2, points.n)) continue;
+        float* colour = &best[size_t(v) * c];
+        for (uint32_t k = 0; k < c; ++k) colour[k] = bounded ? float(std::clamp(point[2 + k], 0.0, 1.0)) : float(point[2 + k]);
+        if (image.hasAlpha())
+            for (uint32_t k = 0; k + 1 < c; ++k) colour[k] = std::min(colour[k], colour[c - 1]);
+    }
+    image.pixels = std::move(best);
+}
+
+}  // namespace ddt
