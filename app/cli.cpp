@@ -48,8 +48,11 @@ bool sameFile(const std::string& a, const std::string& b) {
 std::string validateMesh(const CLI::App& app, const Settings& settings) {
     if (app.count("--simplify") && !(settings.simplify > 0.0 && settings.simplify <= 1.0))
         return "--simplify must be a fraction in (0, 1] (got " + app.get_option("--simplify")->as<std::string>() + ")";
-    if (settings.simplify > 0.0 && app.count("--reconstruct") && settings.reconstruct == "consistent")
-        return "--simplify renders the linear surface on the simplified mesh; --reconstruct consistent does not apply";
+    if (app.count("--max-error") && !(settings.max_error > 0.0 && std::isfinite(settings.max_error)))
+        return "--max-error must be a positive number of 8-bit levels (got " + app.get_option("--max-error")->as<std::string>() + ")";
+    if (settings.simplifies() && app.count("--reconstruct") && settings.reconstruct == "consistent")
+        return "simplification (--simplify, --max-error) renders the linear surface on the simplified mesh; --reconstruct "
+               "consistent does not apply";
     if (app.count("--mesh-height") && settings.mesh.empty()) return "--mesh-height needs --mesh";
     if (!std::isfinite(settings.mesh_height)) return "--mesh-height must be a finite number";
     if (settings.mesh.empty()) return "";
@@ -167,6 +170,11 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "Keep this fraction of the mesh's vertices, in (0, 1]: edge collapses in order of least quadric "
                    "error over position and colour (Garland-Heckbert), each vertex kept where it was; the output is the linear surface on the simplified mesh with each vertex's best colour, "
                    "and --mesh writes that mesh. Runs on the CPU (serial), on images the backend holds in one piece")
+        ->default_str("none");
+    app.add_option("--max-error", settings.max_error,
+                   "Simplify the mesh (as --simplify does) as far as no collapse errs by more than this: the root-"
+                   "mean-square distance, in 8-bit levels (1/255 of the range), from the merged vertices' colour "
+                   "planes; with --simplify, whichever limit comes first")
         ->default_str("none");
     app.add_option("--mesh-height", settings.mesh_height,
                    "With --mesh: z = luma × this, in output pixels (Rec. 709 weights on the stored values), a "

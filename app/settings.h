@@ -26,6 +26,9 @@ struct Settings {
     std::string mesh;          // --mesh: single form, a file (.ply, .obj); batch forms, a format; "" = none
     double mesh_height = 0.0;  // --mesh-height: z = luma × this, in output pixels; 0 = flat
     double simplify = 0.0;     // --simplify: the fraction of the vertices kept, in (0, 1]; 0 = no simplification
+    double max_error = 0.0;    // --max-error: the largest collapse error, RMS in 8-bit levels; 0 = none
+
+    bool simplifies() const { return simplify > 0.0 || max_error > 0.0; }
 
     double scale = 0.0;       // 0: not given
     uint32_t width = 0;       // 0: not given

@@ -11,12 +11,12 @@ uint32_t simplifiedVertexCount(uint32_t width, uint32_t height, double fraction)
     return uint32_t(std::max<uint64_t>(4, uint64_t(std::ceil(fraction * double(width) * height))));
 }
 
-SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction,
+SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction, double max_error,
                                     const TileOptions& options, const std::function<void(OutputRows&& rows)>& sink,
                                     const TileStepCallback& on_step) {
     if (options.tile ? options.tile < std::max(image.width, image.height)
                      : automaticTileSide(backend, image.width, image.height, image.channels, options.overlap, false) != 0)
-        throw UserError("--simplify needs the image in one piece, and " + std::to_string(image.width) + "×" +
+        throw UserError("simplification needs the image in one piece, and " + std::to_string(image.width) + "×" +
                         std::to_string(image.height) + (options.tile ? " is larger than --tile"
                                                                      : " is larger than the backend's memory holds at once"));
     SimplifiedUpscale result;
@@ -25,7 +25,7 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
     result.optimize = backend.optimize();
     Mesh mesh = backend.mesh();
     result.values = image;
-    result.simplify = simplifySerial(mesh, result.values, simplifiedVertexCount(image.width, image.height, fraction));
+    result.simplify = simplifySerial(mesh, result.values, simplifiedVertexCount(image.width, image.height, fraction), max_error);
     if (options.mesh) options.mesh->add(mesh, {0, 0, image.width, image.height}, {0, 0, image.width, image.height});
 
     const MeshRenderer renderer(mesh, result.values);

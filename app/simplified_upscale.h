@@ -33,7 +33,9 @@ struct SimplifiedUpscale {
 // The vertices `fraction` of a width × height image's asks for: at least the four corners.
 uint32_t simplifiedVertexCount(uint32_t width, uint32_t height, double fraction);
 
-SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction,
+// `fraction` of the vertices (0: down to the corners) or as far as `max_error` allows
+// (greedy_simplify.h; 0: no limit).
+SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction, double max_error,
                                     const TileOptions& options, const std::function<void(OutputRows&& rows)>& sink,
                                     const TileStepCallback& on_step = {});
 

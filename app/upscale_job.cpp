@@ -84,10 +84,11 @@ void ImageJob::open() {
     checkOutputLimit(task_.output, report_.out);
     if (std::string problem = checkOutputSize(header.width, header.height, report_.out); !problem.empty())
         throw UserError(inputName(task_.input) + ": " + problem);
-    if (!task_.mesh.empty()) {
+    if (!task_.mesh.empty() && !(settings_.max_error > 0.0 && settings_.simplify == 0.0)) {
         // A simplified mesh of V vertices has fewer than 2V triangles (a triangulated disk),
         // plus its ring's, at most two per hull pixel and corner.
-        const uint64_t faces = settings_.simplify > 0.0
+        // With --max-error alone the count is known only at the end, where it is checked again.
+        const uint64_t faces = settings_.simplifies()
                                    ? 2 * simplifiedVertexCount(header.width, header.height, settings_.simplify) +
                                          4 * (uint64_t(header.width) + header.height) + 8
                                    : indexedFaceCount(header.width, header.height);
@@ -174,8 +175,9 @@ void ImageJob::render(Backend& backend) {
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
         options.mesh = mesh ? &*mesh : nullptr;
-        if (settings_.simplify > 0.0) {
-            SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify, options, sink, on_step);
+        if (settings_.simplifies()) {
+            SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify,
+                                                             settings_.max_error, options, sink, on_step);
             report_.stats = simplified.optimize;
             state_->image = std::move(simplified.values);  // the mesh file's colours; the input is not read again
         } else

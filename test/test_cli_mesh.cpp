@@ -121,17 +121,34 @@ TEST_CASE("cli mesh: --simplify keeps the fraction of the vertices asked for, an
     CHECK(out.height == 64);
 }
 
+TEST_CASE("cli mesh: --max-error simplifies as far as the error allows") {
+    TempFolder work;
+    long vertices[2];
+    int i = 0;
+    for (const std::string error : {"2", "8"}) {
+        const std::string mesh = work / ("mesh" + error + ".ply");
+        REQUIRE(runDdtup({kInput, work / "out.png", "--max-error", error, "--mesh", mesh, "--backend", "cpu", "-q"}).exit_code == 0);
+        vertices[i++] = assimpCount(mesh, "Vertices");
+    }
+    CHECK(vertices[0] < 32 * 32 + 4 * 32 + 4);  // fewer than the full mesh's
+    CHECK(vertices[1] < vertices[0]);           // a larger error allows more collapses
+}
+
 TEST_CASE("cli mesh: bad --simplify values get one line") {
     TempFolder work;
     const std::string out = work / "out.png";
     for (const std::string value : {"0", "1.5", "-0.1", "nan"})
         requireExactError(runDdtup({kInput, out, "--simplify", value}), 2,
                           "--simplify must be a fraction in (0, 1] (got " + value + ")");
+    for (const std::string value : {"0", "-1", "inf"})
+        requireExactError(runDdtup({kInput, out, "--max-error", value}), 2,
+                          "--max-error must be a positive number of 8-bit levels (got " + value + ")");
     requireExactError(runDdtup({kInput, out, "--simplify", "0.5", "--reconstruct", "consistent"}), 2,
-                      "--simplify renders the linear surface on the simplified mesh; --reconstruct consistent does not apply");
+                      "simplification (--simplify, --max-error) renders the linear surface on the simplified mesh; "
+                      "--reconstruct consistent does not apply");
     const std::string photo = ddt::test::testDataPath("../../bench/data/real/astronaut.png");
     requireExactError(runDdtup({photo, out, "--simplify", "0.5", "--backend", "cpu", "--tile", "128", "-q"}), 1,
-                      photo + ": --simplify needs the image in one piece, and 512×512 is larger than --tile");
+                      photo + ": simplification needs the image in one piece, and 512×512 is larger than --tile");
     CHECK(work.names().empty());
 }
 

@@ -64,3 +64,23 @@ TEST_CASE("greedy simplify: a plane costs nothing, a bump on it its error") {
     CHECK(checkMesh(bumpy) == "");
     CHECK(with_bump.last_cost > 0.1);
 }
+
+TEST_CASE("greedy simplify: a largest error stops the collapses that would exceed it") {
+    const Image photo = photoPiece();
+    const Mesh optimised = optimisedGridMesh(photo);
+    uint32_t left[2];
+    int i = 0;
+    for (double levels : {2.0, 8.0}) {
+        Mesh mesh = optimised;
+        Image values = photo;
+        const SimplifyStats stats = simplifySerial(mesh, values, 4, levels);
+        CHECK(checkMesh(mesh) == "");
+        CHECK(stats.vertices_after > 4);
+        left[i++] = stats.vertices_after;
+    }
+    CHECK(left[1] < left[0]);
+    // A flat picture costs nothing anywhere: down to the corners under any limit.
+    Image flat = makeImage(9, 7, 1, std::vector<float>(63, 0.5f));
+    Mesh mesh = buildGridMesh(9, 7);
+    CHECK(simplifySerial(mesh, flat, 4, 0.5).vertices_after == 4);
+}

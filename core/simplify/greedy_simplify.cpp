@@ -32,7 +32,7 @@ uint32_t usedVertexCount(const Mesh& mesh) {
     return uint32_t(std::count(used.begin(), used.end(), true));
 }
 
-SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target) {
+SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double max_error) {
     SimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     SimplifyStart start(mesh, image);
@@ -61,6 +61,11 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target) {
             continue;
         }
         const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+        // Too costly: skipped, until a collapse nearby changes its cost and queues it again.
+        if (max_error > 0.0) {
+            const double area = quadrics[from].area + quadrics[to].area;
+            if (area > 0.0 && 255.0 * std::sqrt(next.cost / area) > max_error) continue;
+        }
         collapseEdge(mesh, edges, collapse);
         quadrics[to] += quadrics[from];
         ++stats.collapses;

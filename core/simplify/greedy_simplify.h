@@ -29,6 +29,11 @@ uint32_t usedVertexCount(const Mesh& mesh);
 // the picture's pixels, the vertices' colours, on entry; on return each kept vertex has the
 // colour its quadric calls for where it stands (the least-squares colour of the planes it
 // absorbed), within [0, 1] for integer sample types and, premultiplied, within its alpha.
-SimplifyStats simplifySerial(Mesh& mesh, Image& values, uint32_t target);
+//
+// With `max_error` > 0, no collapse is made whose error exceeds it, as a root-mean-square
+// distance to the planes the merged vertices stood for, in 8-bit levels (1/255 of the colour
+// range; colour dominates the distance, see quadric.h): simplification stops where every
+// remaining collapse would cost more, or at `target`, whichever comes first.
+SimplifyStats simplifySerial(Mesh& mesh, Image& values, uint32_t target, double max_error = 0.0);
 
 }  // namespace ddt

@@ -25,6 +25,7 @@ Quadric& Quadric::operator+=(const Quadric& other) {
     for (uint32_t k = 0; k < std::size(a); ++k) a[k] += other.a[k];
     for (uint32_t k = 0; k < kMaxQuadricDimensions; ++k) b[k] += other.b[k];
     c += other.c;
+    area += other.area;
     return *this;
 }
 
@@ -99,6 +100,7 @@ Quadric planeQuadric(const double* p, const double* q, const double* r, uint32_t
         }
     for (uint32_t i = 0; i < n; ++i) quadric.b[i] = -area * ap[i];
     quadric.c = area * dot(p, ap, n);
+    quadric.area = area;
     return quadric;
 }
 

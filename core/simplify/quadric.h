@@ -25,6 +25,7 @@ struct Quadric {
     double a[kMaxQuadricDimensions * (kMaxQuadricDimensions + 1) / 2] = {};  // A's upper triangle, row by row
     double b[kMaxQuadricDimensions] = {};
     double c = 0.0;
+    double area = 0.0;  // the planes' total weight: Q(v) / area is a mean squared distance
 
     Quadric& operator+=(const Quadric& other);
     // Q(v) for a point v of `n` coordinates (never below 0: rounding is clamped away).
