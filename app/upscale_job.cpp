@@ -176,6 +176,11 @@ void ImageJob::render(Backend& backend) {
         options.reconstruct = settings_.reconstruct == "consistent";
         options.mesh = mesh ? &*mesh : nullptr;
         if (settings_.simplifies()) {
+            // Only the CPU backend renders on the host; on any other, say where simplification runs.
+            if (!backend.handsOverSurface())
+                reporter_.notice(task_.input, inputName(task_.input) +
+                                                  ": simplification runs on the CPU, one thread (its Vulkan version is "
+                                                  "not written yet); the optimization ran on the device");
             SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify,
                                                              settings_.max_error, options, sink, on_step);
             report_.stats = simplified.optimize;
