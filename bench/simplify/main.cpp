@@ -16,8 +16,10 @@
 // triangulation of the picture is rendered as a triangle soup (renderTriangleSoup) and
 // counted as folded.
 //
-//   ddtup-bench-simplify [--data DIR] [--out DIR] [--quick]
+//   ddtup-bench-simplify [--data DIR] [--out DIR] [--quick] [--parallel]
 //   ddtup-bench-simplify --from-csv FILE [--out DIR]   the table and plot again from a run's CSV
+// --parallel adds the parallel rule (core/simplify/parallel_simplify.h), to compare with the
+// serial reference: several times slower than it on the CPU.
 #include <meshoptimizer.h>
 #include <zlib.h>
 
@@ -40,6 +42,7 @@
 #include "memory_png.h"
 #include "mesh_file.h"
 #include "metrics.h"
+#include "parallel_simplify.h"
 #include "render.h"
 #include "svg_plot.h"
 
@@ -47,6 +50,8 @@ namespace fs = std::filesystem;
 using namespace ddt;
 
 namespace {
+
+const std::string kParallelRule = "ddtup parallel rule";
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -203,29 +208,27 @@ std::vector<Row> readRows(const std::string& path) {
     return rows;
 }
 
-// simplify.md and simplify.svg from the rows: means over the images per share.
-void writeSummary(const std::vector<Row>& rows, const std::vector<double>& shares, size_t images, const std::string& data,
-                  const std::string& out);
-
 }  // namespace
 
 namespace {
 
+// simplify.md and simplify.svg from the rows: means over the images per share.
 void writeSummary(const std::vector<Row>& rows, const std::vector<double>& shares, size_t images, const std::string& data,
                   const std::string& out) {
     std::ofstream md(out + "/simplify.md");
-    md << "| vertices asked | ddtup kept | ddtup PSNR dB | ddtup s | meshopt kept | meshopt PSNR dB | meshopt s | PLY MB | SVG MB | SVG.gz MB | PNG MB |\n"
-          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "| vertices asked | ddtup kept | ddtup PSNR dB | ddtup s | parallel rule PSNR dB | parallel rule s | meshopt kept | "
+          "meshopt PSNR dB | meshopt s | PLY MB | SVG MB | SVG.gz MB | PNG MB |\n"
+          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     bench::PlotSeries ours_series{"ddtup (greedy QEM, colour)", "#1f77b4", "", true, false, {}};
     bench::PlotSeries peer_series{"meshoptimizer (height field, best k)", "#d62728", "6 3", true, true, {}};
     for (double share : shares) {
-        double sums[2][3] = {};  // per method: kept share, PSNR, seconds
-        int counts[2] = {}, unrenderable = 0;
+        double sums[3][3] = {};  // per method (ddtup, meshopt, the parallel rule): kept, PSNR, seconds
+        int counts[3] = {}, unrenderable = 0;
         double ply = 0, svg = 0, svg_gz = 0, png = 0;
         bool all_svg = true;
         for (const Row& r : rows) {
             if (r.share != share) continue;
-            const int m = r.method == "ddtup" ? 0 : 1;
+            const int m = r.method == "ddtup" ? 0 : r.method == kParallelRule ? 2 : 1;
             if (r.folded) ++unrenderable;
             sums[m][0] += r.vertices;
             sums[m][1] += r.psnr;
@@ -239,10 +242,11 @@ void writeSummary(const std::vector<Row>& rows, const std::vector<double>& share
                 all_svg = all_svg && r.svg > 0;
             }
         }
-        char line[512];
+        char line[512], parallel[64] = "— | —";
         const double n0 = std::max(1, counts[0]), n1 = std::max(1, counts[1]);
-        std::snprintf(line, sizeof(line), "| %g %% | %.0f | %.2f | %.2f | %.0f | %.2f%s | %.3f | %.2f | %s | %s | %.2f |\n",
-                      100 * share, sums[0][0] / n0, sums[0][1] / n0, sums[0][2] / n0, sums[1][0] / n1, sums[1][1] / n1,
+        if (counts[2]) std::snprintf(parallel, sizeof(parallel), "%.2f | %.2f", sums[2][1] / counts[2], sums[2][2] / counts[2]);
+        std::snprintf(line, sizeof(line), "| %g %% | %.0f | %.2f | %.2f | %s | %.0f | %.2f%s | %.3f | %.2f | %s | %s | %.2f |\n",
+                      100 * share, sums[0][0] / n0, sums[0][1] / n0, sums[0][2] / n0, parallel, sums[1][0] / n1, sums[1][1] / n1,
                       unrenderable ? (" (" + std::to_string(unrenderable) + " folded)").c_str() : "", sums[1][2] / n1,
                       ply / n0 / 1e6, all_svg ? std::to_string(svg / n0 / 1e6).substr(0, 5).c_str() : "over limit",
                       all_svg ? std::to_string(svg_gz / n0 / 1e6).substr(0, 5).c_str() : "over limit", png / n0 / 1e6);
@@ -252,7 +256,8 @@ void writeSummary(const std::vector<Row>& rows, const std::vector<double>& share
         if (counts[1] && std::isfinite(sums[1][1])) peer_series.points.push_back({100 * share, sums[1][1] / n1});
     }
     md << "\nMeans over " << images << " images of " << data << "; PSNR of the mesh rendered at the original's size "
-       << "against the original (8-bit RGB; inf: the mesh is the picture). meshopt: k of {1, 4, 16, 64, 256} best per image and share; "
+       << "against the original (8-bit RGB; inf: the mesh is the picture). Parallel rule (with --parallel): "
+          "core/simplify/parallel_simplify.h on the CPU, the rule the Vulkan kernels are to follow. meshopt: k of {1, 4, 16, 64, 256} best per image and share; "
           "border locked; folded: not a valid triangulation of the picture, rendered as a triangle soup.\n";
     bench::Plot plot;
     plot.title = "Simplified meshes: picture kept against vertices kept";
@@ -269,15 +274,17 @@ void writeSummary(const std::vector<Row>& rows, const std::vector<double>& share
 int main(int argc, char** argv) {
     std::string data = std::string(DDTUP_BENCH_DATA) + "/real", out = "simplify-results";
     std::string from_csv;
-    bool quick = false;
+    bool quick = false, parallel = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--data" && i + 1 < argc) data = argv[++i];
         else if (arg == "--out" && i + 1 < argc) out = argv[++i];
         else if (arg == "--from-csv" && i + 1 < argc) from_csv = argv[++i];
         else if (arg == "--quick") quick = true;
+        else if (arg == "--parallel") parallel = true;
         else {
-            std::fprintf(stderr, "usage: ddtup-bench-simplify [--data DIR] [--out DIR] [--quick] | --from-csv FILE [--out DIR]\n");
+            std::fprintf(stderr, "usage: ddtup-bench-simplify [--data DIR] [--out DIR] [--quick] [--parallel] | --from-csv FILE "
+                                 "[--out DIR]\n");
             return 2;
         }
     }
@@ -335,6 +342,21 @@ int main(int argc, char** argv) {
             }
             ours.png = bench::encodePng(rendered).bytes.size();
             rows.push_back(ours);
+            if (parallel) {
+                Row rule = ours;
+                rule.method = kParallelRule;
+                Mesh parallel_mesh = optimised;
+                Image parallel_values = original;
+                const auto parallel_start = std::chrono::steady_clock::now();
+                simplifyParallel(parallel_mesh, parallel_values, target);
+                rule.seconds = secondsSince(parallel_start);
+                rule.vertices = usedVertexCount(parallel_mesh);
+                rule.psnr = psnrOf(parallel_mesh, parallel_values, original);
+                rule.ply = rule.svg = rule.svg_gz = rule.png = 0;
+                std::printf("%-10s %5.1f %%  parallel rule %7u vertices %6.2f dB %6.2f s\n", rule.image.c_str(), 100 * share,
+                            rule.vertices, rule.psnr, rule.seconds);
+                rows.push_back(rule);
+            }
             Row peer = meshoptimizerRow(optimised, original, share);
             peer.image = ours.image;
             peer.share = share;
