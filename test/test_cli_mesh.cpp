@@ -5,7 +5,6 @@
 #include <sys/stat.h>
 
 #include <filesystem>
-#include <regex>
 
 #include "image_file.h"
 #include "metrics.h"
@@ -22,9 +21,10 @@ const std::string kInput = ddt::test::testDataPath("crop32_astronaut.png");  // 
 long assimpCount(const std::string& file, const std::string& what) {
     const Run run = runShell("assimp info " + shellQuoted(file));
     REQUIRE(run.exit_code == 0);
-    std::smatch match;
-    REQUIRE(std::regex_search(run.out, match, std::regex(what + ":\\s+(\\d+)")));
-    return std::stol(match[1]);
+    // (Not <regex>: GCC 12's trips -Wmaybe-uninitialized in the sanitizer builds.)
+    const size_t at = run.out.find(what + ":");
+    REQUIRE(at != std::string::npos);
+    return std::stol(run.out.substr(at + what.size() + 1));
 }
 
 }  // namespace
