@@ -79,12 +79,6 @@ const char* meshExtension(const std::string& name) {
     return format == MeshFormat::Ply ? ".ply" : format == MeshFormat::Obj ? ".obj" : ".svg";
 }
 
-bool sameFile(const std::string& a, const std::string& b) {
-    std::error_code error;
-    if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
-    return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
-}
-
 // Refuses outputs that are an input, or that another input already writes; skips finished ones.
 void decideStates(std::vector<ImageTask>& tasks, bool skip_existing) {
     std::map<std::string, const ImageTask*> writers;  // canonical output -> first task writing it
@@ -107,6 +101,12 @@ void decideStates(std::vector<ImageTask>& tasks, bool skip_existing) {
 }
 
 }  // namespace
+
+bool sameFile(const std::string& a, const std::string& b) {
+    std::error_code error;
+    if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
+    return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+}
 
 std::vector<ImageTask> planBatch(const Settings& settings) {
     std::vector<ImageTask> tasks;

@@ -18,6 +18,9 @@ struct ImageTask {
     std::string reason;  // why skipped or refused; a refusal names the file first
 };
 
+// Whether two paths name the same file, however spelled (links, "..", symlinks), or would once made.
+bool sameFile(const std::string& a, const std::string& b);
+
 // Throws UserError when the input folder cannot be listed or the output folder cannot be
 // created or written. Inputs are in command-line order, or sorted for a folder.
 std::vector<ImageTask> planBatch(const Settings& settings);

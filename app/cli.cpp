@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "batch_plan.h"
 #include "exit_codes.h"
 #include "flip_rule.h"
 #include "image.h"
@@ -35,14 +36,6 @@ const char* const kDescription =
     "\n"
     "Exit codes: 0 all done, 1 some images failed, 2 bad usage, 3 no usable Vulkan device,\n"
     "4 internal error, 130/143 interrupted.";
-
-// Whether two paths name the same file (or would, once made).
-bool sameFile(const std::string& a, const std::string& b) {
-    namespace fs = std::filesystem;
-    std::error_code error;
-    if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
-    return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
-}
 
 // "" if --mesh and --mesh-height make sense with the rest, else the message.
 std::string validateMesh(const CLI::App& app, const Settings& settings) {

@@ -41,8 +41,6 @@ public:
         sink_(std::move(rows));
     }
 
-    uint32_t nextRow() const { return next_row_; }
-
 private:
     const Sink& sink_;
     size_t row_floats_;

@@ -51,20 +51,18 @@ std::string StitchedMesh::check(const std::vector<uint32_t>& triangles, uint32_t
         std::string text = "(";
         return text.append(std::to_string(v % width)).append(", ").append(std::to_string(v / width)).append(")");
     };
-    int64_t doubled_area = 0;
+    double doubled_area = 0.0;  // integers below 2^53: exact
     // The directed edges by their start vertex (compressed rows), to find each one's reverse.
     std::vector<uint32_t> first(size_t(vertices) + 1, 0);
     for (size_t i = 0; i < count; ++i) {
         const uint32_t* t = &triangles[3 * i];
         if (t[0] >= vertices || t[1] >= vertices || t[2] >= vertices) return "a vertex outside the grid";
-        const int64_t px = t[0] % width, py = t[0] / width, qx = t[1] % width, qy = t[1] / width;
-        const int64_t rx = t[2] % width, ry = t[2] / width;
-        const int64_t orient = (qx - px) * (ry - py) - (qy - py) * (rx - px);
-        if (orient <= 0) return "the triangle " + where(t[0]) + " " + where(t[1]) + " " + where(t[2]) + " is not positive";
+        const double orient = orientation(t[0], t[1], t[2], width);  // exact: glsl/sederberg.h
+        if (orient <= 0.0) return "the triangle " + where(t[0]) + " " + where(t[1]) + " " + where(t[2]) + " is not positive";
         doubled_area += orient;
         for (int k = 0; k < 3; ++k) ++first[t[k] + 1];
     }
-    if (doubled_area != 2 * int64_t(width - 1) * (height - 1)) return "the triangles' area is not the grid's";
+    if (doubled_area != 2.0 * double(width - 1) * (height - 1)) return "the triangles' area is not the grid's";
     for (uint32_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
     std::vector<uint32_t> ends(first.begin(), first.end() - 1), targets(3 * count);
     for (size_t i = 0; i < count; ++i)

@@ -5,19 +5,13 @@
 #include <random>
 
 #include "edge_collapse.h"
+#include "greedy_simplify.h"
 #include "test_support.h"
 
 using namespace ddt;
 using namespace ddt::test;
 
 namespace {
-
-uint32_t usedVertices(const Mesh& mesh) {
-    std::vector<bool> used(mesh.vertexCount(), false);
-    for (const EdgeVertices& v : mesh.vertices)
-        if (v.a != kNone) used[v.a] = used[v.b] = true;
-    return uint32_t(std::count(used.begin(), used.end(), true));
-}
 
 Mesh compactCopy(Mesh mesh) {
     compactEdges(mesh);
@@ -42,7 +36,7 @@ TEST_CASE("edge collapse: an interior vertex goes into its neighbour") {
     collapseEdge(mesh, edges, collapse);
     const Mesh compact = compactCopy(mesh);
     CHECK(checkMesh(compact) == "");
-    CHECK(usedVertices(compact) == 15);
+    CHECK(usedVertexCount(compact) == 15);
     CHECK(compact.edgeCount() == gridEdgeCount(4, 4) - 3);
     for (const EdgeVertices& v : compact.vertices) CHECK((v.a != 5 && v.b != 5 && v.l != 5 && v.r != 5));
     CHECK(edges.at[5].empty());
@@ -83,10 +77,10 @@ TEST_CASE("edge collapse: random legal collapses keep a valid mesh down to the c
             const Mesh compact = compactCopy(mesh);
             INFO("trial " << trial << ", collapse " << collapses);
             REQUIRE(checkMesh(compact) == "");
-            REQUIRE(usedVertices(compact) == w * h - collapses);
+            REQUIRE(usedVertexCount(compact) == w * h - collapses);
         }
         // Legal collapses run out only at the corners' two triangles.
-        CHECK(usedVertices(mesh) == 4);
+        CHECK(usedVertexCount(mesh) == 4);
         CHECK(refused > 0);
     }
 }

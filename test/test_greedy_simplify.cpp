@@ -38,7 +38,8 @@ TEST_CASE("greedy simplify: a flat picture keeps only its corners") {
     Image flat = makeImage(9, 7, 3, std::vector<float>(9 * 7 * 3, 0.25f));
     Mesh mesh = buildGridMesh(9, 7);
     const SimplifyStats stats = simplifySerial(mesh, flat, 0);
-    for (float value : flat.pixels) CHECK(value == Approx(0.25f).margin(1e-6));  // the best colour of a flat picture
+    // The best colour of a flat picture is its colour (solved in double, stored as float).
+    for (float value : flat.pixels) CHECK(value == Approx(0.25f).margin(1e-6));
     CHECK(checkMesh(mesh) == "");
     CHECK(stats.vertices_after == 4);
     CHECK(stats.last_cost == 0.0);
@@ -55,7 +56,7 @@ TEST_CASE("greedy simplify: a plane costs nothing, a bump on it its error") {
     const SimplifyStats flat = simplifySerial(plane, ramp, 4);
     CHECK(flat.vertices_after == 4);
     CHECK(flat.last_cost < 1e-12);  // rounding only
-    // The corners keep their values: the plane's colour where they stand.
+    // The corners keep their values: the plane's colour where they stand (to float rounding).
     for (uint32_t corner : {0u, w - 1, (h - 1) * w, h * w - 1}) CHECK(ramp.pixels[corner] == Approx(values[corner]).margin(1e-6));
     values[bump] += 0.5f;
     Mesh bumpy = buildGridMesh(w, h);

@@ -106,7 +106,7 @@ TEST_CASE("mesh export: a ring out to the image rectangle, faces counter-clockwi
         area += twiceFaceArea(m, f) / 2;
         for (int k = 0; k < 3; ++k) ++directed[{m.faces[3 * f + k], m.faces[3 * f + (k + 1) % 3]}];
     }
-    CHECK(area == Approx(13.0 * 10.0).epsilon(1e-12));
+    CHECK(area == Approx(13.0 * 10.0).epsilon(1e-12));  // a sum of double products: rounding only
     // Each edge once each way round, but for the rectangle's sides, which have one face.
     auto onRectangle = [&](uint32_t a, uint32_t b) {
         const double* p = &m.positions[3 * size_t(a)];
@@ -163,7 +163,7 @@ TEST_CASE("mesh export: a simplified mesh's file has only its vertices and is st
         CHECK(twiceFaceArea(m, f) > 0.0);
         area += twiceFaceArea(m, f) / 2;
     }
-    CHECK(area == Approx(double(out.width) * out.height).epsilon(1e-12));
+    CHECK(area == Approx(double(out.width) * out.height).epsilon(1e-12));  // rounding only, as above
     for (uint32_t y = 0; y < out.height; ++y)
         for (uint32_t x = 0; x < out.width; ++x) {
             INFO("output pixel (" << x << ", " << y << ")");
@@ -179,7 +179,9 @@ TEST_CASE("mesh export: straight colours, and z from luma times the height") {
     REQUIRE(m.channels == 4);
     const float expected[4][4] = {{0.5f, 0.2f, 0.1f, 0.5f}, {0, 0, 0, 0}, {0.2f, 0.4f, 0.6f, 1.0f}, {0.5f, 0.5f, 0.5f, 0.6f}};
     for (int v = 0; v < 4; ++v)
-        for (int k = 0; k < 4; ++k) CHECK(m.colours[4 * v + k] == Approx(expected[v][k]).epsilon(1e-6));
+        for (int k = 0; k < 4; ++k)  // a float division: rounding only
+            CHECK(m.colours[4 * v + k] == Approx(expected[v][k]).epsilon(1e-6));
+    // Approx's default (about 1e-5 relative): the colours behind z are float divisions.
     CHECK(m.positions[2] == Approx(10.0 * (0.2126 * 0.5 + 0.7152 * 0.2 + 0.0722 * 0.1)));
     CHECK(m.positions[3 * 3 + 2] == Approx(10.0 * 0.5));
 
@@ -385,7 +387,7 @@ TEST_CASE("mesh files: SVG gradients reproduce a grey mesh's colours at its corn
         for (int i = 0; i < 3; ++i) {
             const uint32_t v = m.faces[3 * face + i];
             const double x = px[i], y = py[i];
-            CHECK(x == Approx(m.positions[3 * v]).margin(1e-6));
+            CHECK(x == Approx(m.positions[3 * v]).margin(1e-6));  // written with 8 significant digits
             CHECK(y == Approx(12.0 - m.positions[3 * v + 1]).margin(1e-6));
             double value;
             if (has_gradient) {

@@ -15,12 +15,6 @@ uint32_t sidesOf(uint32_t v, uint32_t width, uint32_t height) {
     return uint32_t(x == 0) | uint32_t(x == width - 1) << 1 | uint32_t(y == 0) << 2 | uint32_t(y == height - 1) << 3;
 }
 
-int64_t orient(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r) {
-    const int64_t w = mesh.width;
-    const int64_t px = p % w, py = p / w, qx = q % w, qy = q / w, rx = r % w, ry = r / w;
-    return (qx - px) * (ry - py) - (qy - py) * (rx - px);
-}
-
 // The triangles on the sides of edge f, positive: (a, b, l) and (b, a, r) where they exist.
 template <typename Visit>
 void forEachSide(const EdgeVertices& v, Visit visit) {
@@ -71,7 +65,7 @@ bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) 
         forEachSide(mesh.vertices[f], [&](uint32_t p, uint32_t q, uint32_t r) {
             if (p == to || q == to || r == to) return;  // one of e's triangles, which go
             auto moved = [&](uint32_t v) { return v == from ? to : v; };
-            folds = folds || orient(mesh, moved(p), moved(q), moved(r)) <= 0;
+            folds = folds || orientation(moved(p), moved(q), moved(r), mesh.width) <= 0.0;  // exact: glsl/sederberg.h
         });
         if (folds) return false;
     }
