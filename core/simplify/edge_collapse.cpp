@@ -28,15 +28,12 @@ void replaceLink(Mesh& mesh, uint32_t edge, uint32_t old_link, uint32_t new_link
         if (*slot == old_link) *slot = new_link;
 }
 
-void removeFrom(std::vector<uint32_t>& list, uint32_t value) { list.erase(std::find(list.begin(), list.end(), value)); }
-
 }  // namespace
 
-VertexEdges::VertexEdges(const Mesh& mesh) : at(mesh.vertexCount()) {
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+VertexEdges::VertexEdges(const Mesh& mesh) : first(mesh.vertexCount(), kNone) {
+    for (uint32_t e = mesh.edgeCount(); e-- > 0;) {  // each vertex's lowest edge id
         if (removedEdge(mesh, e)) continue;
-        at[mesh.vertices[e].a].push_back(e);
-        at[mesh.vertices[e].b].push_back(e);
+        first[mesh.vertices[e].a] = first[mesh.vertices[e].b] = e;
     }
 }
 
@@ -48,28 +45,28 @@ bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) 
     if (from_sides && ev.l != kNone && ev.r != kNone) return false;  // a border vertex leaves its side
     // Link condition: the common neighbours of a and b are e's adjacent vertices.
     uint32_t common = 0;
-    for (uint32_t f : edges.at[from]) {
+    bool linked = true;
+    forEachEdgeAt(mesh, edges, from, [&](uint32_t f) {
         const uint32_t x = otherEnd(mesh.vertices[f], from);
-        if (x == to) continue;
-        for (uint32_t g : edges.at[to])
-            if (otherEnd(mesh.vertices[g], to) == x) {
-                if (x != ev.l && x != ev.r) return false;
-                ++common;
-            }
-    }
-    if (common != uint32_t(ev.l != kNone) + uint32_t(ev.r != kNone)) return false;
+        if (x == to) return;
+        forEachEdgeAt(mesh, edges, to, [&](uint32_t g) {
+            if (otherEnd(mesh.vertices[g], to) != x) return;
+            linked = linked && (x == ev.l || x == ev.r);
+            ++common;
+        });
+    });
+    if (!linked || common != uint32_t(ev.l != kNone) + uint32_t(ev.r != kNone)) return false;
     // No fold-over: the triangles at `from` that stay, with `to` in its place, stay positive.
-    for (uint32_t f : edges.at[from]) {
-        if (f == collapse.edge) continue;
-        bool folds = false;
+    bool folds = false;
+    forEachEdgeAt(mesh, edges, from, [&](uint32_t f) {
+        if (f == collapse.edge) return;
         forEachSide(mesh.vertices[f], [&](uint32_t p, uint32_t q, uint32_t r) {
             if (p == to || q == to || r == to) return;  // one of e's triangles, which go
             auto moved = [&](uint32_t v) { return v == from ? to : v; };
             folds = folds || orientation(moved(p), moved(q), moved(r), mesh.width) <= 0.0;  // exact: glsl/sederberg.h
         });
-        if (folds) return false;
-    }
-    return true;
+    });
+    return !folds;
 }
 
 void collapseEdge(Mesh& mesh, VertexEdges& edges, Collapse collapse) {
@@ -77,6 +74,9 @@ void collapseEdge(Mesh& mesh, VertexEdges& edges, Collapse collapse) {
     const EdgeVertices ev = mesh.vertices[e];
     const EdgeNeighbours en = mesh.neighbours[e];
     const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+    // `from`'s edges, walked before any record changes.
+    std::vector<uint32_t> at_from;
+    forEachEdgeAt(mesh, edges, from, [&](uint32_t f) { at_from.push_back(f); });
     // Each of e's triangles (a, b, l), (b, a, r): its edge from–third goes, to–third stays.
     struct Side {
         uint32_t third, kept, removed;
@@ -132,7 +132,7 @@ void collapseEdge(Mesh& mesh, VertexEdges& edges, Collapse collapse) {
     auto removed = [&](uint32_t f) {
         return f == e || std::any_of(sides.begin(), sides.end(), [&](const Side& s) { return s.removed == f; });
     };
-    for (uint32_t f : edges.at[from]) {
+    for (uint32_t f : at_from) {
         if (removed(f)) continue;
         EdgeVertices& fv = mesh.vertices[f];
         const EdgeNeighbours& fn = mesh.neighbours[f];
@@ -148,11 +148,9 @@ void collapseEdge(Mesh& mesh, VertexEdges& edges, Collapse collapse) {
         }
     }
 
-    removeFrom(edges.at[to], e);
-    for (uint32_t f : edges.at[from])
-        if (!removed(f)) edges.at[to].push_back(f);
-    edges.at[from].clear();
-    for (const Side& side : sides) removeFrom(edges.at[side.third], side.removed);
+    // The walks' starts: a kept edge for `to` and each third vertex (whose edge may have gone).
+    edges.first[from] = kNone;
+    for (const Side& side : sides) edges.first[to] = edges.first[side.third] = side.kept;
     for (uint32_t f : {e, sides.size() > 0 ? sides[0].removed : kNone, sides.size() > 1 ? sides[1].removed : kNone}) {
         if (f == kNone) continue;
         mesh.vertices[f] = {kNone, kNone, kNone, kNone};

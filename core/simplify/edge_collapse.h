@@ -24,13 +24,39 @@
 
 namespace ddt {
 
-// The edges at each vertex, which collapses keep up to date (the serial simplifier's
-// adjacency; the record structure alone would need a walk around the vertex).
+// One edge at each vertex, from which a walk over the edge records reaches the vertex's other
+// edges (forEachEdgeAt); collapses keep it valid. A walk rather than per-vertex lists because
+// it is what a Vulkan kernel can do with fixed-size records: the simplifiers then read the
+// mesh as the kernels will.
 struct VertexEdges {
-    std::vector<std::vector<uint32_t>> at;  // per vertex id: the ids of its edges
+    std::vector<uint32_t> first;  // per vertex id: one of its edges; kNone where no edge is left
 
     explicit VertexEdges(const Mesh& mesh);
 };
+
+// The edge after f around its endpoint v: counter-clockwise (y up) across f's triangle on that
+// side, or clockwise; kNone at the hull.
+inline uint32_t turnAround(const Mesh& mesh, uint32_t v, uint32_t f, bool counter_clockwise) {
+    const EdgeNeighbours& n = mesh.neighbours[f];
+    // At a, the left triangle (a, b, l) follows ab counter-clockwise; at b, the right one (b, a, r).
+    if (mesh.vertices[f].a == v) return counter_clockwise ? n.la : n.ar;
+    return counter_clockwise ? n.rb : n.bl;
+}
+
+// Calls visit(f) once for every edge f at vertex v: counter-clockwise from edges.first[v] and,
+// where that reaches the hull, clockwise from it too.
+template <typename Visit>
+void forEachEdgeAt(const Mesh& mesh, const VertexEdges& edges, uint32_t v, Visit visit) {
+    const uint32_t start = edges.first[v];
+    if (start == kNone) return;
+    uint32_t f = start;
+    do {
+        visit(f);
+        f = turnAround(mesh, v, f, true);
+    } while (f != kNone && f != start);
+    if (f == kNone)
+        for (f = turnAround(mesh, v, start, false); f != kNone; f = turnAround(mesh, v, f, false)) visit(f);
+}
 
 // A collapse of edge e: `from` is its endpoint b (b into a), or a (a into b).
 struct Collapse {

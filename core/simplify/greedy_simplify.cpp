@@ -73,12 +73,13 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
         stats.last_cost = next.cost;
         // The edges at `to` have new costs; blocked ones at its neighbours may have become legal
         // (legality depends on the triangles around an edge's vertices, which changed there).
-        for (uint32_t f : edges.at[to]) push(f);
-        for (uint32_t f : edges.at[to]) {
+        forEachEdgeAt(mesh, edges, to, [&](uint32_t f) {
+            push(f);
             const uint32_t x = mesh.vertices[f].a == to ? mesh.vertices[f].b : mesh.vertices[f].a;
-            for (uint32_t g : edges.at[x])
+            forEachEdgeAt(mesh, edges, x, [&](uint32_t g) {
                 if (blocked[g]) push(g);
-        }
+            });
+        });
     }
     compactEdges(mesh);
     setBestColours(mesh, quadrics, points, image);

@@ -32,7 +32,7 @@ template <typename Visit>
 void forEachRegionVertex(const Mesh& mesh, const VertexEdges& edges, uint32_t e, Visit visit) {
     for (uint32_t v : {mesh.vertices[e].a, mesh.vertices[e].b}) {
         visit(v);
-        for (uint32_t f : edges.at[v]) visit(mesh.vertices[f].a == v ? mesh.vertices[f].b : mesh.vertices[f].a);
+        forEachEdgeAt(mesh, edges, v, [&](uint32_t f) { visit(mesh.vertices[f].a == v ? mesh.vertices[f].b : mesh.vertices[f].a); });
     }
 }
 
