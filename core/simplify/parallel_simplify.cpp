@@ -20,11 +20,15 @@ constexpr uint64_t kNoKey = UINT64_MAX;
 // 1/16 the same, 1/64 36.36 dB in 147 rounds.
 constexpr uint32_t kRoundShare = 64;
 
-// (cost rounded to float, edge id) in one ordered integer: a non-negative float's bits order
-// as the float does.
-uint64_t keyOf(double cost, uint32_t edge) {
-    return uint64_t(std::bit_cast<uint32_t>(float(cost))) << 32 | edge;
-}
+// (cost, edge id) in one ordered integer: the cost's double cut to its high 32 bits (sign,
+// exponent and 20 bits of mantissa, so costs within a relative 2^-20 tie and the lower id
+// wins); a non-negative double's bits order as the double does. Cut, not rounded to float:
+// Vulkan leaves the rounding of a double-to-float conversion to the implementation, a cut is
+// exact on any device.
+uint64_t keyOf(double cost, uint32_t edge) { return std::bit_cast<uint64_t>(cost) >> 32 << 32 | edge; }
+
+// The cost a key holds (its cut double).
+double costOf(uint64_t key) { return std::bit_cast<double>(key >> 32 << 32); }
 
 // The vertices whose records and triangles a collapse of edge e reads or writes: its two
 // vertices and all their neighbours.
@@ -107,7 +111,7 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
             const Collapse collapse{e, bool(b_into_a[e])};
             const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
             forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { changed[v] = 1; });
-            stats.last_cost = std::max(stats.last_cost, double(std::bit_cast<float>(uint32_t(key[e] >> 32))));
+            stats.last_cost = std::max(stats.last_cost, costOf(key[e]));
             collapseEdge(mesh, edges, collapse);
             quadrics[to] += quadrics[from];
         }

@@ -5,7 +5,7 @@
 //
 // Each round:
 // 1. candidates: every edge's best legal collapse (canCollapse; the cheaper direction, b into
-//    a on ties), keyed by (its cost rounded to float, its edge id);
+//    a on ties), keyed by (its cost cut to 32 bits, its edge id);
 // 2. select: a collapse's region is its two vertices and all their neighbours, which holds
 //    every record the collapse writes and everything its legality reads (edge_collapse.h).
 //    Each vertex takes the least key among the regions that hold it; a collapse wins where it
