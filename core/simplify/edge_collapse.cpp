@@ -43,6 +43,11 @@ bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) 
     const uint32_t from_sides = sidesOf(from, mesh.width, mesh.height);
     if (std::popcount(from_sides) >= 2) return false;  // a corner
     if (from_sides && ev.l != kNone && ev.r != kNone) return false;  // a border vertex leaves its side
+    // Valence: `to` ends with the edges of both but e and the removed ones.
+    uint32_t valence = 0;
+    forEachEdgeAt(mesh, edges, from, [&](uint32_t) { ++valence; });
+    forEachEdgeAt(mesh, edges, to, [&](uint32_t) { ++valence; });
+    if (valence - 2 - uint32_t(ev.l != kNone) - uint32_t(ev.r != kNone) > kMaxCollapseValence) return false;
     // Link condition: the common neighbours of a and b are e's adjacent vertices.
     uint32_t common = 0;
     bool linked = true;
