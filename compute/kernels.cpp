@@ -28,32 +28,36 @@
 
 namespace ddt {
 
-namespace {
-
-template <size_t N>
-VkPipeline createKernel(VulkanContext& context, VkPipelineLayout layout, const uint32_t (&spirv)[N],
-                        const SelectRule& rule) {
+VkPipeline createComputePipeline(VulkanContext& context, VkPipelineLayout layout, const uint32_t* spirv, size_t bytes,
+                                 const VkSpecializationInfo* specialization) {
     VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    module_info.codeSize = sizeof(spirv);
+    module_info.codeSize = bytes;
     module_info.pCode = spirv;
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(context.device, &module_info, nullptr, &module));
-
-    const VkSpecializationMapEntry entries[] = {{0, offsetof(SelectRule, key_by_gain), sizeof(uint32_t)},
-                                                {1, offsetof(SelectRule, single_round), sizeof(uint32_t)}};
-    VkSpecializationInfo specialization{2, entries, sizeof(rule), &rule};
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
-    info.stage.pSpecializationInfo = &specialization;
+    info.stage.pSpecializationInfo = specialization;
     info.layout = layout;
     VkPipeline pipeline;
     VkResult result = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
     vkDestroyShaderModule(context.device, module, nullptr);
     VK_CHECK(result);
     return pipeline;
+}
+
+namespace {
+
+template <size_t N>
+VkPipeline createKernel(VulkanContext& context, VkPipelineLayout layout, const uint32_t (&spirv)[N],
+                        const SelectRule& rule) {
+    const VkSpecializationMapEntry entries[] = {{0, offsetof(SelectRule, key_by_gain), sizeof(uint32_t)},
+                                                {1, offsetof(SelectRule, single_round), sizeof(uint32_t)}};
+    const VkSpecializationInfo specialization{2, entries, sizeof(rule), &rule};
+    return createComputePipeline(context, layout, spirv, sizeof(spirv), &specialization);
 }
 
 }  // namespace

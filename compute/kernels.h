@@ -5,6 +5,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <cstddef>
 #include <cstdint>
 
 #include "context.h"
@@ -47,6 +48,10 @@ struct Kernels {
 };
 
 Kernels createKernels(VulkanContext& context, const SelectRule& rule);
+
+// A compute pipeline of `bytes` of SPIR-V with `layout` (for kernels with layouts of their own).
+VkPipeline createComputePipeline(VulkanContext& context, VkPipelineLayout layout, const uint32_t* spirv, size_t bytes,
+                                 const VkSpecializationInfo* specialization = nullptr);
 
 // The descriptor type of each binding of glsl/layout.h.
 VkDescriptorType bindingType(uint32_t binding);

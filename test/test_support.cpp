@@ -1,5 +1,6 @@
 #include "test_support.h"
 #include "cost.h"
+#include "edge_collapse.h"
 #include "image_file.h"
 #include "lawson.h"
 
@@ -201,6 +202,25 @@ Agreement compareSamples(const std::vector<float>& a, const std::vector<float>& 
     }
     agreement.within_one_level = double(close) / double(a.size());
     return agreement;
+}
+
+Mesh centreFanMesh(uint32_t side) {
+    const uint32_t centre = side / 2 * side + side / 2;
+    Mesh mesh = buildGridMesh(side, side);
+    VertexEdges edges(mesh);
+    for (bool collapsed = true; collapsed;) {
+        collapsed = false;
+        std::vector<uint32_t> at_centre;
+        forEachEdgeAt(mesh, edges, centre, [&](uint32_t f) { at_centre.push_back(f); });
+        for (uint32_t f : at_centre) {
+            const Collapse into_centre{f, mesh.vertices[f].a == centre};
+            if (!canCollapse(mesh, edges, into_centre)) continue;
+            collapseEdge(mesh, edges, into_centre);
+            collapsed = true;
+            break;
+        }
+    }
+    return mesh;
 }
 
 }  // namespace ddt::test

@@ -64,6 +64,12 @@ Image photoPiece();
 // The mesh the serial optimizer makes for `image`.
 Mesh optimisedGridMesh(const Image& image);
 
+// The side × side grid after every neighbour of its centre vertex (side / 2, side / 2) was
+// collapsed into it while that was legal (core/simplify/edge_collapse.h), one at a time: a fan
+// around the centre that kMaxCollapseValence stops from reaching the border (side ≥ 20).
+// Removed edges are left marked, not compacted.
+Mesh centreFanMesh(uint32_t side);
+
 // How closely two renderings of one image agree, sample by sample (for tiled vs untiled).
 struct Agreement {
     float max_difference = 0.0f;

@@ -12,8 +12,6 @@ namespace ddt {
 
 namespace {
 
-constexpr uint64_t kNoKey = UINT64_MAX;
-
 // A round collapses at most 1/kRoundShare of the vertices left: every local minimum at once
 // strays from the global order. Measured on chelsea.png at 10 % of the vertices (PSNR of the
 // render against the original; the serial reference 36.46 dB): no cap 35.69 dB in 136 rounds,
@@ -48,6 +46,18 @@ void lowerTo(std::atomic<uint64_t>& slot, uint64_t key) {
 
 }  // namespace
 
+CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge) {
+    CollapseCandidate best;
+    if (removedEdge(mesh, edge)) return best;
+    for (bool direction : {true, false}) {
+        const Collapse collapse{edge, direction};
+        if (!canCollapse(mesh, start.edges, collapse)) continue;
+        const uint64_t key = keyOf(collapseCost(mesh, start.quadrics, start.points, collapse), edge);
+        if (key < best.key) best = {key, direction};  // equal keys: b into a, tried first, stays
+    }
+    return best;
+}
+
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target) {
     ParallelSimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
@@ -67,36 +77,29 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
         parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
             for (size_t e = begin; e < end; ++e) {
                 if (removedEdge(mesh, uint32_t(e))) {
-                    key[e] = kNoKey;
+                    key[e] = kNoCollapseKey;
                     continue;
                 }
                 bool stale = false;
                 forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { stale = stale || changed[v]; });
                 if (!stale) continue;
-                key[e] = kNoKey;
-                for (bool direction : {true, false}) {
-                    const Collapse collapse{uint32_t(e), direction};
-                    if (!canCollapse(mesh, edges, collapse)) continue;
-                    const uint64_t k = keyOf(collapseCost(mesh, quadrics, points, collapse), uint32_t(e));
-                    if (k < key[e]) {  // equal keys: b into a, tried first, stays
-                        key[e] = k;
-                        b_into_a[e] = direction;
-                    }
-                }
+                const CollapseCandidate best = bestCollapse(mesh, start, uint32_t(e));
+                key[e] = best.key;
+                b_into_a[e] = best.b_into_a;
             }
         });
         // 2. Select: each vertex's least key over the regions that hold it; the winners.
         parallelFor(vertex_least.size(), grain, [&](size_t begin, size_t end) {
-            for (size_t v = begin; v < end; ++v) vertex_least[v].store(kNoKey, std::memory_order_relaxed);
+            for (size_t v = begin; v < end; ++v) vertex_least[v].store(kNoCollapseKey, std::memory_order_relaxed);
         });
         parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
             for (size_t e = begin; e < end; ++e)
-                if (key[e] != kNoKey)
+                if (key[e] != kNoCollapseKey)
                     forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { lowerTo(vertex_least[v], key[e]); });
         });
         std::vector<uint32_t> winners;
         for (uint32_t e = 0; e < edge_count; ++e) {
-            if (key[e] == kNoKey) continue;
+            if (key[e] == kNoCollapseKey) continue;
             bool least = true;
             forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { least = least && vertex_least[v].load() == key[e]; });
             if (least) winners.push_back(e);

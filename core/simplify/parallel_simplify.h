@@ -21,12 +21,24 @@
 #include <cstdint>
 
 #include "greedy_simplify.h"
+#include "vertex_quadrics.h"
 
 namespace ddt {
 
 struct ParallelSimplifyStats : SimplifyStats {
     uint32_t rounds = 0;
 };
+
+// Step 1's result for one edge: the key of its best legal collapse, kNoCollapseKey if it has
+// none (or was removed), and its direction.
+constexpr uint64_t kNoCollapseKey = UINT64_MAX;
+struct CollapseCandidate {
+    uint64_t key = kNoCollapseKey;
+    bool b_into_a = true;
+
+    bool operator==(const CollapseCandidate&) const = default;
+};
+CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge);
 
 // As simplifySerial, by the parallel rule.
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target);

@@ -8,11 +8,6 @@ namespace ddt {
 
 namespace {
 
-// Index of A[i][j], i <= j, in the upper triangle stored row by row for n = kMaxQuadricDimensions.
-constexpr uint32_t upper(uint32_t i, uint32_t j) {
-    return i * kMaxQuadricDimensions - i * (i - 1) / 2 + (j - i);
-}
-
 double dot(const double* u, const double* v, uint32_t n) {
     double sum = 0.0;
     for (uint32_t k = 0; k < n; ++k) sum += u[k] * v[k];
@@ -29,14 +24,7 @@ Quadric& Quadric::operator+=(const Quadric& other) {
     return *this;
 }
 
-double Quadric::at(const double* v, uint32_t n) const {
-    double sum = c;
-    for (uint32_t i = 0; i < n; ++i) {
-        sum += 2.0 * b[i] * v[i] + a[upper(i, i)] * v[i] * v[i];
-        for (uint32_t j = i + 1; j < n; ++j) sum += 2.0 * a[upper(i, j)] * v[i] * v[j];
-    }
-    return std::max(0.0, sum);
-}
+double Quadric::at(const double* v, uint32_t n) const { return quadricValue(a, b, c, v, n); }
 
 bool Quadric::minimiseTail(double* v, uint32_t fixed, uint32_t n) const {
     // ∂Q/∂v_t = 2 (A_tt v_t + A_tf v_f + b_t) = 0: Gaussian elimination with partial pivoting
@@ -46,10 +34,10 @@ bool Quadric::minimiseTail(double* v, uint32_t fixed, uint32_t n) const {
     for (uint32_t i = 0; i < m; ++i) {
         const uint32_t ti = fixed + i;
         double rhs = -b[ti];
-        for (uint32_t f = 0; f < fixed; ++f) rhs -= a[upper(f, ti)] * v[f];
+        for (uint32_t f = 0; f < fixed; ++f) rhs -= a[quadricIndex(f, ti)] * v[f];
         for (uint32_t j = 0; j < m; ++j) {
             const uint32_t tj = fixed + j;
-            system[i][j] = a[ti <= tj ? upper(ti, tj) : upper(tj, ti)];
+            system[i][j] = a[ti <= tj ? quadricIndex(ti, tj) : quadricIndex(tj, ti)];
         }
         system[i][m] = rhs;
     }
@@ -95,7 +83,7 @@ Quadric planeQuadric(const double* p, const double* q, const double* r, uint32_t
     for (uint32_t i = 0; i < n; ++i)
         for (uint32_t j = 0; j < n; ++j) {
             const double aij = (i == j ? 1.0 : 0.0) - e1[i] * e1[j] - e2[i] * e2[j];
-            if (i <= j) quadric.a[upper(i, j)] = area * aij;
+            if (i <= j) quadric.a[quadricIndex(i, j)] = area * aij;
             ap[i] += aij * p[j];
         }
     for (uint32_t i = 0; i < n; ++i) quadric.b[i] = -area * ap[i];

@@ -16,13 +16,15 @@
 
 #include <cstdint>
 
+#include "simplify/quadric_value.h"
+
 namespace ddt {
 
-constexpr uint32_t kMaxQuadricDimensions = 6;  // x, y and up to four channels
 constexpr double kPositionWeight = 4.0;
 
+// Plain doubles, uploaded as they are to the simplification kernels.
 struct Quadric {
-    double a[kMaxQuadricDimensions * (kMaxQuadricDimensions + 1) / 2] = {};  // A's upper triangle, row by row
+    double a[kQuadricUpperSize] = {};  // A's upper triangle, row by row (quadricIndex)
     double b[kMaxQuadricDimensions] = {};
     double c = 0.0;
     double area = 0.0;  // the planes' total weight: Q(v) / area is a mean squared distance

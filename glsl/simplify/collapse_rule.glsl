@@ -1,0 +1,125 @@
+// The legality and cost of a half-edge collapse as core/simplify/edge_collapse.h and
+// vertex_quadrics.h define them, over the texel buffers of simplify_layout.h; the walks
+// around a vertex follow core's forEachEdgeAt (the same edges; order does not matter here).
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+#include "simplify_layout.h"
+#include "quadric_value.h"
+#include "../sederberg.h"
+
+layout(local_size_x = 64) in;
+
+layout(push_constant) uniform Push {
+    SimplifyPush push;
+};
+
+layout(binding = kSimplifyBindingEdgeVertices, rgba32ui) uniform readonly uimageBuffer edge_vertices;
+layout(binding = kSimplifyBindingEdgeNeighbours, rgba32ui) uniform readonly uimageBuffer edge_neighbours;
+layout(binding = kSimplifyBindingVertexFirst, r32ui) uniform readonly uimageBuffer vertex_first;
+layout(binding = kSimplifyBindingValues, rgba32f) uniform readonly imageBuffer values;
+layout(binding = kSimplifyBindingQuadrics, rg32ui) uniform readonly uimageBuffer quadrics;
+
+uvec4 verticesOf(uint e) { return imageLoad(edge_vertices, int(e)); }
+uvec4 neighboursOf(uint e) { return imageLoad(edge_neighbours, int(e)); }
+uint otherEnd(uvec4 v, uint p) { return v.x == p ? v.y : v.x; }
+
+// core's turnAround: the edge after f around its endpoint v, counter-clockwise or clockwise.
+uint turnAround(uint v, uint f, bool counter_clockwise) {
+    const uvec4 n = neighboursOf(f);
+    if (verticesOf(f).x == v) return counter_clockwise ? n.y : n.z;
+    return counter_clockwise ? n.w : n.x;
+}
+
+// A walk over the edges at a vertex: `for (Walk w = beginWalk(v); w.f != kNone; advance(w))`
+// visits them counter-clockwise from the vertex's first edge, then, where that meets the
+// hull, clockwise from it.
+struct Walk {
+    uint v, start, f;
+    bool forward;
+};
+Walk beginWalk(uint v) {
+    const uint start = imageLoad(vertex_first, int(v)).x;
+    return Walk(v, start, start, true);
+}
+void advance(inout Walk w) {
+    uint next = turnAround(w.v, w.f, w.forward);
+    if (w.forward) {
+        if (next == w.start) next = kNone;
+        else if (next == kNone) {
+            w.forward = false;
+            next = turnAround(w.v, w.start, false);
+        }
+    }
+    w.f = next;
+}
+
+// The rectangle's sides v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
+uint sidesOf(uint v) {
+    const uint x = v % push.width, y = v / push.width;
+    return uint(x == 0u) | uint(x == push.width - 1u) << 1 | uint(y == 0u) << 2 | uint(y == push.height - 1u) << 3;
+}
+
+// Whether triangle (p, q, r) at `from`, with `to` in its place, is not positive any more (one
+// of the collapsing edge's own triangles, which go, never is).
+bool folds(uint p, uint q, uint r, uint from, uint to) {
+    if (p == to || q == to || r == to) return false;
+    p = p == from ? to : p;
+    q = q == from ? to : q;
+    r = r == from ? to : r;
+    return orientation(p, q, r, push.width) <= 0.0lf;
+}
+
+// core's canCollapse for edge e, `from` its endpoint b (b_into_a) or a.
+bool canCollapse(uint e, bool b_into_a) {
+    const uvec4 ev = verticesOf(e);
+    const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
+    const uint from_sides = sidesOf(from);
+    if (bitCount(from_sides) >= 2) return false;                           // a corner
+    if (from_sides != 0u && ev.z != kNone && ev.w != kNone) return false;  // a border vertex leaves its side
+    uint valence = 0u;
+    for (Walk w = beginWalk(from); w.f != kNone; advance(w)) ++valence;
+    for (Walk w = beginWalk(to); w.f != kNone; advance(w)) ++valence;
+    if (valence - 2u - uint(ev.z != kNone) - uint(ev.w != kNone) > kCollapseValenceBound) return false;
+    // Link condition: the common neighbours of a and b are e's adjacent vertices.
+    uint shared_neighbours = 0u;
+    for (Walk w = beginWalk(from); w.f != kNone; advance(w)) {
+        const uint x = otherEnd(verticesOf(w.f), from);
+        if (x == to) continue;
+        for (Walk u = beginWalk(to); u.f != kNone; advance(u)) {
+            if (otherEnd(verticesOf(u.f), to) != x) continue;
+            if (x != ev.z && x != ev.w) return false;
+            ++shared_neighbours;
+        }
+    }
+    if (shared_neighbours != uint(ev.z != kNone) + uint(ev.w != kNone)) return false;
+    // No fold-over.
+    for (Walk w = beginWalk(from); w.f != kNone; advance(w)) {
+        if (w.f == e) continue;
+        const uvec4 fv = verticesOf(w.f);
+        if (fv.z != kNone && folds(fv.x, fv.y, fv.z, from, to)) return false;
+        if (fv.w != kNone && folds(fv.y, fv.x, fv.w, from, to)) return false;
+    }
+    return true;
+}
+
+double quadricWord(uint v, uint k) { return packDouble2x32(imageLoad(quadrics, int(v * kQuadricDoubles + k)).xy); }
+
+// core's collapseCost: the two quadrics' sum at the point of the vertex that stays (its
+// position times kPositionWeight = 4, then its channels).
+double collapseCost(uint from, uint to) {
+    double a[kQuadricUpperSize];
+    double b[kMaxQuadricDimensions];
+    double point[kMaxQuadricDimensions];
+    for (uint k = 0u; k < kQuadricUpperSize; ++k) a[k] = quadricWord(from, k) + quadricWord(to, k);
+    for (uint k = 0u; k < kMaxQuadricDimensions; ++k) {
+        b[k] = quadricWord(from, kQuadricUpperSize + k) + quadricWord(to, kQuadricUpperSize + k);
+        point[k] = 0.0lf;
+    }
+    const double c = quadricWord(from, kQuadricUpperSize + kMaxQuadricDimensions) +
+                     quadricWord(to, kQuadricUpperSize + kMaxQuadricDimensions);
+    point[0] = 4.0lf * double(to % push.width);
+    point[1] = 4.0lf * double(to / push.width);
+    const vec4 value = imageLoad(values, int(to));
+    for (uint k = 0u; k < push.channels; ++k) point[2u + k] = double(value[k]);
+    return quadricValue(a, b, c, point, 2u + push.channels);
+}

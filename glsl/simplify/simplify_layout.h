@@ -1,0 +1,41 @@
+// Bindings, push constants and constants of the simplification kernels (glsl/simplify/), shared
+// by them and the host (compute/simplify/). They have their own pipeline layout: the
+// optimisation's bindings (glsl/layout.h) are not theirs. Every array is a storage texel buffer,
+// for the reasons glsl/layout.h gives.
+#ifndef DDTUP_SIMPLIFY_LAYOUT_H
+#define DDTUP_SIMPLIFY_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace ddt {
+typedef uint32_t uint;
+#endif
+
+// core/simplify/edge_collapse.h's kMaxCollapseValence (the host checks that they agree): it
+// bounds the walks of one invocation, which handles one edge, to about 2 · 68 + 34² loop
+// iterations, far below lavapipe's 65 535 (glsl/layout.h).
+const uint kCollapseValenceBound = 64u;
+// Doubles per vertex in the quadric array: core's Quadric as it is (A's upper triangle, b, c,
+// the area).
+const uint kQuadricDoubles = 29u;
+
+const uint kSimplifyBindingEdgeVertices = 0u;    // rgba32ui per edge: a, b, l, r (core/mesh.h)
+const uint kSimplifyBindingEdgeNeighbours = 1u;  // rgba32ui per edge: bl, la, ar, rb
+const uint kSimplifyBindingVertexFirst = 2u;     // r32ui per vertex: where its walk starts (VertexEdges)
+const uint kSimplifyBindingValues = 3u;          // rgba32f per vertex: its channels
+const uint kSimplifyBindingQuadrics = 4u;        // rg32ui: kQuadricDoubles doubles per vertex, each as two words
+const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cost word, key's id word, b into a
+const uint kSimplifyBindingCount = 6u;
+
+struct SimplifyPush {
+    uint width;
+    uint height;
+    uint channels;
+    uint edge_count;
+    uint first_edge;  // the dispatch's first edge: one invocation an edge, in several dispatches
+};
+
+#ifdef __cplusplus
+}  // namespace ddt
+#endif
+#endif

@@ -1,0 +1,92 @@
+// The parallel simplification rule's kernels (glsl/simplify/, compute/simplify/) against core's
+// rule on the same mesh, bit for bit: every edge's candidate key and direction. Meshes part
+// way through a simplification have vertices of every valence, border slides, refused
+// fold-overs and link conditions. The validation layer and synchronization validation are on;
+// each test requires zero messages.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <random>
+
+#include "context.h"
+#include "greedy_simplify.h"
+#include "parallel_simplify.h"
+#include "simplify/collapse_candidates.h"
+#include "test_support.h"
+
+using namespace ddt;
+using namespace ddt::test;
+
+namespace {
+
+// Core's candidates for every edge, and how many edges have one.
+std::vector<CollapseCandidate> coreCandidates(const Mesh& mesh, const SimplifyStart& start, uint32_t& with_key) {
+    std::vector<CollapseCandidate> candidates(mesh.edgeCount());
+    with_key = 0;
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        candidates[e] = bestCollapse(mesh, start, e);
+        with_key += candidates[e].key != kNoCollapseKey;
+    }
+    return candidates;
+}
+
+}  // namespace
+
+TEST_CASE("vulkan simplify: every edge's candidate equals core's, on meshes part way simplified") {
+    std::unique_ptr<VulkanContext> context = createContext({-1, true});
+    const Image photo = photoPiece();
+    const Mesh optimised = optimisedGridMesh(photo);
+    for (double share : {1.0, 0.5, 0.1, 0.02}) {
+        Mesh mesh = optimised;
+        Image values = photo;
+        if (share < 1.0) simplifySerial(mesh, values, uint32_t(share * photo.width * photo.height));
+        REQUIRE(checkMesh(mesh) == "");
+        const SimplifyStart start(mesh, values);
+        uint32_t with_key = 0;
+        const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
+        const std::vector<CollapseCandidate> device = deviceCollapseCandidates(*context, mesh, start, values);
+        INFO("share " << share << ": " << mesh.edgeCount() << " edges, " << with_key << " with a legal collapse");
+        // Both kinds occur: legal collapses, and edges with none (corners, fold-overs).
+        CHECK(with_key > 0);
+        CHECK(with_key < mesh.edgeCount());
+        REQUIRE(device.size() == expected.size());
+        uint32_t differing = 0;
+        for (size_t e = 0; e < expected.size(); ++e) differing += !(device[e] == expected[e]);
+        CHECK(differing == 0);
+    }
+    CHECK(context->validation_messages == 0);
+}
+
+TEST_CASE("vulkan simplify: grey, grey + alpha and RGBA values cost as in core") {
+    std::unique_ptr<VulkanContext> context = createContext({-1, true});
+    std::mt19937 rng(7);
+    for (uint32_t channels : {1u, 2u, 4u}) {
+        const Image image = randomImage(rng, 23, 17, channels);
+        Mesh mesh = optimisedGridMesh(image);
+        Image values = image;
+        simplifySerial(mesh, values, 23 * 17 / 3);
+        const SimplifyStart start(mesh, values);
+        uint32_t with_key = 0;
+        const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
+        INFO(channels << " channels");
+        CHECK(with_key > 0);
+        CHECK(deviceCollapseCandidates(*context, mesh, start, values) == expected);
+    }
+    CHECK(context->validation_messages == 0);
+}
+
+TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in core") {
+    // The centre of a fan just below kMaxCollapseValence edges: collapses into it are refused
+    // by the bound alone, those away from it are legal.
+    std::unique_ptr<VulkanContext> context = createContext({-1, true});
+    Mesh mesh = centreFanMesh(24);
+    compactEdges(mesh);
+    std::mt19937 rng(3);
+    const Image values = randomImage(rng, 24, 24, 3);
+    const SimplifyStart start(mesh, values);
+    uint32_t with_key = 0;
+    const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
+    CHECK(with_key > 0);
+    CHECK(deviceCollapseCandidates(*context, mesh, start, values) == expected);
+    CHECK(context->validation_messages == 0);
+}
