@@ -28,6 +28,15 @@
 
 namespace ddt {
 
+VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = type;
+    return write;
+}
+
 VkPipeline createComputePipeline(VulkanContext& context, VkPipelineLayout layout, const uint32_t* spirv, size_t bytes,
                                  const VkSpecializationInfo* specialization) {
     VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};

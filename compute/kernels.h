@@ -49,6 +49,9 @@ struct Kernels {
 
 Kernels createKernels(VulkanContext& context, const SelectRule& rule);
 
+// A write of one descriptor of `type` at `binding` of `set`; the caller points it at its buffer.
+VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, uint32_t binding, VkDescriptorType type);
+
 // A compute pipeline of `bytes` of SPIR-V with `layout` (for kernels with layouts of their own).
 VkPipeline createComputePipeline(VulkanContext& context, VkPipelineLayout layout, const uint32_t* spirv, size_t bytes,
                                  const VkSpecializationInfo* specialization = nullptr);

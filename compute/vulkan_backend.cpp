@@ -288,11 +288,7 @@ void VulkanBackend::State::writeDescriptors() {
     VkWriteDescriptorSet writes[kBindingCount];
     VkDescriptorBufferInfo buffer_infos[kBindingCount];
     for (uint32_t i = 0; i < kBindingCount; ++i) {
-        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = descriptor_set;
-        writes[i].dstBinding = i;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = bindingType(i);
+        writes[i] = descriptorWrite(descriptor_set, i, bindingType(i));
         if (writes[i].descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
             buffer_infos[i] = {by_binding[i]->buffer, 0, VK_WHOLE_SIZE};
             writes[i].pBufferInfo = &buffer_infos[i];

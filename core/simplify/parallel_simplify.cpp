@@ -58,6 +58,28 @@ CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uin
     return best;
 }
 
+std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys) {
+    const size_t grain = 4096;
+    // Each vertex's least key over the regions that hold it.
+    std::vector<std::atomic<uint64_t>> vertex_least(mesh.vertexCount());
+    parallelFor(vertex_least.size(), grain, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v) vertex_least[v].store(kNoCollapseKey, std::memory_order_relaxed);
+    });
+    parallelFor(mesh.edgeCount(), grain, [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e)
+            if (keys[e] != kNoCollapseKey)
+                forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { lowerTo(vertex_least[v], keys[e]); });
+    });
+    std::vector<uint32_t> winners;
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+        if (keys[e] == kNoCollapseKey) continue;
+        bool least = true;
+        forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { least = least && vertex_least[v].load() == keys[e]; });
+        if (least) winners.push_back(e);
+    }
+    return winners;
+}
+
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target) {
     ParallelSimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
@@ -66,7 +88,6 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
     const uint32_t edge_count = mesh.edgeCount();
     std::vector<uint64_t> key(edge_count);
     std::vector<uint8_t> b_into_a(edge_count);
-    std::vector<std::atomic<uint64_t>> vertex_least(mesh.vertexCount());
     // The vertices in the regions of the last round's collapses: an edge whose region holds
     // one has a new cost or legality; the others keep their candidates (all are new at first).
     std::vector<uint8_t> changed(mesh.vertexCount(), 1);
@@ -88,22 +109,8 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
                 b_into_a[e] = best.b_into_a;
             }
         });
-        // 2. Select: each vertex's least key over the regions that hold it; the winners.
-        parallelFor(vertex_least.size(), grain, [&](size_t begin, size_t end) {
-            for (size_t v = begin; v < end; ++v) vertex_least[v].store(kNoCollapseKey, std::memory_order_relaxed);
-        });
-        parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
-            for (size_t e = begin; e < end; ++e)
-                if (key[e] != kNoCollapseKey)
-                    forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { lowerTo(vertex_least[v], key[e]); });
-        });
-        std::vector<uint32_t> winners;
-        for (uint32_t e = 0; e < edge_count; ++e) {
-            if (key[e] == kNoCollapseKey) continue;
-            bool least = true;
-            forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { least = least && vertex_least[v].load() == key[e]; });
-            if (least) winners.push_back(e);
-        }
+        // 2. Select.
+        std::vector<uint32_t> winners = selectWinners(mesh, edges, key);
         if (winners.empty()) break;  // no legal collapse left
         // 3. Collapse the least of them, as many as the target still needs.
         std::fill(changed.begin(), changed.end(), 0);

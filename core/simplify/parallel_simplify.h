@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "greedy_simplify.h"
 #include "vertex_quadrics.h"
@@ -39,6 +40,10 @@ struct CollapseCandidate {
     bool operator==(const CollapseCandidate&) const = default;
 };
 CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge);
+
+// Step 2's result: the edges whose key (kNoCollapseKey: none) is the least of every vertex in
+// their region, ascending.
+std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys);
 
 // As simplifySerial, by the parallel rule.
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target);

@@ -3,11 +3,12 @@
 // around a vertex follow core's forEachEdgeAt (the same edges; order does not matter here).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
+#include "../layout.h"
 #include "simplify_layout.h"
 #include "quadric_value.h"
 #include "../sederberg.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = kGroupSize) in;
 
 layout(push_constant) uniform Push {
     SimplifyPush push;

@@ -25,7 +25,16 @@ const uint kSimplifyBindingVertexFirst = 2u;     // r32ui per vertex: where its 
 const uint kSimplifyBindingValues = 3u;          // rgba32f per vertex: its channels
 const uint kSimplifyBindingQuadrics = 4u;        // rg32ui: kQuadricDoubles doubles per vertex, each as two words
 const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cost word, key's id word, b into a
-const uint kSimplifyBindingCount = 6u;
+const uint kSimplifyBindingLeastCost = 6u;       // r32ui per vertex: the least cost word of the regions holding it
+const uint kSimplifyBindingLeastId = 7u;         // r32ui per vertex: the least edge id among keys of that cost word
+const uint kSimplifyBindingWinners = 8u;         // r32ui per edge: 1 where its key is the least of its whole region
+const uint kSimplifyBindingCount = 9u;
+
+// Steps of select_collapses.comp: a vertex's least 64-bit key, (cost word, id), in two 32-bit
+// atomic minima (no 64-bit atomics needed), then the winners.
+const uint kSelectLeastCost = 0u;
+const uint kSelectLeastId = 1u;
+const uint kSelectWinners = 2u;
 
 struct SimplifyPush {
     uint width;
@@ -33,6 +42,7 @@ struct SimplifyPush {
     uint channels;
     uint edge_count;
     uint first_edge;  // the dispatch's first edge: one invocation an edge, in several dispatches
+    uint step;        // select_collapses.comp: kSelect…
 };
 
 #ifdef __cplusplus

@@ -1,0 +1,39 @@
+// The simplification kernels (glsl/simplify/) with their own pipeline layout (the bindings of
+// glsl/simplify/simplify_layout.h and SimplifyPush) and one descriptor set; destroyed with it.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include "buffer.h"
+#include "context.h"
+#include "simplify/simplify_layout.h"
+
+namespace ddt {
+
+class SimplifyKernels {
+public:
+    explicit SimplifyKernels(VulkanContext& context);
+    ~SimplifyKernels();
+    SimplifyKernels(const SimplifyKernels&) = delete;
+    SimplifyKernels& operator=(const SimplifyKernels&) = delete;
+
+    // Points binding i at buffers[i], for every binding.
+    void bind(const Buffer (&buffers)[kSimplifyBindingCount]);
+    // Records `kernel` with one invocation an edge of push.edge_count, in as many dispatches as
+    // kMaxGroups groups a dispatch need, each followed by the compute barrier.
+    void dispatchPerEdge(VkCommandBuffer commands, VkPipeline kernel, SimplifyPush push) const;
+
+    VkPipeline candidates = VK_NULL_HANDLE;  // collapse_candidates.comp
+    VkPipeline select = VK_NULL_HANDLE;      // select_collapses.comp
+
+private:
+    void destroy();
+
+    VulkanContext& context_;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace ddt
