@@ -6,9 +6,11 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 
 #include "context.h"
+#include "edge_collapse.h"
 #include "greedy_simplify.h"
 #include "parallel_simplify.h"
 #include "simplify/device_simplify.h"
@@ -102,5 +104,42 @@ TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in c
     const DeviceRoundSelection device = deviceSelectCollapses(*context, mesh, start, values);
     CHECK(device.candidates == expected);
     CHECK(device.winners == selectWinners(mesh, start.edges, keysOf(expected)));
+    CHECK(context->validation_messages == 0);
+}
+
+TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core") {
+    std::unique_ptr<VulkanContext> context = createContext({-1, true});
+    const Image photo = photoPiece();
+    const Mesh optimised = optimisedGridMesh(photo);
+    for (double share : {1.0, 0.2}) {
+        Mesh mesh = optimised;
+        Image values = photo;
+        if (share < 1.0) simplifySerial(mesh, values, uint32_t(share * photo.width * photo.height));
+        SimplifyStart core_start(mesh, values);
+        uint32_t with_key = 0;
+        const std::vector<CollapseCandidate> candidates = coreCandidates(mesh, core_start, with_key);
+        std::vector<Collapse> collapses;
+        for (uint32_t e : selectWinners(mesh, core_start.edges, keysOf(candidates)))
+            collapses.push_back({e, candidates[e].b_into_a});
+        INFO("share " << share << ": " << collapses.size() << " collapses");
+        REQUIRE(collapses.size() > 1);
+        Mesh device_mesh = mesh;
+        SimplifyStart device_start(mesh, values);
+        deviceCollapse(*context, device_mesh, device_start, values, collapses);
+        for (const Collapse& collapse : collapses) {
+            const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+            collapseEdge(mesh, core_start.edges, collapse);
+            core_start.quadrics[to] += core_start.quadrics[from];
+        }
+        CHECK(std::memcmp(device_mesh.vertices.data(), mesh.vertices.data(), mesh.edgeCount() * sizeof(EdgeVertices)) == 0);
+        CHECK(std::memcmp(device_mesh.neighbours.data(), mesh.neighbours.data(),
+                          mesh.edgeCount() * sizeof(EdgeNeighbours)) == 0);
+        CHECK(device_start.edges.first == core_start.edges.first);
+        CHECK(std::memcmp(device_start.quadrics.data(), core_start.quadrics.data(),
+                          core_start.quadrics.size() * sizeof(Quadric)) == 0);
+        compactEdges(device_mesh);
+        CHECK(checkMesh(device_mesh) == "");
+        CHECK(usedVertexCount(device_mesh) == usedVertexCount(mesh));
+    }
     CHECK(context->validation_messages == 0);
 }

@@ -36,23 +36,21 @@ struct SimplifyBuffers {
     }
 };
 
-}  // namespace
-
-DeviceRoundSelection deviceSelectCollapses(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start,
-                                           const Image& values) {
+// Every array of a round for the mesh, its walks' starts and quadrics in `start` and the values,
+// with room for `collapses` collapse entries.
+void makeRoundBuffers(SimplifyBuffers& buffers, const VulkanContext& context, const Mesh& mesh,
+                      const SimplifyStart& start, const Image& values, size_t collapses) {
     const uint32_t edges = mesh.edgeCount(), vertices = mesh.vertexCount();
     if (values.channels > kMaxQuadricDimensions - 2 || values.width != mesh.width || values.height != mesh.height)
-        throw std::invalid_argument("deviceSelectCollapses: values do not fit the mesh");
+        throw std::invalid_argument("device simplification: values do not fit the mesh");
     const uint64_t limit = context.properties.limits.maxTexelBufferElements;
     if (uint64_t(vertices) * kQuadricDoubles > limit || edges > limit)
-        throw std::invalid_argument("deviceSelectCollapses: the mesh exceeds the device's texel buffers");
-
+        throw std::invalid_argument("device simplification: the mesh exceeds the device's texel buffers");
     // Channels padded to four floats a vertex, for one rgba32f texel.
     std::vector<float> texels(size_t(vertices) * 4, 0.0f);
     for (size_t v = 0; v < vertices; ++v)
         std::copy_n(values.pixels.data() + v * values.channels, values.channels, texels.data() + 4 * v);
-    SimplifyKernels kernels(context);
-    SimplifyBuffers buffers(context);
+    // The per-edge results the host reads whole are host-visible and cached.
     const VkDeviceSize edge_texels = VkDeviceSize(edges) * 16, vertex_words = VkDeviceSize(vertices) * 4;
     buffers.make(kSimplifyBindingEdgeVertices, edge_texels, VK_FORMAT_R32G32B32A32_UINT, mesh.vertices.data());
     buffers.make(kSimplifyBindingEdgeNeighbours, edge_texels, VK_FORMAT_R32G32B32A32_UINT, mesh.neighbours.data());
@@ -64,6 +62,17 @@ DeviceRoundSelection deviceSelectCollapses(VulkanContext& context, const Mesh& m
     buffers.make(kSimplifyBindingLeastCost, vertex_words, VK_FORMAT_R32_UINT, nullptr);
     buffers.make(kSimplifyBindingLeastId, vertex_words, VK_FORMAT_R32_UINT, nullptr);
     buffers.make(kSimplifyBindingWinners, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr, Placement::Readback);
+    buffers.make(kSimplifyBindingCollapses, VkDeviceSize(collapses) * 4, VK_FORMAT_R32_UINT, nullptr);
+}
+
+}  // namespace
+
+DeviceRoundSelection deviceSelectCollapses(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start,
+                                           const Image& values) {
+    const uint32_t edges = mesh.edgeCount();
+    SimplifyKernels kernels(context);
+    SimplifyBuffers buffers(context);
+    makeRoundBuffers(buffers, context, mesh, start, values, 0);
     kernels.bind(buffers.at);
 
     CommandBatch batch(context);
@@ -91,6 +100,34 @@ DeviceRoundSelection deviceSelectCollapses(VulkanContext& context, const Mesh& m
         if (winners[e]) selection.winners.push_back(e);
     }
     return selection;
+}
+
+void deviceCollapse(VulkanContext& context, Mesh& mesh, SimplifyStart& start, const Image& values,
+                    const std::vector<Collapse>& collapses) {
+    std::vector<uint32_t> entries;
+    for (const Collapse& collapse : collapses) {
+        if (collapse.edge >= kCollapseBIntoA) throw std::invalid_argument("deviceCollapse: edge id beyond 2^31");
+        entries.push_back(collapse.edge | (collapse.b_into_a ? kCollapseBIntoA : 0));
+    }
+    SimplifyKernels kernels(context);
+    SimplifyBuffers buffers(context);
+    makeRoundBuffers(buffers, context, mesh, start, values, entries.size());
+    if (!entries.empty()) uploadToBuffer(context, buffers.at[kSimplifyBindingCollapses], entries.data(), entries.size() * 4);
+    kernels.bind(buffers.at);
+    CommandBatch batch(context);
+    kernels.dispatchPerEdge(batch.buffer(), kernels.collapse,
+                            {mesh.width, mesh.height, values.channels, uint32_t(entries.size()), 0, 0});
+    batch.submitAndWait();
+    const uint32_t edges = mesh.edgeCount(), vertices = mesh.vertexCount();
+    if (edges) {
+        downloadFromBuffer(context, buffers.at[kSimplifyBindingEdgeVertices], mesh.vertices.data(), size_t(edges) * 16);
+        downloadFromBuffer(context, buffers.at[kSimplifyBindingEdgeNeighbours], mesh.neighbours.data(), size_t(edges) * 16);
+    }
+    if (vertices) {
+        downloadFromBuffer(context, buffers.at[kSimplifyBindingVertexFirst], start.edges.first.data(), size_t(vertices) * 4);
+        downloadFromBuffer(context, buffers.at[kSimplifyBindingQuadrics], start.quadrics.data(),
+                           size_t(vertices) * sizeof(Quadric));
+    }
 }
 
 }  // namespace ddt

@@ -9,6 +9,7 @@
 
 // SPIR-V written by glslangValidator at build time (see CMakeLists.txt).
 #include "spirv/collapse_candidates.h"
+#include "spirv/collapse_edges.h"
 #include "spirv/select_collapses.h"
 
 namespace ddt {
@@ -31,6 +32,7 @@ SimplifyKernels::SimplifyKernels(VulkanContext& context) : context_(context) {
         VK_CHECK(vkCreatePipelineLayout(context.device, &layout_info, nullptr, &layout_));
         candidates = createComputePipeline(context, layout_, kSpirvCollapseCandidates, sizeof(kSpirvCollapseCandidates));
         select = createComputePipeline(context, layout_, kSpirvSelectCollapses, sizeof(kSpirvSelectCollapses));
+        collapse = createComputePipeline(context, layout_, kSpirvCollapseEdges, sizeof(kSpirvCollapseEdges));
         VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, kSimplifyBindingCount};
         VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pool_info.maxSets = 1;
@@ -53,12 +55,12 @@ SimplifyKernels::~SimplifyKernels() { destroy(); }
 void SimplifyKernels::destroy() {
     const VkDevice device = context_.device;
     if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
-    for (VkPipeline pipeline : {candidates, select})
+    for (VkPipeline pipeline : {candidates, select, collapse})
         if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
     if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
     if (set_layout_) vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
     pool_ = VK_NULL_HANDLE;
-    candidates = select = VK_NULL_HANDLE;
+    candidates = select = collapse = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;
 }

@@ -14,11 +14,12 @@ layout(push_constant) uniform Push {
     SimplifyPush push;
 };
 
-layout(binding = kSimplifyBindingEdgeVertices, rgba32ui) uniform readonly uimageBuffer edge_vertices;
-layout(binding = kSimplifyBindingEdgeNeighbours, rgba32ui) uniform readonly uimageBuffer edge_neighbours;
-layout(binding = kSimplifyBindingVertexFirst, r32ui) uniform readonly uimageBuffer vertex_first;
+// The mesh, the walks' starts and the quadrics change only in collapse_edges.comp.
+layout(binding = kSimplifyBindingEdgeVertices, rgba32ui) uniform uimageBuffer edge_vertices;
+layout(binding = kSimplifyBindingEdgeNeighbours, rgba32ui) uniform uimageBuffer edge_neighbours;
+layout(binding = kSimplifyBindingVertexFirst, r32ui) uniform uimageBuffer vertex_first;
 layout(binding = kSimplifyBindingValues, rgba32f) uniform readonly imageBuffer values;
-layout(binding = kSimplifyBindingQuadrics, rg32ui) uniform readonly uimageBuffer quadrics;
+layout(binding = kSimplifyBindingQuadrics, rg32ui) uniform uimageBuffer quadrics;
 
 uvec4 verticesOf(uint e) { return imageLoad(edge_vertices, int(e)); }
 uvec4 neighboursOf(uint e) { return imageLoad(edge_neighbours, int(e)); }

@@ -28,7 +28,13 @@ const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cos
 const uint kSimplifyBindingLeastCost = 6u;       // r32ui per vertex: the least cost word of the regions holding it
 const uint kSimplifyBindingLeastId = 7u;         // r32ui per vertex: the least edge id among keys of that cost word
 const uint kSimplifyBindingWinners = 8u;         // r32ui per edge: 1 where its key is the least of its whole region
-const uint kSimplifyBindingCount = 9u;
+const uint kSimplifyBindingCollapses = 9u;       // r32ui per collapse to make: its edge, bit 31 set for b into a
+const uint kSimplifyBindingCount = 10u;
+// Bit of a collapse entry: b into a.
+const uint kCollapseBIntoA = 0x80000000u;
+// The most edges at the vertex a legal collapse removes: with the collapse's own edge and the
+// removed ones, it leaves at most kCollapseValenceBound at the other (which has two or more).
+const uint kMaxEdgesAtFrom = kCollapseValenceBound + 4u;
 
 // Steps of select_collapses.comp: a vertex's least 64-bit key, (cost word, id), in two 32-bit
 // atomic minima (no 64-bit atomics needed), then the winners.
@@ -40,8 +46,8 @@ struct SimplifyPush {
     uint width;
     uint height;
     uint channels;
-    uint edge_count;
-    uint first_edge;  // the dispatch's first edge: one invocation an edge, in several dispatches
+    uint edge_count;  // edges; for collapse_edges.comp, collapses
+    uint first_edge;  // the dispatch's first edge (collapse): one invocation each, in several dispatches
     uint step;        // select_collapses.comp: kSelect…
 };
 
