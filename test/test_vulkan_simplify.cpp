@@ -52,7 +52,7 @@ TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's,
         const SimplifyStart start(mesh, values);
         uint32_t with_key = 0;
         const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
-        const DeviceRoundSelection device = deviceSelectCollapses(*context, mesh, start, values);
+        const DeviceRoundSelection device = DeviceSimplifier(*context, mesh, start, values).select();
         INFO("share " << share << ": " << mesh.edgeCount() << " edges, " << with_key << " with a legal collapse");
         // Both kinds occur: legal collapses, and edges with none (corners, fold-overs).
         CHECK(with_key > 0);
@@ -84,7 +84,7 @@ TEST_CASE("vulkan simplify: grey, grey + alpha and RGBA values cost as in core")
         const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
         INFO(channels << " channels");
         CHECK(with_key > 0);
-        CHECK(deviceSelectCollapses(*context, mesh, start, values).candidates == expected);
+        CHECK(DeviceSimplifier(*context, mesh, start, values).select().candidates == expected);
     }
     CHECK(context->validation_messages == 0);
 }
@@ -101,7 +101,7 @@ TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in c
     uint32_t with_key = 0;
     const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
     CHECK(with_key > 0);
-    const DeviceRoundSelection device = deviceSelectCollapses(*context, mesh, start, values);
+    const DeviceRoundSelection device = DeviceSimplifier(*context, mesh, start, values).select();
     CHECK(device.candidates == expected);
     CHECK(device.winners == selectWinners(mesh, start.edges, keysOf(expected)));
     CHECK(context->validation_messages == 0);
@@ -125,7 +125,11 @@ TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core"
         REQUIRE(collapses.size() > 1);
         Mesh device_mesh = mesh;
         SimplifyStart device_start(mesh, values);
-        deviceCollapse(*context, device_mesh, device_start, values, collapses);
+        {
+            DeviceSimplifier device(*context, mesh, device_start, values);
+            device.collapse(collapses);
+            device.download(device_mesh, device_start);
+        }
         for (const Collapse& collapse : collapses) {
             const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
             collapseEdge(mesh, core_start.edges, collapse);
@@ -143,3 +147,27 @@ TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core"
     }
     CHECK(context->validation_messages == 0);
 }
+
+TEST_CASE("vulkan simplify: simplifyOnDevice gives simplifyParallel's mesh and colours") {
+    std::unique_ptr<VulkanContext> context = createContext({-1, true});
+    const Image photo = photoPiece();
+    const Mesh optimised = optimisedGridMesh(photo);
+    const uint32_t target = photo.width * photo.height / 10;
+    Mesh core_mesh = optimised, device_mesh = optimised;
+    Image core_values = photo, device_values = photo;
+    const ParallelSimplifyStats core = simplifyParallel(core_mesh, core_values, target);
+    const ParallelSimplifyStats device = simplifyOnDevice(*context, device_mesh, device_values, target);
+    CHECK(device.vertices_after == target);
+    CHECK(device.rounds == core.rounds);
+    CHECK(device.collapses == core.collapses);
+    CHECK(device.last_cost == core.last_cost);
+    REQUIRE(device_mesh.edgeCount() == core_mesh.edgeCount());
+    CHECK(std::memcmp(device_mesh.vertices.data(), core_mesh.vertices.data(),
+                      core_mesh.edgeCount() * sizeof(EdgeVertices)) == 0);
+    CHECK(std::memcmp(device_mesh.neighbours.data(), core_mesh.neighbours.data(),
+                      core_mesh.edgeCount() * sizeof(EdgeNeighbours)) == 0);
+    CHECK(samePixels(device_values.pixels, core_values.pixels));
+    CHECK(checkMesh(device_mesh) == "");
+    CHECK(context->validation_messages == 0);
+}
+

@@ -25,8 +25,7 @@ constexpr uint32_t kRoundShare = 64;
 // exact on any device.
 uint64_t keyOf(double cost, uint32_t edge) { return std::bit_cast<uint64_t>(cost) >> 32 << 32 | edge; }
 
-// The cost a key holds (its cut double).
-double costOf(uint64_t key) { return std::bit_cast<double>(key >> 32 << 32); }
+
 
 // The vertices whose records and triangles a collapse of edge e reads or writes: its two
 // vertices and all their neighbours.
@@ -56,6 +55,15 @@ CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uin
         if (key < best.key) best = {key, direction};  // equal keys: b into a, tried first, stays
     }
     return best;
+}
+
+double collapseKeyCost(uint64_t key) { return std::bit_cast<double>(key >> 32 << 32); }
+
+void leastWinners(std::vector<uint32_t>& winners, const std::vector<uint64_t>& keys, uint32_t vertices,
+                  uint32_t target) {
+    std::sort(winners.begin(), winners.end(), [&](uint32_t x, uint32_t y) { return keys[x] < keys[y]; });
+    const size_t cap = std::max<size_t>(1, vertices / kRoundShare);
+    winners.resize(std::min<size_t>({winners.size(), size_t(vertices - target), cap}));
 }
 
 std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys) {
@@ -114,14 +122,12 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
         if (winners.empty()) break;  // no legal collapse left
         // 3. Collapse the least of them, as many as the target still needs.
         std::fill(changed.begin(), changed.end(), 0);
-        std::sort(winners.begin(), winners.end(), [&](uint32_t x, uint32_t y) { return key[x] < key[y]; });
-        const size_t cap = std::max<size_t>(1, stats.vertices_after / kRoundShare);
-        winners.resize(std::min<size_t>({winners.size(), size_t(stats.vertices_after - target), cap}));
+        leastWinners(winners, key, stats.vertices_after, target);
         for (uint32_t e : winners) {
             const Collapse collapse{e, bool(b_into_a[e])};
             const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
             forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { changed[v] = 1; });
-            stats.last_cost = std::max(stats.last_cost, costOf(key[e]));
+            stats.last_cost = std::max(stats.last_cost, collapseKeyCost(key[e]));
             collapseEdge(mesh, edges, collapse);
             quadrics[to] += quadrics[from];
         }

@@ -45,6 +45,14 @@ CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uin
 // their region, ascending.
 std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys);
 
+// Step 3's choice: keeps the winners with the least keys, as many as the target still needs
+// (`vertices` are left) and at most 1/64 of the vertices, in key order.
+void leastWinners(std::vector<uint32_t>& winners, const std::vector<uint64_t>& keys, uint32_t vertices,
+                  uint32_t target);
+
+// The cost a key holds: its double, cut.
+double collapseKeyCost(uint64_t key);
+
 // As simplifySerial, by the parallel rule.
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target);
 
