@@ -47,6 +47,9 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
         make(kSimplifyBindingWinners, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr, Placement::Readback);
         // Winners' regions are disjoint, so a round has fewer collapses than edges.
         make(kSimplifyBindingCollapses, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr);
+        // Every vertex counts as changed before the first round: every edge gets a candidate.
+        const std::vector<uint32_t> all_changed(vertices, 1);
+        make(kSimplifyBindingChanged, vertex_words, VK_FORMAT_R32_UINT, all_changed.data());
     } catch (...) {
         for (Buffer& buffer : buffers_) destroyBuffer(context, buffer);
         throw;
@@ -94,6 +97,8 @@ void DeviceSimplifier::collapse(const std::vector<Collapse>& collapses) {
     if (entries.size() > push_.edge_count) throw std::invalid_argument("DeviceSimplifier: more collapses than edges");
     uploadToBuffer(context_, buffers_[kSimplifyBindingCollapses], entries.data(), entries.size() * 4);
     CommandBatch batch(context_);
+    vkCmdFillBuffer(batch.buffer(), buffers_[kSimplifyBindingChanged].buffer, 0, VK_WHOLE_SIZE, 0);
+    computeBarrier(batch.buffer());
     SimplifyPush push = push_;
     push.edge_count = uint32_t(entries.size());
     kernels_.dispatchPerEdge(batch.buffer(), kernels_.collapse, push);

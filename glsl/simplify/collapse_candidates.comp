@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Step 1 of a simplification round (core/simplify/parallel_simplify.h): every edge's best
 // legal collapse, keyed by its cost's high 32 bits and its id; b into a, tried first, stays on
-// equal keys. No candidate: both key words all ones.
+// equal keys. No candidate: both key words all ones. An edge whose region the last round did
+// not change keeps its candidate.
 #include "collapse_rule.glsl"
 
 layout(binding = kSimplifyBindingCandidates, rgba32ui) uniform writeonly uimageBuffer candidates;
@@ -11,7 +12,9 @@ void main() {
     const uint e = push.first_edge + gl_GlobalInvocationID.x;
     if (e >= push.edge_count) return;
     uvec4 best = uvec4(kNone, kNone, 1u, 0u);  // as core: no candidate reads as b into a
-    if (verticesOf(e).x != kNone)
+    const bool removed = verticesOf(e).x == kNone;
+    if (!removed && !regionChanged(e)) return;
+    if (!removed)
         for (uint direction = 1u; direction <= 1u; --direction) {  // b into a, then a into b
             if (!canCollapse(e, direction == 1u)) continue;
             const uvec4 ev = verticesOf(e);

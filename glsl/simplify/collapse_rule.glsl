@@ -55,6 +55,21 @@ void advance(inout Walk w) {
     w.f = next;
 }
 
+layout(binding = kSimplifyBindingChanged, r32ui) uniform uimageBuffer changed;
+
+// Whether the region of edge e (its two vertices and all their neighbours) holds a vertex the
+// last round's collapses changed: only then can its candidate differ from the last one.
+bool regionChanged(uint e) {
+    const uvec4 ev = verticesOf(e);
+    for (uint end = 0u; end < 2u; ++end) {
+        const uint centre = end == 0u ? ev.x : ev.y;
+        if (imageLoad(changed, int(centre)).x != 0u) return true;
+        for (Walk w = beginWalk(centre); w.f != kNone; advance(w))
+            if (imageLoad(changed, int(otherEnd(verticesOf(w.f), centre))).x != 0u) return true;
+    }
+    return false;
+}
+
 // The rectangle's sides v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
 uint sidesOf(uint v) {
     const uint x = v % push.width, y = v / push.width;

@@ -29,7 +29,8 @@ const uint kSimplifyBindingLeastCost = 6u;       // r32ui per vertex: the least 
 const uint kSimplifyBindingLeastId = 7u;         // r32ui per vertex: the least edge id among keys of that cost word
 const uint kSimplifyBindingWinners = 8u;         // r32ui per edge: 1 where its key is the least of its whole region
 const uint kSimplifyBindingCollapses = 9u;       // r32ui per collapse to make: its edge, bit 31 set for b into a
-const uint kSimplifyBindingCount = 10u;
+const uint kSimplifyBindingChanged = 10u;        // r32ui per vertex: 1 if in the region of one of the last round's collapses
+const uint kSimplifyBindingCount = 11u;
 // Bit of a collapse entry: b into a.
 const uint kCollapseBIntoA = 0x80000000u;
 // The most edges at the vertex a legal collapse removes: with the collapse's own edge and the
