@@ -180,7 +180,7 @@ void ImageJob::render(Backend& backend) {
             if (!backend.handsOverSurface())
                 reporter_.notice(task_.input, inputName(task_.input) +
                                                   ": simplification runs on the CPU, one thread (its Vulkan version is "
-                                                  "not written yet); the optimization ran on the device");
+                                                  "still slower); the optimization ran on the device");
             SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify,
                                                              settings_.max_error, options, sink, on_step);
             report_.stats = simplified.optimize;

@@ -95,6 +95,11 @@ TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in c
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
     Mesh mesh = centreFanMesh(24);
     compactEdges(mesh);
+    // The centre is at the bound: a neighbour with more than 4 edges cannot collapse into it.
+    const VertexEdges edges(mesh);
+    uint32_t centre_edges = 0;
+    forEachEdgeAt(mesh, edges, 12 * 24 + 12, [&](uint32_t) { ++centre_edges; });
+    REQUIRE(centre_edges + 4 > kMaxCollapseValence);
     std::mt19937 rng(3);
     const Image values = randomImage(rng, 24, 24, 3);
     const SimplifyStart start(mesh, values);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <cmath>
 
 #include "parallel.h"
 #include "vertex_quadrics.h"
@@ -24,8 +23,6 @@ constexpr uint32_t kRoundShare = 64;
 // Vulkan leaves the rounding of a double-to-float conversion to the implementation, a cut is
 // exact on any device.
 uint64_t keyOf(double cost, uint32_t edge) { return std::bit_cast<uint64_t>(cost) >> 32 << 32 | edge; }
-
-
 
 // The vertices whose records and triangles a collapse of edge e reads or writes: its two
 // vertices and all their neighbours.
