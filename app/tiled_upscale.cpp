@@ -241,21 +241,25 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
     const uint32_t c = job.image.channels;
     const size_t row_floats = size_t(job.out.width) * c;
     const uint32_t y0 = tiles[0].output.y0, y1 = tiles[0].output.y1, band_rows = bandRows(row_floats);
+    std::vector<uint32_t> rendered;  // the tiles with samples
     for (uint32_t i = 0; i < tiles.size(); ++i)
-        if (surfaces[i]) job.step(first_index + i, total, TilePhase::Render);
-    std::vector<float> tile_rows;
+        if (surfaces[i]) {
+            job.step(first_index + i, total, TilePhase::Render);
+            rendered.push_back(i);
+        }
     for (uint32_t y = y0; y < y1; y += band_rows) {
         OutputRows band(y, std::min(y1, y + band_rows), row_floats);
-        for (uint32_t i = 0; i < tiles.size(); ++i) {
-            if (!surfaces[i]) continue;
-            const RenderWindow window = windowOf(job, tiles[i], band.y_begin, band.y_end);
-            const size_t tile_row_floats = size_t(window.width()) * c;
-            tile_rows.resize(window.height() * tile_row_floats);
-            surfaces[i]->renderWindow(window, tile_rows.data());
-            for (uint32_t y = band.y_begin; y < band.y_end; ++y)
-                std::copy_n(tile_rows.data() + (y - band.y_begin) * tile_row_floats, tile_row_floats,
-                            band.row(y, row_floats) + size_t(window.x_begin) * c);
-        }
+        // Every tile's runs of rows at once, each written straight into its columns of the band.
+        const uint32_t runs = (band.rows() + kRowsPerRenderBand - 1) / kRowsPerRenderBand;
+        parallelFor(rendered.size() * runs, 1, [&](size_t begin, size_t end) {
+            for (size_t item = begin; item < end; ++item) {
+                const uint32_t i = rendered[item / runs], run_begin = band.y_begin + uint32_t(item % runs) * kRowsPerRenderBand;
+                const RenderWindow window =
+                    windowOf(job, tiles[i], run_begin, std::min(band.y_end, run_begin + kRowsPerRenderBand));
+                surfaces[i]->renderWindow(window, band.row(window.y_begin, row_floats) + size_t(window.x_begin) * c,
+                                          row_floats);
+            }
+        });
         job.rows.emit(std::move(band));
     }
     return stats;

@@ -23,7 +23,9 @@ namespace ddt {
 class HostSurface {
 public:
     virtual ~HostSurface() = default;
-    virtual void renderWindow(const RenderWindow& window, float* rows) const = 0;
+    // Renders `window` on the calling thread into `rows`, `row_stride` floats from one row's
+    // start to the next: a strip's tiles render side by side into one band, in parallel.
+    virtual void renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const = 0;
 };
 
 class Backend {

@@ -28,8 +28,8 @@ public:
     TakenSurface(const TakenSurface&) = delete;  // renderer_ refers to surface_
     TakenSurface& operator=(const TakenSurface&) = delete;
 
-    void renderWindow(const RenderWindow& window, float* rows) const override {
-        renderInParallel(renderer_, window, surface_.values.channels, rows);
+    void renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const override {
+        renderer_.renderWindow(window, rows, row_stride);
     }
 
 private:

@@ -235,10 +235,10 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
     }
 }
 
-void MeshRenderer::renderWindow(const RenderWindow& window, float* rows) const {
+void MeshRenderer::renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const {
     withChannelCount(image_.channels, [&](auto channels) {
         constexpr uint32_t c = decltype(channels)::value, pairs = (c + 1) / 2;
-        const size_t row_floats = size_t(window.width()) * c;
+        const size_t row_floats = row_stride ? row_stride : size_t(window.width()) * c;
         const size_t x_begin = window.x_begin, y_begin = window.y_begin;
         const float* values = image_.pixels.data();
         const float* bubbles = bubbles_ ? bubbles_->data() : nullptr;
@@ -307,9 +307,8 @@ void MeshRenderer::locateSamples(OutputSize out, uint32_t first, uint32_t end, s
 }
 
 void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows) {
-    const size_t rows_per_band = 16;  // at least: enough to amortise finding a band's triangles
     const size_t row_floats = size_t(window.width()) * channels;
-    parallelFor(window.height(), rows_per_band, [&](size_t begin, size_t end) {
+    parallelFor(window.height(), kRowsPerRenderBand, [&](size_t begin, size_t end) {
         RenderWindow band = window;
         band.y_begin = window.y_begin + uint32_t(begin);
         band.y_end = window.y_begin + uint32_t(end);

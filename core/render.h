@@ -74,8 +74,9 @@ public:
     // tables instead of building them again.
     MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles = nullptr);
 
-    // Renders the window into `rows`: window.width() × channels floats per row.
-    void renderWindow(const RenderWindow& window, float* rows) const;
+    // Renders the window into `rows`: window.width() × channels floats per row, or
+    // `row_stride` floats from one row's start to the next (a window of a wider band).
+    void renderWindow(const RenderWindow& window, float* rows, size_t row_stride = 0) const;
     // Output rows [y_begin, y_end) of the whole image (`image` is the whole input).
     void renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const;
 
@@ -100,6 +101,9 @@ private:
 // Renders `window` with `renderer` in bands of rows on the threads of core/parallel.h: each
 // band writes only its own rows, so the result does not depend on the split.
 void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows);
+
+// Output rows per band of renderInParallel: enough to amortise finding a band's triangles.
+constexpr uint32_t kRowsPerRenderBand = 16;
 
 // Renders the whole image in memory (tests, bench); `bubbles` as for MeshRenderer.
 Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles = nullptr);
