@@ -51,7 +51,7 @@ Timing bestTime(int runs, const std::function<void()>& work) {
 }
 
 const char* filterName(ddt::PngFilter filter) {
-    static const char* names[] = {"none", "sub", "up", "average", "paeth", "adaptive"};
+    static const char* names[] = {"none", "sub", "up", "average", "paeth", "adaptive", "adaptive per piece"};
     return names[int(filter)];
 }
 
@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
         const ddt::PngEncoder::Options defaults;
         for (int level = 0; level <= 3; ++level)
             for (ddt::PngFilter filter : {ddt::PngFilter::None, ddt::PngFilter::Sub, ddt::PngFilter::Up, ddt::PngFilter::Average,
-                                          ddt::PngFilter::Paeth, ddt::PngFilter::Adaptive}) {
+                                          ddt::PngFilter::Paeth, ddt::PngFilter::Adaptive, ddt::PngFilter::PieceAdaptive}) {
                 ddt::PngEncoder::Options options = defaults;
                 options.filter = filter;
                 options.isal_level = level;
@@ -171,6 +171,11 @@ int main(int argc, char** argv) {
                 options.try_unfiltered = false;
                 row(std::string("ISA-L only, ") + filterName(filter) + ", level " + std::to_string(level), options);
             }
+        for (ddt::PngFilter filter : {ddt::PngFilter::Adaptive, ddt::PngFilter::PieceAdaptive}) {
+            ddt::PngEncoder::Options options = defaults;
+            options.filter = filter;
+            row(std::string("default, ") + filterName(filter), options);
+        }
         for (size_t kib : {64, 128, 256, 512, 1024}) {
             ddt::PngEncoder::Options options = defaults;
             options.chunk_bytes = kib * 1024;

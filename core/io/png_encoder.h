@@ -42,7 +42,7 @@ public:
         // Filtered bytes deflated as one piece: a smaller piece costs size at its boundaries
         // (0.1 to 0.6 % at 128 KiB), a larger one holds more memory per thread.
         size_t chunk_bytes = size_t(1) << 18;
-        PngFilter filter = PngFilter::Adaptive;
+        PngFilter filter = PngFilter::PieceAdaptive;
         int isal_level = 1;           // ISA-L's level, 0 to 3, for pieces that are not flat
         bool zlib_for_flat = true;    // flat pieces through zlib (see png_encoder.cpp)
         bool try_unfiltered = true;   // flat and noise-like pieces also deflated unfiltered, the smaller kept

@@ -1,5 +1,6 @@
 #include "png_filter.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 
@@ -47,26 +48,26 @@ uint32_t filterCost(const uint8_t* __restrict row, const uint8_t* __restrict abo
     return sum;
 }
 
-PngFilter cheapestFilter(const uint8_t* row, const uint8_t* above, size_t size, size_t bpp) {
-    PngFilter best = PngFilter::None;
-    uint32_t best_cost = filterCost<PngFilter::None>(row, above, size, bpp);
-    auto consider = [&](PngFilter filter, uint32_t cost) {
-        if (cost < best_cost) {
-            best_cost = cost;
-            best = filter;
-        }
-    };
-    consider(PngFilter::Sub, filterCost<PngFilter::Sub>(row, above, size, bpp));
-    consider(PngFilter::Up, filterCost<PngFilter::Up>(row, above, size, bpp));
-    consider(PngFilter::Average, filterCost<PngFilter::Average>(row, above, size, bpp));
-    consider(PngFilter::Paeth, filterCost<PngFilter::Paeth>(row, above, size, bpp));
-    return best;
-}
-
 }  // namespace
 
+void addFilterCosts(const uint8_t* row, const uint8_t* above, size_t size, size_t bpp, uint64_t costs[5]) {
+    costs[0] += filterCost<PngFilter::None>(row, above, size, bpp);
+    costs[1] += filterCost<PngFilter::Sub>(row, above, size, bpp);
+    costs[2] += filterCost<PngFilter::Up>(row, above, size, bpp);
+    costs[3] += filterCost<PngFilter::Average>(row, above, size, bpp);
+    costs[4] += filterCost<PngFilter::Paeth>(row, above, size, bpp);
+}
+
+PngFilter cheapestFilter(const uint64_t costs[5]) {
+    return PngFilter(std::min_element(costs, costs + 5) - costs);
+}
+
 void filterPngRow(PngFilter filter, const uint8_t* row, const uint8_t* above, size_t size, size_t bpp, uint8_t* out) {
-    if (filter == PngFilter::Adaptive) filter = cheapestFilter(row, above, size, bpp);
+    if (filter == PngFilter::Adaptive) {
+        uint64_t costs[5] = {};
+        addFilterCosts(row, above, size, bpp, costs);
+        filter = cheapestFilter(costs);
+    }
     out[0] = uint8_t(filter);
     switch (filter) {
         case PngFilter::Sub:
