@@ -20,7 +20,7 @@ namespace ddt {
 // that the next image's optimization overlaps its encoding; not enough to matter beside the
 // process's own size. Since a strip's tiles render in one parallel loop the renderer gets
 // ahead of the encoder: 48 MiB filled up and took the photo ×4 to 276 MiB at its peak; with
-// 24 MiB it peaks at 260 MiB and is as fast (farm-bench, 7 pairs: 1.02×, within its spread).
+// 24 MiB it peaks at 260 MiB for 1.02 × the wall time (farm-bench, 7 pairs; 0.95–1.03).
 inline constexpr uint64_t kBandBudgetBytes = uint64_t(24) << 20;
 
 // Magnifies every Ready task; failures are reported and the batch goes on. `backend` is called

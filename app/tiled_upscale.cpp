@@ -253,7 +253,8 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
         const uint32_t runs = (band.rows() + kRowsPerRenderBand - 1) / kRowsPerRenderBand;
         parallelFor(rendered.size() * runs, 1, [&](size_t begin, size_t end) {
             for (size_t item = begin; item < end; ++item) {
-                const uint32_t i = rendered[item / runs], run_begin = band.y_begin + uint32_t(item % runs) * kRowsPerRenderBand;
+                const uint32_t i = rendered[item / runs];
+                const uint32_t run_begin = band.y_begin + uint32_t(item % runs) * kRowsPerRenderBand;
                 const RenderWindow window =
                     windowOf(job, tiles[i], run_begin, std::min(band.y_end, run_begin + kRowsPerRenderBand));
                 surfaces[i]->renderWindow(window, band.row(window.y_begin, row_floats) + size_t(window.x_begin) * c,

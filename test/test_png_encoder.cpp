@@ -184,17 +184,40 @@ private:
     unsigned saved_;
 };
 
-// A PNG's chunks in order, IHDR, IDAT and IEND left out.
-std::vector<ddt::PngChunk> metadataChunks(const std::string& png) {
+// A PNG's chunks in order.
+std::vector<ddt::PngChunk> chunksOf(const std::string& png) {
     std::vector<ddt::PngChunk> chunks;
     for (size_t at = 8; at + 12 <= png.size();) {
         const uint32_t length = uint32_t(uint8_t(png[at])) << 24 | uint32_t(uint8_t(png[at + 1])) << 16 |
                                 uint32_t(uint8_t(png[at + 2])) << 8 | uint8_t(png[at + 3]);
-        const std::string type = png.substr(at + 4, 4);
-        if (type != "IHDR" && type != "IDAT" && type != "IEND") chunks.push_back({type, png.substr(at + 8, length)});
+        chunks.push_back({png.substr(at + 4, 4), png.substr(at + 8, length)});
         at += 12 + size_t(length);
     }
     return chunks;
+}
+
+// A PNG's chunks in order, IHDR, IDAT and IEND left out.
+std::vector<ddt::PngChunk> metadataChunks(const std::string& png) {
+    std::vector<ddt::PngChunk> chunks;
+    for (ddt::PngChunk& chunk : chunksOf(png))
+        if (chunk.type != "IHDR" && chunk.type != "IDAT" && chunk.type != "IEND") chunks.push_back(std::move(chunk));
+    return chunks;
+}
+
+// The filter type byte of each row, from the inflated image data.
+std::vector<uint8_t> rowFilters(const std::string& png, const PngFormat& format) {
+    std::string stream;
+    for (const ddt::PngChunk& chunk : chunksOf(png))
+        if (chunk.type == "IDAT") stream += chunk.data;
+    const size_t stride = format.rowBytes() + 1;
+    std::string data(stride * format.height, '\0');
+    uLongf size = data.size();
+    REQUIRE(uncompress(reinterpret_cast<Bytef*>(data.data()), &size, reinterpret_cast<const Bytef*>(stream.data()),
+                       uLong(stream.size())) == Z_OK);
+    REQUIRE(size == data.size());
+    std::vector<uint8_t> filters;
+    for (size_t y = 0; y < format.height; ++y) filters.push_back(uint8_t(data[y * stride]));
+    return filters;
 }
 
 // An iCCP chunk's data with its profile inflated: zlib streams of one profile may differ.
@@ -316,6 +339,42 @@ TEST_CASE("png: an image of many pieces, flat and busy, decodes exactly") {
             CHECK(statistics.unfiltered > 0);
             CHECK(statistics.deflated_again > 0);
         }
+}
+
+// Rows that one filter each makes nearly zero: the top half repeats one ramp (Up: all zeros
+// below its first row), each row of the bottom half is one value, 5 above the row before
+// (Paeth: the first byte 5, from above, then zeros, from the left). Per row the heuristic takes
+// Up in the top half and Paeth in the bottom; once per piece it must take one filter for all
+// of the piece's rows.
+TEST_CASE("png: the adaptive filter chosen per piece is one type for all of a piece's rows") {
+    TempFolder folder;
+    Samples samples{{64, 40, 1, 8}, {}};
+    for (uint32_t y = 0; y < 40; ++y)
+        for (uint32_t x = 0; x < 64; ++x) samples.bytes += char(y < 20 ? x * 3 : y * 5);
+    PngEncoder::Options options;
+    options.zlib_for_flat = options.try_unfiltered = false;  // the filtered rows are stored
+    options.filter = ddt::PngFilter::Adaptive;
+    const std::vector<uint8_t> per_row = rowFilters(encode(samples, options), samples.format);
+    CHECK(per_row[1] == uint8_t(ddt::PngFilter::Up));
+    CHECK(per_row.back() == uint8_t(ddt::PngFilter::Paeth));
+    options.filter = ddt::PngFilter::PieceAdaptive;
+    for (size_t chunk_bytes : {size_t(1) << 18, size_t(65 * 10)}) {  // one piece; pieces of 10 rows
+        INFO("pieces of " << chunk_bytes << " bytes");
+        options.chunk_bytes = chunk_bytes;
+        const std::string png = encode(samples, options);
+        requireDecodesExactly(png, samples, folder);
+        const std::vector<uint8_t> per_piece = rowFilters(png, samples.format);
+        const size_t rows = std::min<size_t>(40, chunk_bytes / 65);
+        for (size_t y = 0; y < per_piece.size(); ++y) {
+            INFO("row " << y);
+            CHECK(per_piece[y] == per_piece[y / rows * rows]);
+            CHECK(per_piece[y] < 5);
+        }
+        if (rows == 10) {  // rows 10-19 and 30-39 are pieces within one half: that half's filter
+            CHECK(per_piece[10] == uint8_t(ddt::PngFilter::Up));
+            CHECK(per_piece.back() == uint8_t(ddt::PngFilter::Paeth));
+        }
+    }
 }
 
 TEST_CASE("png: the bytes do not depend on the number of threads") {

@@ -50,8 +50,8 @@ namespace {
 // Deflate's window: the most history a back-reference reaches, so the most a dictionary holds.
 constexpr size_t kWindow = 32 * 1024;
 
-// PngFilter::PieceAdaptive weighs the filters on every this many rows of a piece.
-constexpr uint32_t kRowsPerSampledRow = 4;
+// PngFilter::PieceAdaptive weighs the filters on every kPieceFilterRowStep-th row of a piece.
+constexpr uint32_t kPieceFilterRowStep = 4;
 
 // A piece is flat when at least this share of its filtered bytes are zeros.
 constexpr size_t kFlatZerosPercent = 80;
@@ -159,7 +159,7 @@ struct PngEncoder::State {
         PngFilter filter = options.filter;
         if (filter == PngFilter::PieceAdaptive) {
             uint64_t costs[5] = {};
-            for (uint32_t y = piece.first_row; y < piece.end_row; y += kRowsPerSampledRow)
+            for (uint32_t y = piece.first_row; y < piece.end_row; y += kPieceFilterRowStep)
                 addFilterCosts(row(y), row(y) - row_bytes, row_bytes, bpp, costs);
             filter = cheapestFilter(costs);
         }

@@ -63,7 +63,7 @@ PngFilter cheapestFilter(const uint64_t costs[5]) {
 }
 
 void filterPngRow(PngFilter filter, const uint8_t* row, const uint8_t* above, size_t size, size_t bpp, uint8_t* out) {
-    if (filter == PngFilter::Adaptive) {
+    if (filter == PngFilter::Adaptive || filter == PngFilter::PieceAdaptive) {  // a lone row is its own piece
         uint64_t costs[5] = {};
         addFilterCosts(row, above, size, bpp, costs);
         filter = cheapestFilter(costs);

@@ -23,7 +23,7 @@ PngFilter cheapestFilter(const uint64_t costs[5]);
 
 // Writes `row` (`size` bytes, `bpp` bytes a pixel, 1 to 8) filtered against `above` (zeros
 // for the first row) to `out`: the filter type byte, then `size` bytes. `out` must not
-// overlap the inputs. `filter` is a filter type or Adaptive.
+// overlap the inputs. Given either adaptive choice, the row is filtered as its own piece.
 void filterPngRow(PngFilter filter, const uint8_t* row, const uint8_t* above, size_t size, size_t bpp, uint8_t* out);
 
 }  // namespace ddt

@@ -1,7 +1,7 @@
 // The parallel simplification rule, on the CPU: what the Vulkan kernels (compute/simplify/)
-// compute too, bit for bit, round by round, with the same result whatever the number of threads. It replaces the
-// paper's lock-free skip list and k-d tree partitions, which make the order of collapses, and
-// so the mesh, depend on thread timing.
+// compute too, bit for bit, round by round, with the same result whatever the number of
+// threads. It replaces the paper's lock-free skip list and k-d tree partitions, which make
+// the order of collapses, and so the mesh, depend on thread timing.
 //
 // Each round:
 // 1. candidates: every edge's best legal collapse (canCollapse; the cheaper direction, b into
