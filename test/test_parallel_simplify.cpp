@@ -1,8 +1,14 @@
 // The parallel simplification rule (core/simplify/parallel_simplify.h): a valid mesh at the
-// target, the same whatever the number of threads, and close to the serial reference.
+// target, the same whatever the number of threads, close to the serial reference, and equal to
+// the rule computed without its shortcuts.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <iterator>
+#include <random>
+
 #include "cost.h"
+#include "edge_collapse.h"
 #include "lawson.h"
 #include "metrics.h"
 #include "parallel.h"
@@ -61,5 +67,74 @@ TEST_CASE("parallel simplify: close to the serial reference") {
         // Each round takes local minima, not the global order; measured on chelsea.png at 10 %,
         // 0.1 dB below the serial reference. Half a decibel is the alarm.
         CHECK(parallel_psnr > serial_psnr - 0.5);
+    }
+}
+
+TEST_CASE("parallel simplify: the winners among the least keys are the full rule's winners among them") {
+    const Image photo = photoPiece();
+    for (double share : {1.0, 0.2}) {
+        Mesh mesh = optimisedGridMesh(photo);
+        Image values = photo;
+        if (share < 1.0) simplifySerial(mesh, values, uint32_t(share * photo.width * photo.height));
+        const SimplifyStart start(mesh, values);
+        std::vector<uint64_t> keys;
+        for (uint32_t e = 0; e < mesh.edgeCount(); ++e) keys.push_back(bestCollapse(mesh, start, e).key);
+        const std::vector<uint32_t> all = selectWinners(mesh, start.edges, keys);
+        for (size_t count : {1, 10, 100, 1000, 3000}) {
+            const uint64_t limit = keyLimitFor(keys, count);
+            REQUIRE(limit != kNoCollapseKey);
+            INFO("share " << share << ", the " << count << " least keys");
+            CHECK(size_t(std::count_if(keys.begin(), keys.end(), [&](uint64_t key) { return key <= limit; })) == count);
+            std::vector<uint32_t> expected;
+            std::copy_if(all.begin(), all.end(), std::back_inserter(expected),
+                         [&](uint32_t e) { return keys[e] <= limit; });
+            CHECK(selectWinners(mesh, start.edges, keys, limit) == expected);
+            if (count >= 100) CHECK(expected.size() > 1);
+        }
+        CHECK(keyLimitFor(keys, mesh.edgeCount()) == kNoCollapseKey);
+    }
+}
+
+TEST_CASE("parallel simplify: equal to the rule with every candidate and every winner found anew each round") {
+    // The rule as parallel_simplify.h states it, computed without its two shortcuts: only the
+    // edges at a changed ring get new candidates, and winners are sought among the least keys.
+    std::mt19937 rng(11);
+    for (const Image& image : {photoPiece(), randomImage(rng, 31, 23, 3, 4)}) {
+        const Mesh optimised = optimisedGridMesh(image);
+        const uint32_t target = image.width * image.height / 8;
+        Mesh mesh = optimised;
+        Image values = image;
+        SimplifyStart start(mesh, values);
+        uint32_t vertices = usedVertexCount(mesh), rounds = 0;
+        while (vertices > target) {
+            std::vector<CollapseCandidate> candidates;
+            std::vector<uint64_t> keys;
+            for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+                candidates.push_back(bestCollapse(mesh, start, e));
+                keys.push_back(candidates.back().key);
+            }
+            std::vector<uint32_t> winners = selectWinners(mesh, start.edges, keys);
+            if (winners.empty()) break;
+            leastWinners(winners, keys, vertices, target);
+            for (uint32_t e : winners) {
+                const Collapse collapse{e, candidates[e].b_into_a};
+                const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+                collapseEdge(mesh, start.edges, collapse);
+                start.quadrics[to] += start.quadrics[from];
+            }
+            vertices -= uint32_t(winners.size());
+            ++rounds;
+        }
+        compactEdges(mesh);
+        setBestColours(mesh, start.quadrics, start.points, values);
+
+        Mesh fast = optimised;
+        Image fast_values = image;
+        const ParallelSimplifyStats stats = simplifyParallel(fast, fast_values, target);
+        INFO(image.width << "×" << image.height << ": " << rounds << " rounds");
+        CHECK(rounds > 10);
+        CHECK(stats.rounds == rounds);
+        CHECK(sameRecords(fast, mesh));
+        CHECK(samePixels(fast_values.pixels, values.pixels));
     }
 }

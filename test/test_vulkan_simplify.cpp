@@ -38,6 +38,31 @@ std::vector<uint64_t> keysOf(const std::vector<CollapseCandidate>& candidates) {
     return keys;
 }
 
+// The edges of the device's winners, each checked to carry its edge's candidate.
+std::vector<uint32_t> edgesOf(const std::vector<DeviceWinner>& winners,
+                              const std::vector<CollapseCandidate>& candidates) {
+    std::vector<uint32_t> edges;
+    for (const DeviceWinner& winner : winners) {
+        CHECK(winner.candidate == candidates.at(winner.edge));
+        edges.push_back(winner.edge);
+    }
+    return edges;
+}
+
+// Every edge's candidate and the winners among all keys, computed on the device.
+struct DeviceSelection {
+    std::vector<CollapseCandidate> candidates;
+    std::vector<uint32_t> winners;
+};
+DeviceSelection selectOnDevice(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start,
+                               const Image& values) {
+    DeviceSimplifier device(context, mesh, start, values);
+    device.findCandidates();
+    DeviceSelection selection{device.candidates(), {}};
+    selection.winners = edgesOf(device.selectWinners(), selection.candidates);
+    return selection;
+}
+
 }  // namespace
 
 TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's, on meshes part way simplified") {
@@ -52,7 +77,9 @@ TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's,
         const SimplifyStart start(mesh, values);
         uint32_t with_key = 0;
         const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
-        const DeviceRoundSelection device = DeviceSimplifier(*context, mesh, start, values).select();
+        DeviceSimplifier simplifier(*context, mesh, start, values);
+        simplifier.findCandidates();
+        const DeviceSelection device{simplifier.candidates(), edgesOf(simplifier.selectWinners(), expected)};
         INFO("share " << share << ": " << mesh.edgeCount() << " edges, " << with_key << " with a legal collapse");
         // Both kinds occur: legal collapses, and edges with none (corners, fold-overs).
         CHECK(with_key > 0);
@@ -67,6 +94,24 @@ TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's,
         CHECK(winners.size() > 1);
         CHECK(winners.size() < with_key / 10);
         CHECK(device.winners == winners);
+        // Among the least keys only, with the limit from the device's tally of cost words:
+        // core's winners among the same keys.
+        const uint32_t limit = simplifier.costWordLimit(with_key / 8);
+        REQUIRE(limit != kAllCostWords);
+        const uint64_t key_limit = uint64_t(limit) << 32 | 0xFFFFFFFFu;
+        const std::vector<uint32_t> least_winners = selectWinners(mesh, start.edges, keysOf(expected), key_limit);
+        CHECK(least_winners.size() > 1);
+        CHECK(least_winners.size() < winners.size());
+        CHECK(edgesOf(simplifier.selectWinners(limit), expected) == least_winners);
+        // The limit is the least with that many keys at most it: a bin's width (1/16 of an
+        // octave) lower, fewer.
+        size_t at_most = 0, below = 0;
+        for (const CollapseCandidate& candidate : expected) {
+            at_most += candidate.key <= key_limit;
+            below += candidate.key < uint64_t(limit - 0xFFFFu) << 32;
+        }
+        CHECK(at_most >= with_key / 8);
+        CHECK(below < with_key / 8);
     }
     CHECK(context->validation_messages == 0);
 }
@@ -84,7 +129,7 @@ TEST_CASE("vulkan simplify: grey, grey + alpha and RGBA values cost as in core")
         const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
         INFO(channels << " channels");
         CHECK(with_key > 0);
-        CHECK(DeviceSimplifier(*context, mesh, start, values).select().candidates == expected);
+        CHECK(selectOnDevice(*context, mesh, start, values).candidates == expected);
     }
     CHECK(context->validation_messages == 0);
 }
@@ -106,7 +151,7 @@ TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in c
     uint32_t with_key = 0;
     const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
     CHECK(with_key > 0);
-    const DeviceRoundSelection device = DeviceSimplifier(*context, mesh, start, values).select();
+    const DeviceSelection device = selectOnDevice(*context, mesh, start, values);
     CHECK(device.candidates == expected);
     CHECK(device.winners == selectWinners(mesh, start.edges, keysOf(expected)));
     CHECK(context->validation_messages == 0);

@@ -41,10 +41,12 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
         make(kSimplifyBindingValues, VkDeviceSize(vertices) * 16, VK_FORMAT_R32G32B32A32_SFLOAT, texels.data());
         make(kSimplifyBindingQuadrics, VkDeviceSize(vertices) * sizeof(Quadric), VK_FORMAT_R32G32_UINT,
              start.quadrics.data());
-        make(kSimplifyBindingCandidates, edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr, Placement::Readback);
+        make(kSimplifyBindingCandidates, edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr);
         make(kSimplifyBindingLeastCost, vertex_words, VK_FORMAT_R32_UINT, nullptr);
         make(kSimplifyBindingLeastId, vertex_words, VK_FORMAT_R32_UINT, nullptr);
-        make(kSimplifyBindingWinners, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr, Placement::Readback);
+        make(kSimplifyBindingWinners, edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr, Placement::Readback);
+        make(kSimplifyBindingTallies, kTallyWords * 4, VK_FORMAT_R32_UINT, nullptr, Placement::Readback);
+        make(kSimplifyBindingListed, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr);
         // Winners' regions are disjoint, so a round has fewer collapses than edges.
         make(kSimplifyBindingCollapses, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr);
         // Every vertex counts as changed before the first round: every edge gets a candidate.
@@ -61,12 +63,63 @@ DeviceSimplifier::~DeviceSimplifier() {
     for (Buffer& buffer : buffers_) destroyBuffer(context_, buffer);
 }
 
-DeviceRoundSelection DeviceSimplifier::select() {
-    const uint32_t edges = push_.edge_count;
+uint32_t DeviceSimplifier::gatherEdges(uint32_t step, uint32_t cost_word_limit) {
     CommandBatch batch(context_);
     const VkCommandBuffer commands = batch.buffer();
+    vkCmdFillBuffer(commands, buffers_[kSimplifyBindingTallies].buffer, 0, VK_WHOLE_SIZE, 0);
+    computeBarrier(commands);
     SimplifyPush push = push_;
-    kernels_.dispatchPerEdge(commands, kernels_.candidates, push);
+    push.step = step;
+    push.cost_word_limit = cost_word_limit;
+    kernels_.dispatchPerEdge(commands, kernels_.gather, push);
+    batch.submitAndWait();
+    uint32_t count = 0;
+    downloadFromBuffer(context_, buffers_[kSimplifyBindingTallies], &count, 4, kTallyListed * 4);
+    return count;
+}
+
+void DeviceSimplifier::findCandidates() {
+    SimplifyPush listed = push_;
+    listed.edge_count = gatherEdges(kGatherChanged, 0);
+    listed.listed = 1;
+    CommandBatch batch(context_);
+    const VkCommandBuffer commands = batch.buffer();
+    kernels_.dispatchPerEdge(commands, kernels_.candidates, listed);
+    SimplifyPush push = push_;
+    push.step = kSelectTallyCosts;
+    kernels_.dispatchPerEdge(commands, kernels_.select, push);
+    batch.submitAndWait();
+    cost_tally_.resize(kCostBins);
+    downloadFromBuffer(context_, buffers_[kSimplifyBindingTallies], cost_tally_.data(), kCostBins * 4);
+}
+
+std::vector<CollapseCandidate> DeviceSimplifier::candidates() const {
+    const uint32_t edges = push_.edge_count;
+    std::vector<uint32_t> words(size_t(edges) * 4);
+    if (edges) downloadFromBuffer(context_, buffers_[kSimplifyBindingCandidates], words.data(), words.size() * 4);
+    std::vector<CollapseCandidate> candidates(edges);
+    for (uint32_t e = 0; e < edges; ++e)
+        candidates[e] = {uint64_t(words[4 * e]) << 32 | words[4 * e + 1], words[4 * e + 2] != 0};
+    return candidates;
+}
+
+uint32_t DeviceSimplifier::costWordLimit(size_t count) const {
+    uint64_t keys = 0, total = 0;
+    for (uint32_t tally : cost_tally_) total += tally;
+    for (uint32_t bin = 0; bin + 1 < kCostBins; ++bin) {
+        keys += cost_tally_[bin];
+        if (keys == total) break;
+        if (keys >= count) return bin << 16 | 0xFFFFu;
+    }
+    return kAllCostWords;
+}
+
+std::vector<DeviceWinner> DeviceSimplifier::selectWinners(uint32_t cost_word_limit) {
+    SimplifyPush push = push_;
+    push.edge_count = gatherEdges(kGatherLimited, cost_word_limit);
+    push.listed = 1;
+    CommandBatch batch(context_);
+    const VkCommandBuffer commands = batch.buffer();
     for (uint32_t binding : {kSimplifyBindingLeastCost, kSimplifyBindingLeastId})
         vkCmdFillBuffer(commands, buffers_[binding].buffer, 0, VK_WHOLE_SIZE, kNone);
     computeBarrier(commands);
@@ -75,19 +128,16 @@ DeviceRoundSelection DeviceSimplifier::select() {
         kernels_.dispatchPerEdge(commands, kernels_.select, push);
     }
     batch.submitAndWait();
-
-    DeviceRoundSelection selection;
-    std::vector<uint32_t> words(size_t(edges) * 4), winners(edges);
-    if (edges) {
-        downloadFromBuffer(context_, buffers_[kSimplifyBindingCandidates], words.data(), words.size() * 4);
-        downloadFromBuffer(context_, buffers_[kSimplifyBindingWinners], winners.data(), winners.size() * 4);
-    }
-    selection.candidates.resize(edges);
-    for (uint32_t e = 0; e < edges; ++e) {
-        selection.candidates[e] = {uint64_t(words[4 * e]) << 32 | words[4 * e + 1], words[4 * e + 2] != 0};
-        if (winners[e]) selection.winners.push_back(e);
-    }
-    return selection;
+    uint32_t count = 0;
+    downloadFromBuffer(context_, buffers_[kSimplifyBindingTallies], &count, 4, kTallyWinners * 4);
+    std::vector<uint32_t> words(size_t(count) * 4);
+    if (count) downloadFromBuffer(context_, buffers_[kSimplifyBindingWinners], words.data(), words.size() * 4);
+    std::vector<DeviceWinner> winners(count);
+    for (uint32_t i = 0; i < count; ++i)
+        winners[i] = {words[4 * i + 1], {uint64_t(words[4 * i]) << 32 | words[4 * i + 1], words[4 * i + 2] != 0}};
+    std::sort(winners.begin(), winners.end(),
+              [](const DeviceWinner& x, const DeviceWinner& y) { return x.edge < y.edge; });
+    return winners;
 }
 
 void DeviceSimplifier::collapse(const std::vector<Collapse>& collapses) {
@@ -120,16 +170,23 @@ ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     SimplifyStart start(mesh, values);
     DeviceSimplifier device(context, mesh, start, values);
-    std::vector<uint64_t> keys(mesh.edgeCount());
+    size_t keys_per_collapse = 0;  // the last round's (winnersAmongLeastKeys)
     while (stats.vertices_after > target) {
-        DeviceRoundSelection round = device.select();
-        if (round.winners.empty()) break;  // no legal collapse left
-        for (size_t e = 0; e < keys.size(); ++e) keys[e] = round.candidates[e].key;
-        leastWinners(round.winners, keys, stats.vertices_after, target);
+        device.findCandidates();
+        const size_t needed = roundCollapses(stats.vertices_after, target);
+        std::vector<DeviceWinner> winners = winnersAmongLeastKeys(needed, keys_per_collapse, [&](size_t count) {
+            const uint32_t limit = device.costWordLimit(count);
+            return std::pair(device.selectWinners(limit), limit == kAllCostWords);
+        });
+        if (winners.empty()) break;  // no legal collapse left
+        // The least of them (core's leastWinners).
+        std::sort(winners.begin(), winners.end(),
+                  [](const DeviceWinner& x, const DeviceWinner& y) { return x.candidate.key < y.candidate.key; });
+        winners.resize(std::min(winners.size(), needed));
         std::vector<Collapse> collapses;
-        for (uint32_t e : round.winners) {
-            collapses.push_back({e, round.candidates[e].b_into_a});
-            stats.last_cost = std::max(stats.last_cost, collapseKeyCost(keys[e]));
+        for (const DeviceWinner& winner : winners) {
+            collapses.push_back({winner.edge, winner.candidate.b_into_a});
+            stats.last_cost = std::max(stats.last_cost, collapseKeyCost(winner.candidate.key));
         }
         device.collapse(collapses);
         stats.collapses += collapses.size();

@@ -2,9 +2,10 @@
 // kernels of its own (glsl/simplify/), equal to core's bit for bit: every edge's best legal
 // collapse (the legality walks, the exact orientation and the quadric's value are the same
 // formulas, in fp64 without fused multiply-add, and the key is a cut of the cost, not a
-// rounding), the winners, whose regions hold no smaller key, and their collapses with the
-// quadrics' merge. Still on the host: choosing the least winners of a round (a sort of about
-// 1 % of the edges, downloaded each round), and the final compaction and best colours.
+// rounding), the winners, whose regions hold no smaller key, among the least keys (the limit
+// from a tally of the keys' cost words), and their collapses with the quadrics' merge. On the
+// host: the round's least winners (a sort of the winners, downloaded each round), and the
+// final compaction and best colours.
 #pragma once
 
 #include <vector>
@@ -17,10 +18,14 @@
 
 namespace ddt {
 
-struct DeviceRoundSelection {
-    std::vector<CollapseCandidate> candidates;  // per edge
-    std::vector<uint32_t> winners;              // ascending
+// A winner of a selection: its edge and candidate.
+struct DeviceWinner {
+    uint32_t edge = kNone;
+    CollapseCandidate candidate;
 };
+
+// The cost word limit with which every key takes part.
+constexpr uint32_t kAllCostWords = kNone - 1;
 
 // A mesh being simplified on the device: its records, walk starts and quadrics live there.
 class DeviceSimplifier {
@@ -32,18 +37,30 @@ public:
     DeviceSimplifier(const DeviceSimplifier&) = delete;
     DeviceSimplifier& operator=(const DeviceSimplifier&) = delete;
 
-    // Steps 1 and 2 of a round on the current mesh.
-    DeviceRoundSelection select();
+    // Step 1 of a round on the current mesh: the candidates of the edges the last collapses
+    // changed, and the tally of every key's cost word.
+    void findCandidates();
+    // Every edge's candidate (downloaded: for tests).
+    std::vector<CollapseCandidate> candidates() const;
+    // From the last tally: the least cost word limit with at least `count` keys at most it;
+    // kAllCostWords if that takes every key.
+    uint32_t costWordLimit(size_t count) const;
+    // Step 2 among the keys whose cost word is at most `limit`: the winners, ascending by edge.
+    std::vector<DeviceWinner> selectWinners(uint32_t cost_word_limit = kAllCostWords);
     // Step 3 for `collapses` (winners of one selection, in any order).
     void collapse(const std::vector<Collapse>& collapses);
     // The current records, walk starts and quadrics, into `mesh` and `start`.
     void download(Mesh& mesh, SimplifyStart& start) const;
 
 private:
+    // Lists the edges of gather_edges.comp's `step` after zeroing the tallies; their count.
+    uint32_t gatherEdges(uint32_t step, uint32_t cost_word_limit);
+
     VulkanContext& context_;
     SimplifyKernels kernels_;
     Buffer buffers_[kSimplifyBindingCount];
     SimplifyPush push_{};
+    std::vector<uint32_t> cost_tally_;  // keys per bin (kCostBins) at the last findCandidates
 };
 
 // As simplifyParallel, with steps 1 to 3 of every round on the device.

@@ -10,6 +10,7 @@
 // SPIR-V written by glslangValidator at build time (see CMakeLists.txt).
 #include "spirv/collapse_candidates.h"
 #include "spirv/collapse_edges.h"
+#include "spirv/gather_edges.h"
 #include "spirv/select_collapses.h"
 
 namespace ddt {
@@ -30,6 +31,7 @@ SimplifyKernels::SimplifyKernels(VulkanContext& context) : context_(context) {
         layout_info.pushConstantRangeCount = 1;
         layout_info.pPushConstantRanges = &range;
         VK_CHECK(vkCreatePipelineLayout(context.device, &layout_info, nullptr, &layout_));
+        gather = createComputePipeline(context, layout_, kSpirvGatherEdges, sizeof(kSpirvGatherEdges));
         candidates = createComputePipeline(context, layout_, kSpirvCollapseCandidates, sizeof(kSpirvCollapseCandidates));
         select = createComputePipeline(context, layout_, kSpirvSelectCollapses, sizeof(kSpirvSelectCollapses));
         collapse = createComputePipeline(context, layout_, kSpirvCollapseEdges, sizeof(kSpirvCollapseEdges));
@@ -55,12 +57,12 @@ SimplifyKernels::~SimplifyKernels() { destroy(); }
 void SimplifyKernels::destroy() {
     const VkDevice device = context_.device;
     if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
-    for (VkPipeline pipeline : {candidates, select, collapse})
+    for (VkPipeline pipeline : {gather, candidates, select, collapse})
         if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
     if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
     if (set_layout_) vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
     pool_ = VK_NULL_HANDLE;
-    candidates = select = collapse = VK_NULL_HANDLE;
+    gather = candidates = select = collapse = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;
 }

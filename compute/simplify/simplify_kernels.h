@@ -19,11 +19,12 @@ public:
 
     // Points binding i at buffers[i], for every binding.
     void bind(const Buffer (&buffers)[kSimplifyBindingCount]);
-    // Records `kernel` with one invocation an edge (or collapse) of push.edge_count, in as many
-    // dispatches as
-    // kMaxGroups groups a dispatch need, each followed by the compute barrier.
+    // Records `kernel` with one invocation an edge (or listed edge, or collapse) of
+    // push.edge_count, in as many dispatches of kMaxGroups groups as that needs, each followed
+    // by the compute barrier.
     void dispatchPerEdge(VkCommandBuffer commands, VkPipeline kernel, SimplifyPush push) const;
 
+    VkPipeline gather = VK_NULL_HANDLE;      // gather_edges.comp
     VkPipeline candidates = VK_NULL_HANDLE;  // collapse_candidates.comp
     VkPipeline select = VK_NULL_HANDLE;      // select_collapses.comp
     VkPipeline collapse = VK_NULL_HANDLE;    // collapse_edges.comp

@@ -34,6 +34,17 @@ void forEachRegionVertex(const Mesh& mesh, const VertexEdges& edges, uint32_t e,
     }
 }
 
+// A collapse of `from` changes the edges at `from` and at each of its neighbours (`to`
+// among them), and no other record; it changes the quadric of `to` only. An edge's candidate
+// reads only its own record, the edges at its two ends and their quadrics (canCollapse,
+// collapseCost), so only edges with an end marked here can have a new one.
+void markRingChanged(const Mesh& mesh, const VertexEdges& edges, uint32_t from, std::vector<uint8_t>& changed) {
+    changed[from] = 1;
+    forEachEdgeAt(mesh, edges, from, [&](uint32_t f) {
+        changed[mesh.vertices[f].a == from ? mesh.vertices[f].b : mesh.vertices[f].a] = 1;
+    });
+}
+
 void lowerTo(std::atomic<uint64_t>& slot, uint64_t key) {
     uint64_t current = slot.load(std::memory_order_relaxed);
     while (key < current && !slot.compare_exchange_weak(current, key, std::memory_order_relaxed)) {
@@ -56,15 +67,20 @@ CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uin
 
 double collapseKeyCost(uint64_t key) { return std::bit_cast<double>(key >> 32 << 32); }
 
+size_t roundCollapses(uint32_t vertices, uint32_t target) {
+    return std::min<size_t>(vertices - target, std::max<size_t>(1, vertices / kRoundShare));
+}
+
 void leastWinners(std::vector<uint32_t>& winners, const std::vector<uint64_t>& keys, uint32_t vertices,
                   uint32_t target) {
     std::sort(winners.begin(), winners.end(), [&](uint32_t x, uint32_t y) { return keys[x] < keys[y]; });
-    const size_t cap = std::max<size_t>(1, vertices / kRoundShare);
-    winners.resize(std::min<size_t>({winners.size(), size_t(vertices - target), cap}));
+    winners.resize(std::min(winners.size(), roundCollapses(vertices, target)));
 }
 
-std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys) {
+std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys,
+                                    uint64_t limit) {
     const size_t grain = 4096;
+    auto takesPart = [&](size_t e) { return keys[e] != kNoCollapseKey && keys[e] <= limit; };
     // Each vertex's least key over the regions that hold it.
     std::vector<std::atomic<uint64_t>> vertex_least(mesh.vertexCount());
     parallelFor(vertex_least.size(), grain, [&](size_t begin, size_t end) {
@@ -72,17 +88,25 @@ std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, 
     });
     parallelFor(mesh.edgeCount(), grain, [&](size_t begin, size_t end) {
         for (size_t e = begin; e < end; ++e)
-            if (keys[e] != kNoCollapseKey)
+            if (takesPart(e))
                 forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { lowerTo(vertex_least[v], keys[e]); });
     });
     std::vector<uint32_t> winners;
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-        if (keys[e] == kNoCollapseKey) continue;
+        if (!takesPart(e)) continue;
         bool least = true;
         forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { least = least && vertex_least[v].load() == keys[e]; });
         if (least) winners.push_back(e);
     }
     return winners;
+}
+
+uint64_t keyLimitFor(std::vector<uint64_t> keys, size_t count) {
+    const auto keyed = std::partition(keys.begin(), keys.end(), [](uint64_t key) { return key != kNoCollapseKey; });
+    const size_t keyed_count = size_t(keyed - keys.begin());
+    if (count == 0 || keyed_count <= count) return kNoCollapseKey;
+    std::nth_element(keys.begin(), keys.begin() + (count - 1), keyed);
+    return keys[count - 1];
 }
 
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target) {
@@ -93,9 +117,10 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
     const uint32_t edge_count = mesh.edgeCount();
     std::vector<uint64_t> key(edge_count);
     std::vector<uint8_t> b_into_a(edge_count);
-    // The vertices in the regions of the last round's collapses: an edge whose region holds
-    // one has a new cost or legality; the others keep their candidates (all are new at first).
+    // The vertices whose edges the last round's collapses changed (markRingChanged); an edge
+    // with neither end among them keeps its candidate (all are new at first).
     std::vector<uint8_t> changed(mesh.vertexCount(), 1);
+    size_t keys_per_collapse = 0;  // the last round's (winnersAmongLeastKeys)
     const size_t grain = 4096;
 
     while (stats.vertices_after > target) {
@@ -106,24 +131,26 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
                     key[e] = kNoCollapseKey;
                     continue;
                 }
-                bool stale = false;
-                forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { stale = stale || changed[v]; });
-                if (!stale) continue;
+                if (!changed[mesh.vertices[e].a] && !changed[mesh.vertices[e].b]) continue;
                 const CollapseCandidate best = bestCollapse(mesh, start, uint32_t(e));
                 key[e] = best.key;
                 b_into_a[e] = best.b_into_a;
             }
         });
-        // 2. Select.
-        std::vector<uint32_t> winners = selectWinners(mesh, edges, key);
-        if (winners.empty()) break;  // no legal collapse left
-        // 3. Collapse the least of them, as many as the target still needs.
-        std::fill(changed.begin(), changed.end(), 0);
+        // 2. Select, and keep the least winners, as many as the target still needs.
+        const size_t needed = roundCollapses(stats.vertices_after, target);
+        std::vector<uint32_t> winners = winnersAmongLeastKeys(needed, keys_per_collapse, [&](size_t count) {
+            const uint64_t limit = keyLimitFor(key, count);
+            return std::pair(selectWinners(mesh, edges, key, limit), limit == kNoCollapseKey);
+        });
         leastWinners(winners, key, stats.vertices_after, target);
+        if (winners.empty()) break;  // no legal collapse left
+        // 3. Collapse them.
+        std::fill(changed.begin(), changed.end(), 0);
         for (uint32_t e : winners) {
             const Collapse collapse{e, bool(b_into_a[e])};
             const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
-            forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { changed[v] = 1; });
+            markRingChanged(mesh, edges, from, changed);
             stats.last_cost = std::max(stats.last_cost, collapseKeyCost(key[e]));
             collapseEdge(mesh, edges, collapse);
             quadrics[to] += quadrics[from];

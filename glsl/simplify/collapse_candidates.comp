@@ -2,22 +2,20 @@
 #extension GL_GOOGLE_include_directive : require
 // Step 1 of a simplification round (core/simplify/parallel_simplify.h): every edge's best
 // legal collapse, keyed by its cost's high 32 bits and its id; b into a, tried first, stays on
-// equal keys. No candidate: both key words all ones. An edge whose region the last round did
-// not change keeps its candidate.
+// equal keys. No candidate: both key words all ones. Only the listed edges, whose candidate may
+// have changed (gather_edges.comp; core's markRingChanged says why that is enough).
 #include "collapse_rule.glsl"
 
 layout(binding = kSimplifyBindingCandidates, rgba32ui) uniform writeonly uimageBuffer candidates;
 
 void main() {
-    const uint e = push.first_edge + gl_GlobalInvocationID.x;
-    if (e >= push.edge_count) return;
+    const uint e = invocationEdge();
+    if (e == kNone) return;
     uvec4 best = uvec4(kNone, kNone, 1u, 0u);  // as core: no candidate reads as b into a
-    const bool removed = verticesOf(e).x == kNone;
-    if (!removed && !regionChanged(e)) return;
-    if (!removed)
+    const uvec4 ev = verticesOf(e);
+    if (ev.x != kNone)
         for (uint direction = 1u; direction <= 1u; --direction) {  // b into a, then a into b
             if (!canCollapse(e, direction == 1u)) continue;
-            const uvec4 ev = verticesOf(e);
             const uint from = direction == 1u ? ev.y : ev.x, to = direction == 1u ? ev.x : ev.y;
             const uint cost_word = unpackDouble2x32(collapseCost(from, to)).y;
             if (cost_word < best.x) best = uvec4(cost_word, e, direction, 0u);

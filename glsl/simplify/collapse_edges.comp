@@ -31,13 +31,11 @@ void main() {
     const bool b_into_a = (entry & kCollapseBIntoA) != 0u;
     const uvec4 ev = verticesOf(e), en = neighboursOf(e);  // (a, b, l, r), (bl, la, ar, rb)
     const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
-    // The region, before it changes, for the next round's candidates (the host cleared the marks).
-    for (uint end = 0u; end < 2u; ++end) {
-        const uint centre = end == 0u ? ev.x : ev.y;
-        imageStore(changed, int(centre), uvec4(1u));
-        for (Walk w = beginWalk(centre); w.f != kNone; advance(w))
-            imageStore(changed, int(otherEnd(verticesOf(w.f), centre)), uvec4(1u));
-    }
+    // `from` and its neighbours, whose edges change, for the next round's candidates (the host
+    // cleared the marks; core's markRingChanged).
+    imageStore(changed, int(from), uvec4(1u));
+    for (Walk w = beginWalk(from); w.f != kNone; advance(w))
+        imageStore(changed, int(otherEnd(verticesOf(w.f), from)), uvec4(1u));
     uint at_from[kMaxEdgesAtFrom];
     uint at_from_count = 0u;
     for (Walk w = beginWalk(from); w.f != kNone; advance(w)) at_from[at_from_count++] = w.f;

@@ -55,19 +55,16 @@ void advance(inout Walk w) {
     w.f = next;
 }
 
+// 1 for the vertices whose edges the last round's collapses changed (collapse_edges.comp).
 layout(binding = kSimplifyBindingChanged, r32ui) uniform uimageBuffer changed;
 
-// Whether the region of edge e (its two vertices and all their neighbours) holds a vertex the
-// last round's collapses changed: only then can its candidate differ from the last one.
-bool regionChanged(uint e) {
-    const uvec4 ev = verticesOf(e);
-    for (uint end = 0u; end < 2u; ++end) {
-        const uint centre = end == 0u ? ev.x : ev.y;
-        if (imageLoad(changed, int(centre)).x != 0u) return true;
-        for (Walk w = beginWalk(centre); w.f != kNone; advance(w))
-            if (imageLoad(changed, int(otherEnd(verticesOf(w.f), centre))).x != 0u) return true;
-    }
-    return false;
+layout(binding = kSimplifyBindingListed, r32ui) uniform uimageBuffer listed;
+
+// The edge this invocation works on (push.listed: the listed one), or kNone past the end.
+uint invocationEdge() {
+    const uint i = push.first_edge + gl_GlobalInvocationID.x;
+    if (i >= push.edge_count) return kNone;
+    return push.listed != 0u ? imageLoad(listed, int(i)).x : i;
 }
 
 // The rectangle's sides v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.

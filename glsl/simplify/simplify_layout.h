@@ -27,29 +27,52 @@ const uint kSimplifyBindingQuadrics = 4u;        // rg32ui: kQuadricDoubles doub
 const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cost word, key's id word, b into a
 const uint kSimplifyBindingLeastCost = 6u;       // r32ui per vertex: the least cost word of the regions holding it
 const uint kSimplifyBindingLeastId = 7u;         // r32ui per vertex: the least edge id among keys of that cost word
-const uint kSimplifyBindingWinners = 8u;         // r32ui per edge: 1 where its key is the least of its whole region
+const uint kSimplifyBindingWinners = 8u;         // rgba32ui per winner, in no order: as its candidate
 const uint kSimplifyBindingCollapses = 9u;       // r32ui per collapse to make: its edge, bit 31 set for b into a
-const uint kSimplifyBindingChanged = 10u;        // r32ui per vertex: 1 if in the region of one of the last round's collapses
-const uint kSimplifyBindingCount = 11u;
+const uint kSimplifyBindingChanged = 10u;        // r32ui per vertex: 1 if the last round's collapses changed its edges
+const uint kSimplifyBindingTallies = 11u;        // r32ui: kCostBins keys per bin, kTallyWinners, kTallyListed
+const uint kSimplifyBindingListed = 12u;         // r32ui per listed edge, in no order (gather_edges.comp)
+const uint kSimplifyBindingCount = 13u;
 // Bit of a collapse entry: b into a.
 const uint kCollapseBIntoA = 0x80000000u;
 // The most edges at the vertex a legal collapse removes: with the collapse's own edge and the
 // removed ones, it leaves at most kCollapseValenceBound at the other (which has two or more).
 const uint kMaxEdgesAtFrom = kCollapseValenceBound + 4u;
 
-// Steps of select_collapses.comp: a vertex's least 64-bit key, (cost word, id), in two 32-bit
-// atomic minima (no 64-bit atomics needed), then the winners.
-const uint kSelectLeastCost = 0u;
-const uint kSelectLeastId = 1u;
-const uint kSelectWinners = 2u;
+// Steps of select_collapses.comp: the keys counted by their cost word's bin; then, among the
+// keys whose cost word is at most a limit, a vertex's least 64-bit key, (cost word, id), in two
+// 32-bit atomic minima (no 64-bit atomics needed), and the winners.
+const uint kSelectTallyCosts = 0u;
+const uint kSelectLeastCost = 1u;
+const uint kSelectLeastId = 2u;
+const uint kSelectWinners = 3u;
+// A cost word's bin is its high 16 bits (a non-negative double's sign, exponent and 4 bits of
+// mantissa: bins 1/16 of an octave wide), the last bin taking every word beyond.
+const uint kCostBins = 0x8000u;
+// The tallies after the bins: the winners listed, and the edges listed.
+const uint kTallyWinners = kCostBins;
+const uint kTallyListed = kCostBins + 1u;
+const uint kTallyWords = kCostBins + 2u;
+
+// Steps of gather_edges.comp: the edges whose candidate may have changed (not removed, with
+// an end marked changed; or removed, with a candidate still), or the edges whose cost word is
+// at most push.cost_word_limit.
+const uint kGatherChanged = 0u;
+const uint kGatherLimited = 1u;
+#ifdef __cplusplus
+inline
+#endif
+uint costBin(uint cost_word) { return cost_word >> 16 < kCostBins ? cost_word >> 16 : kCostBins - 1u; }
 
 struct SimplifyPush {
     uint width;
     uint height;
     uint channels;
-    uint edge_count;  // edges; for collapse_edges.comp, collapses
+    uint edge_count;  // edges; the listed edges' count where `listed`; for collapse_edges.comp, collapses
     uint first_edge;  // the dispatch's first edge (collapse): one invocation each, in several dispatches
     uint step;        // select_collapses.comp: kSelect…
+    uint cost_word_limit;  // select_collapses.comp: the greatest cost word that takes part
+    uint listed;           // 1: invocation i works on the listed edge i (kSimplifyBindingListed)
 };
 
 #ifdef __cplusplus
