@@ -70,12 +70,14 @@ constexpr size_t kLeastKeysPerCollapse = 4;
 
 // Step 2's search for `needed` winners among the least keys: select(count) gives the winners
 // among at least the `count` least keys and whether those were all keys (a pair). The count
-// starts at half the last round's keys_per_collapse per collapse needed and doubles while
+// starts at the last round's keys_per_collapse per collapse needed and grows by half while
 // too few win; by selectWinners' argument the `needed` least winners are then the rule's.
+// (Starting lower costs more selections than it saves: chelsea.png to 10 % on lavapipe
+// selected 291 times in 147 rounds from half the last round's, 154 times from all of it.)
 template <typename Select>
 auto winnersAmongLeastKeys(size_t needed, size_t& keys_per_collapse, Select select) {
-    keys_per_collapse = std::max(kLeastKeysPerCollapse, keys_per_collapse / 2);
-    for (;; keys_per_collapse *= 2) {
+    keys_per_collapse = std::max(kLeastKeysPerCollapse, keys_per_collapse);
+    for (;; keys_per_collapse += keys_per_collapse / 2) {
         auto [winners, all_keys] = select(keys_per_collapse * needed);
         if (winners.size() >= needed || all_keys) return winners;
     }

@@ -13,12 +13,17 @@ void main() {
     if (e == kNone) return;
     uvec4 best = uvec4(kNone, kNone, 1u, 0u);  // as core: no candidate reads as b into a
     const uvec4 ev = verticesOf(e);
-    if (ev.x != kNone)
-        for (uint direction = 1u; direction <= 1u; --direction) {  // b into a, then a into b
-            if (!canCollapse(e, direction == 1u)) continue;
-            const uint from = direction == 1u ? ev.y : ev.x, to = direction == 1u ? ev.x : ev.y;
-            const uint cost_word = unpackDouble2x32(collapseCost(from, to)).y;
-            if (cost_word < best.x) best = uvec4(cost_word, e, direction, 0u);
+    if (ev.x != kNone && eitherWayLegal(e)) {
+        const bool legal[2] = {directionLegal(e, false), directionLegal(e, true)};
+        if (legal[0] || legal[1]) {
+            const QuadricSum sum = quadricSum(ev.x, ev.y);
+            for (uint direction = 1u; direction <= 1u; --direction) {  // b into a, then a into b
+                if (!legal[direction]) continue;
+                const uint to = direction == 1u ? ev.x : ev.y;
+                const uint cost_word = unpackDouble2x32(collapseCost(sum, to)).y;
+                if (cost_word < best.x) best = uvec4(cost_word, e, direction, 0u);
+            }
         }
+    }
     imageStore(candidates, int(e), best);
 }

@@ -83,30 +83,43 @@ bool folds(uint p, uint q, uint r, uint from, uint to) {
     return orientation(p, q, r, push.width) <= 0.0lf;
 }
 
-// core's canCollapse for edge e, `from` its endpoint b (b_into_a) or a.
-bool canCollapse(uint e, bool b_into_a) {
+// core's canCollapse for edge e, in two parts: what holds for both directions (the valence
+// bound and the link condition), then what depends on the direction.
+bool eitherWayLegal(uint e) {
+    const uvec4 ev = verticesOf(e);
+    // b's neighbours, listed once (at most kMaxEdgesAtFrom where the valence bound holds), so
+    // that the link condition's pairs compare registers rather than walk b's edges again.
+    uint at_b[kMaxEdgesAtFrom];
+    uint b_count = 0u, valence = 0u;
+    for (Walk w = beginWalk(ev.y); w.f != kNone; advance(w)) {
+        if (b_count < kMaxEdgesAtFrom) at_b[b_count] = otherEnd(verticesOf(w.f), ev.y);
+        ++b_count;
+    }
+    for (Walk w = beginWalk(ev.x); w.f != kNone; advance(w)) ++valence;
+    valence += b_count;
+    if (valence - 2u - uint(ev.z != kNone) - uint(ev.w != kNone) > kCollapseValenceBound) return false;
+    // Link condition: the common neighbours of a and b are e's adjacent vertices.
+    uint shared_neighbours = 0u;
+    for (Walk w = beginWalk(ev.x); w.f != kNone; advance(w)) {
+        const uint x = otherEnd(verticesOf(w.f), ev.x);
+        if (x == ev.y) continue;
+        for (uint i = 0u; i < b_count; ++i) {
+            if (at_b[i] != x) continue;
+            if (x != ev.z && x != ev.w) return false;
+            ++shared_neighbours;
+        }
+    }
+    return shared_neighbours == uint(ev.z != kNone) + uint(ev.w != kNone);
+}
+
+// The rest of core's canCollapse, `from` e's endpoint b (b_into_a) or a: the rectangle kept,
+// no fold-over.
+bool directionLegal(uint e, bool b_into_a) {
     const uvec4 ev = verticesOf(e);
     const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
     const uint from_sides = sidesOf(from);
     if (bitCount(from_sides) >= 2) return false;                           // a corner
     if (from_sides != 0u && ev.z != kNone && ev.w != kNone) return false;  // a border vertex leaves its side
-    uint valence = 0u;
-    for (Walk w = beginWalk(from); w.f != kNone; advance(w)) ++valence;
-    for (Walk w = beginWalk(to); w.f != kNone; advance(w)) ++valence;
-    if (valence - 2u - uint(ev.z != kNone) - uint(ev.w != kNone) > kCollapseValenceBound) return false;
-    // Link condition: the common neighbours of a and b are e's adjacent vertices.
-    uint shared_neighbours = 0u;
-    for (Walk w = beginWalk(from); w.f != kNone; advance(w)) {
-        const uint x = otherEnd(verticesOf(w.f), from);
-        if (x == to) continue;
-        for (Walk u = beginWalk(to); u.f != kNone; advance(u)) {
-            if (otherEnd(verticesOf(u.f), to) != x) continue;
-            if (x != ev.z && x != ev.w) return false;
-            ++shared_neighbours;
-        }
-    }
-    if (shared_neighbours != uint(ev.z != kNone) + uint(ev.w != kNone)) return false;
-    // No fold-over.
     for (Walk w = beginWalk(from); w.f != kNone; advance(w)) {
         if (w.f == e) continue;
         const uvec4 fv = verticesOf(w.f);
@@ -118,22 +131,36 @@ bool canCollapse(uint e, bool b_into_a) {
 
 double quadricWord(uint v, uint k) { return packDouble2x32(imageLoad(quadrics, int(v * kQuadricDoubles + k)).xy); }
 
-// core's collapseCost: the two quadrics' sum at the point of the vertex that stays (its
-// position times kPositionWeight = 4, then its channels).
-double collapseCost(uint from, uint to) {
+// The sum of two vertices' quadrics, the entries that 2 + push.channels coordinates use (the
+// rest stay 0): both directions of a collapse cost this sum, since addition commutes.
+struct QuadricSum {
     double a[kQuadricUpperSize];
     double b[kMaxQuadricDimensions];
-    double point[kMaxQuadricDimensions];
-    for (uint k = 0u; k < kQuadricUpperSize; ++k) a[k] = quadricWord(from, k) + quadricWord(to, k);
-    for (uint k = 0u; k < kMaxQuadricDimensions; ++k) {
-        b[k] = quadricWord(from, kQuadricUpperSize + k) + quadricWord(to, kQuadricUpperSize + k);
-        point[k] = 0.0lf;
+    double c;
+};
+QuadricSum quadricSum(uint p, uint q) {
+    QuadricSum sum;
+    const uint n = 2u + push.channels;
+    for (uint i = 0u; i < kMaxQuadricDimensions; ++i) {
+        for (uint j = i; j < kMaxQuadricDimensions; ++j) {
+            const uint k = quadricIndex(i, j);
+            sum.a[k] = j < n ? quadricWord(p, k) + quadricWord(q, k) : 0.0lf;
+        }
+        sum.b[i] = i < n ? quadricWord(p, kQuadricUpperSize + i) + quadricWord(q, kQuadricUpperSize + i) : 0.0lf;
     }
-    const double c = quadricWord(from, kQuadricUpperSize + kMaxQuadricDimensions) +
-                     quadricWord(to, kQuadricUpperSize + kMaxQuadricDimensions);
+    sum.c = quadricWord(p, kQuadricUpperSize + kMaxQuadricDimensions) +
+            quadricWord(q, kQuadricUpperSize + kMaxQuadricDimensions);
+    return sum;
+}
+
+// core's collapseCost: the two quadrics' sum at the point of the vertex that stays (its
+// position times kPositionWeight = 4, then its channels).
+double collapseCost(QuadricSum sum, uint to) {
+    double point[kMaxQuadricDimensions];
+    for (uint k = 0u; k < kMaxQuadricDimensions; ++k) point[k] = 0.0lf;
     point[0] = 4.0lf * double(to % push.width);
     point[1] = 4.0lf * double(to / push.width);
     const vec4 value = imageLoad(values, int(to));
     for (uint k = 0u; k < push.channels; ++k) point[2u + k] = double(value[k]);
-    return quadricValue(a, b, c, point, 2u + push.channels);
+    return quadricValue(sum.a, sum.b, sum.c, point, 2u + push.channels);
 }
