@@ -95,45 +95,62 @@ TEST_CASE("parallel simplify: the winners among the least keys are the full rule
     }
 }
 
-TEST_CASE("parallel simplify: equal to the rule with every candidate and every winner found anew each round") {
-    // The rule as parallel_simplify.h states it, computed without its two shortcuts: only the
-    // edges at a changed ring get new candidates, and winners are sought among the least keys.
-    std::mt19937 rng(11);
-    for (const Image& image : {photoPiece(), randomImage(rng, 31, 23, 3, 4)}) {
-        const Mesh optimised = optimisedGridMesh(image);
-        const uint32_t target = image.width * image.height / 8;
-        Mesh mesh = optimised;
-        Image values = image;
-        SimplifyStart start(mesh, values);
-        uint32_t vertices = usedVertexCount(mesh), rounds = 0;
-        while (vertices > target) {
-            std::vector<CollapseCandidate> candidates;
-            std::vector<uint64_t> keys;
-            for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-                candidates.push_back(bestCollapse(mesh, start, e));
-                keys.push_back(candidates.back().key);
-            }
-            std::vector<uint32_t> winners = selectWinners(mesh, start.edges, keys);
-            if (winners.empty()) break;
-            leastWinners(winners, keys, vertices, target);
-            for (uint32_t e : winners) {
-                const Collapse collapse{e, candidates[e].b_into_a};
-                const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
-                collapseEdge(mesh, start.edges, collapse);
-                start.quadrics[to] += start.quadrics[from];
-            }
-            vertices -= uint32_t(winners.size());
-            ++rounds;
-        }
-        compactEdges(mesh);
-        setBestColours(mesh, start.quadrics, start.points, values);
+namespace {
 
-        Mesh fast = optimised;
-        Image fast_values = image;
-        const ParallelSimplifyStats stats = simplifyParallel(fast, fast_values, target);
-        INFO(image.width << "×" << image.height << ": " << rounds << " rounds");
-        CHECK(rounds > 10);
-        CHECK(stats.rounds == rounds);
+// The rule as parallel_simplify.h states it, computed without its two shortcuts: every
+// candidate and every winner is found anew each round, not only the edges at a changed ring,
+// and winners are sought among all keys, not the least.
+ParallelSimplifyStats simplifyByTheRule(Mesh& mesh, Image& values, uint32_t target, double max_error) {
+    ParallelSimplifyStats stats;
+    SimplifyStart start(mesh, values);
+    uint32_t vertices = usedVertexCount(mesh);
+    while (vertices > target) {
+        std::vector<CollapseCandidate> candidates;
+        std::vector<uint64_t> keys;
+        for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+            candidates.push_back(bestCollapse(mesh, start, e, errorLimitOf(max_error)));
+            keys.push_back(candidates.back().key);
+        }
+        std::vector<uint32_t> winners = selectWinners(mesh, start.edges, keys);
+        if (winners.empty()) break;
+        leastWinners(winners, keys, vertices, target);
+        for (uint32_t e : winners) {
+            const Collapse collapse{e, candidates[e].b_into_a};
+            const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+            collapseEdge(mesh, start.edges, collapse);
+            start.quadrics[to] += start.quadrics[from];
+        }
+        vertices -= uint32_t(winners.size());
+        ++stats.rounds;
+    }
+    stats.vertices_after = vertices;
+    compactEdges(mesh);
+    setBestColours(mesh, start.quadrics, start.points, values);
+    return stats;
+}
+
+}  // namespace
+
+TEST_CASE("parallel simplify: equal to the rule with every candidate and every winner found anew each round") {
+    std::mt19937 rng(11);
+    struct Case {
+        Image image;
+        double max_error;
+    };
+    for (const Case& c : {Case{photoPiece(), 0.0}, Case{randomImage(rng, 31, 23, 3, 4), 0.0}, Case{photoPiece(), 6.0}}) {
+        const Mesh optimised = optimisedGridMesh(c.image);
+        const uint32_t target = c.image.width * c.image.height / 8;
+        Mesh mesh = optimised, fast = optimised;
+        Image values = c.image, fast_values = c.image;
+        const ParallelSimplifyStats expected = simplifyByTheRule(mesh, values, target, c.max_error);
+        const ParallelSimplifyStats stats = simplifyParallel(fast, fast_values, target, c.max_error);
+        INFO(c.image.width << "×" << c.image.height << ", max error " << c.max_error << ": " << expected.rounds
+                           << " rounds, " << expected.vertices_after << " vertices left");
+        CHECK(expected.rounds > 10);
+        // The error limit, not the target, ends the simplification with a limit.
+        CHECK((c.max_error > 0.0) == (expected.vertices_after > target));
+        CHECK(stats.rounds == expected.rounds);
+        CHECK(stats.vertices_after == expected.vertices_after);
         CHECK(sameRecords(fast, mesh));
         CHECK(samePixels(fast_values.pixels, values.pixels));
     }

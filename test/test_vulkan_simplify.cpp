@@ -203,11 +203,17 @@ TEST_CASE("vulkan simplify: simplifyOnDevice gives simplifyParallel's mesh and c
     const Image photo = photoPiece();
     const Mesh optimised = optimisedGridMesh(photo);
     const uint32_t target = photo.width * photo.height / 10;
+    // To the target, and as far as an error of 6 levels allows (measured: 2694 of the 7000
+    // vertices left, so the limit, not the target, ends it).
+    const double max_error = GENERATE(0.0, 6.0);
+    INFO("max error " << max_error);
     Mesh core_mesh = optimised, device_mesh = optimised;
     Image core_values = photo, device_values = photo;
-    const ParallelSimplifyStats core = simplifyParallel(core_mesh, core_values, target);
-    const ParallelSimplifyStats device = simplifyOnDevice(*context, device_mesh, device_values, target);
-    CHECK(device.vertices_after == target);
+    const ParallelSimplifyStats core = simplifyParallel(core_mesh, core_values, target, max_error);
+    const ParallelSimplifyStats device = simplifyOnDevice(*context, device_mesh, device_values, target, max_error);
+    if (max_error == 0.0) CHECK(device.vertices_after == target);
+    else CHECK(device.vertices_after > 2 * target);
+    CHECK(device.vertices_after == core.vertices_after);
     CHECK(device.rounds == core.rounds);
     CHECK(device.collapses == core.collapses);
     CHECK(device.last_cost == core.last_cost);

@@ -1,6 +1,7 @@
 #include "device_simplify.h"
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 #include <type_traits>
 
@@ -13,7 +14,7 @@ static_assert(sizeof(Quadric) == kQuadricDoubles * sizeof(double) && std::is_sta
               "quadrics are uploaded as they are");
 
 DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start,
-                                   const Image& values)
+                                   const Image& values, double max_error)
     : context_(context), kernels_(context) {
     const uint32_t edges = mesh.edgeCount(), vertices = mesh.vertexCount();
     if (values.channels > kMaxQuadricDimensions - 2 || values.width != mesh.width || values.height != mesh.height)
@@ -21,7 +22,8 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
     const uint64_t limit = context.properties.limits.maxTexelBufferElements;
     if (uint64_t(vertices) * kQuadricDoubles > limit || edges > limit || edges >= kCollapseBIntoA)
         throw std::invalid_argument("device simplification: the mesh exceeds the device's texel buffers");
-    push_ = {mesh.width, mesh.height, values.channels, edges, 0, 0};
+    const uint64_t error_limit = std::bit_cast<uint64_t>(errorLimitOf(max_error));
+    push_ = {mesh.width, mesh.height, values.channels, edges, 0, 0, 0, 0, uint32_t(error_limit), uint32_t(error_limit >> 32)};
     // Channels padded to four floats a vertex, for one rgba32f texel.
     std::vector<float> texels(size_t(vertices) * 4, 0.0f);
     for (size_t v = 0; v < vertices; ++v)
@@ -165,11 +167,12 @@ void DeviceSimplifier::download(Mesh& mesh, SimplifyStart& start) const {
     downloadFromBuffer(context_, buffers_[kSimplifyBindingQuadrics], start.quadrics.data(), vertices * sizeof(Quadric));
 }
 
-ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image& values, uint32_t target) {
+ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image& values, uint32_t target,
+                                       double max_error) {
     ParallelSimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     SimplifyStart start(mesh, values);
-    DeviceSimplifier device(context, mesh, start, values);
+    DeviceSimplifier device(context, mesh, start, values, max_error);
     size_t keys_per_collapse = 0;  // the last round's (winnersAmongLeastKeys)
     while (stats.vertices_after > target) {
         device.findCandidates();

@@ -31,8 +31,9 @@ constexpr uint32_t kAllCostWords = kNone - 1;
 class DeviceSimplifier {
 public:
     // Uploads the mesh, its walks' starts and quadrics in `start`, and the vertex values
-    // `values` (what start.points reads).
-    DeviceSimplifier(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start, const Image& values);
+    // `values` (what start.points reads); collapses beyond `max_error` are no candidates.
+    DeviceSimplifier(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start, const Image& values,
+                     double max_error = 0.0);
     ~DeviceSimplifier();
     DeviceSimplifier(const DeviceSimplifier&) = delete;
     DeviceSimplifier& operator=(const DeviceSimplifier&) = delete;
@@ -64,6 +65,7 @@ private:
 };
 
 // As simplifyParallel, with steps 1 to 3 of every round on the device.
-ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image& values, uint32_t target);
+ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image& values, uint32_t target,
+                                       double max_error = 0.0);
 
 }  // namespace ddt

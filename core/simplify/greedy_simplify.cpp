@@ -1,7 +1,6 @@
 #include "greedy_simplify.h"
 
 #include <algorithm>
-#include <cmath>
 #include <queue>
 
 #include "edge_collapse.h"
@@ -36,6 +35,7 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
     SimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     SimplifyStart start(mesh, image);
+    const double error_limit = errorLimitOf(max_error);
     auto& [points, quadrics, edges] = start;
     std::vector<uint32_t> version(mesh.edgeCount(), 0);
     std::vector<bool> blocked(mesh.edgeCount(), false);  // its best candidate was illegal when it came up
@@ -62,10 +62,7 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
         }
         const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
         // Too costly: skipped, until a collapse nearby changes its cost and queues it again.
-        if (max_error > 0.0) {
-            const double area = quadrics[from].area + quadrics[to].area;
-            if (area > 0.0 && 255.0 * std::sqrt(next.cost / area) > max_error) continue;
-        }
+        if (exceedsErrorLimit(next.cost, quadrics[from].area + quadrics[to].area, error_limit)) continue;
         collapseEdge(mesh, edges, collapse);
         quadrics[to] += quadrics[from];
         ++stats.collapses;

@@ -53,13 +53,16 @@ void lowerTo(std::atomic<uint64_t>& slot, uint64_t key) {
 
 }  // namespace
 
-CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge) {
+CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge, double error_limit) {
     CollapseCandidate best;
     if (removedEdge(mesh, edge)) return best;
     for (bool direction : {true, false}) {
         const Collapse collapse{edge, direction};
         if (!canCollapse(mesh, start.edges, collapse)) continue;
-        const uint64_t key = keyOf(collapseCost(mesh, start.quadrics, start.points, collapse), edge);
+        const double cost = collapseCost(mesh, start.quadrics, start.points, collapse);
+        const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
+        if (exceedsErrorLimit(cost, start.quadrics[from].area + start.quadrics[to].area, error_limit)) continue;
+        const uint64_t key = keyOf(cost, edge);
         if (key < best.key) best = {key, direction};  // equal keys: b into a, tried first, stays
     }
     return best;
@@ -109,12 +112,13 @@ uint64_t keyLimitFor(std::vector<uint64_t> keys, size_t count) {
     return keys[count - 1];
 }
 
-ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target) {
+ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target, double max_error) {
     ParallelSimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     SimplifyStart start(mesh, values);
     auto& [points, quadrics, edges] = start;
     const uint32_t edge_count = mesh.edgeCount();
+    const double error_limit = errorLimitOf(max_error);
     std::vector<uint64_t> key(edge_count);
     std::vector<uint8_t> b_into_a(edge_count);
     // The vertices whose edges the last round's collapses changed (markRingChanged); an edge
@@ -132,7 +136,7 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
                     continue;
                 }
                 if (!changed[mesh.vertices[e].a] && !changed[mesh.vertices[e].b]) continue;
-                const CollapseCandidate best = bestCollapse(mesh, start, uint32_t(e));
+                const CollapseCandidate best = bestCollapse(mesh, start, uint32_t(e), error_limit);
                 key[e] = best.key;
                 b_into_a[e] = best.b_into_a;
             }

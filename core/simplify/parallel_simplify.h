@@ -35,7 +35,8 @@ struct ParallelSimplifyStats : SimplifyStats {
 };
 
 // Step 1's result for one edge: the key of its best legal collapse, kNoCollapseKey if it has
-// none (or was removed), and its direction.
+// none (or was removed), and its direction. A collapse that exceeds `error_limit`
+// (exceedsErrorLimit; 0: none) is not a candidate.
 constexpr uint64_t kNoCollapseKey = UINT64_MAX;
 struct CollapseCandidate {
     uint64_t key = kNoCollapseKey;
@@ -43,7 +44,7 @@ struct CollapseCandidate {
 
     bool operator==(const CollapseCandidate&) const = default;
 };
-CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge);
+CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge, double error_limit = 0.0);
 
 // Step 2's result among the keys at most `limit`: the edges whose key is the least of every
 // vertex in their region, ascending. Only keys at most `limit` take part, and that changes no
@@ -86,7 +87,8 @@ auto winnersAmongLeastKeys(size_t needed, size_t& keys_per_collapse, Select sele
 // The cost a key holds: its double, cut.
 double collapseKeyCost(uint64_t key);
 
-// As simplifySerial, by the parallel rule.
-ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target);
+// As simplifySerial, by the parallel rule: collapses that exceed `max_error` are no
+// candidates, so simplification ends where no other is left.
+ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target, double max_error = 0.0);
 
 }  // namespace ddt

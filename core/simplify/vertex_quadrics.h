@@ -31,6 +31,9 @@ std::vector<Quadric> vertexQuadrics(const Mesh& mesh, const QuadricPoints& point
 // The error of a collapse: the merged quadric at the point of the vertex that stays.
 double collapseCost(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Collapse collapse);
 
+// exceedsErrorLimit's limit for an error of `max_error` 8-bit levels (0: none).
+inline double errorLimitOf(double max_error) { return max_error > 0.0 ? (max_error / 255.0) * (max_error / 255.0) : 0.0; }
+
 // What both simplifiers start from: the points, each vertex's quadric, each vertex's edges.
 struct SimplifyStart {
     QuadricPoints points;

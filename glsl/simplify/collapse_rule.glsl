@@ -137,6 +137,7 @@ struct QuadricSum {
     double a[kQuadricUpperSize];
     double b[kMaxQuadricDimensions];
     double c;
+    double area;
 };
 QuadricSum quadricSum(uint p, uint q) {
     QuadricSum sum;
@@ -150,6 +151,8 @@ QuadricSum quadricSum(uint p, uint q) {
     }
     sum.c = quadricWord(p, kQuadricUpperSize + kMaxQuadricDimensions) +
             quadricWord(q, kQuadricUpperSize + kMaxQuadricDimensions);
+    sum.area = quadricWord(p, kQuadricUpperSize + kMaxQuadricDimensions + 1u) +
+               quadricWord(q, kQuadricUpperSize + kMaxQuadricDimensions + 1u);
     return sum;
 }
 

@@ -42,6 +42,14 @@ DDT_FN double quadricValue(DDT_CONST double a[kQuadricUpperSize], DDT_CONST doub
     return sum > 0.0 ? sum : 0.0;
 }
 
+// Whether a collapse costing `cost` over the merged quadrics' `area` errs beyond `limit`: the
+// squared root-mean-square distance to their planes that is allowed (simplifySerial's
+// max_error E, in 8-bit levels, gives limit = (E / 255)²); 0: no limit.
+DDT_FN bool exceedsErrorLimit(double cost, double area, double limit) {
+    DDT_PRECISE double allowed = limit * area;
+    return limit > 0.0 && area > 0.0 && cost > allowed;
+}
+
 #ifdef __cplusplus
 }  // namespace ddt
 #endif

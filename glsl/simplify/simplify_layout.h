@@ -73,6 +73,8 @@ struct SimplifyPush {
     uint step;        // select_collapses.comp: kSelect…
     uint cost_word_limit;  // select_collapses.comp: the greatest cost word that takes part
     uint listed;           // 1: invocation i works on the listed edge i (kSimplifyBindingListed)
+    uint error_limit_low;  // collapse_candidates.comp: exceedsErrorLimit's limit, a double's low
+    uint error_limit_high; // and high word
 };
 
 #ifdef __cplusplus
