@@ -162,7 +162,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_option("--simplify", settings.simplify,
                    "Keep this fraction of the mesh's vertices, in (0, 1]: edge collapses in order of least quadric "
                    "error over position and colour (Garland-Heckbert), each vertex kept where it was; the output is the linear surface on the simplified mesh with each vertex's best colour, "
-                   "and --mesh writes that mesh. Runs on the CPU (serial), on images the backend holds in one piece")
+                   "and --mesh writes that mesh. The CPU backend simplifies serially; a Vulkan device by a parallel rule "
+                   "(rounds of collapses whose neighbourhoods do not touch). Only images the backend holds in one piece")
         ->default_str("none");
     app.add_option("--max-error", settings.max_error,
                    "Simplify the mesh (as --simplify does) as far as no collapse errs by more than this: the root-"

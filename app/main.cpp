@@ -33,8 +33,14 @@ void printStats(const ddt::ImageJob& job, bool batch) {
                               s.max_rounds_in_iteration);
     if (s.dispatches) std::printf("dispatches     %llu\n", static_cast<unsigned long long>(s.dispatches));
     if (s.device_ms > 0.0) std::printf("device-comp    %.3f s  (GPU timestamps)\n", s.device_ms * 1e-3);
+    if (const auto& simplify = report.simplify) {
+        std::printf("vertices       %u -> %u", simplify->vertices_before, simplify->vertices_after);
+        if (simplify->rounds) std::printf("  (the parallel rule on the device, %u rounds)\n", simplify->rounds);
+        else std::printf("  (the serial greedy simplifier)\n");
+    }
     std::printf("time-init      %.3f s  (read the image)\n", report.times.init_s);
-    std::printf("time-comp      %.3f s  (build the mesh, upload, optimize)\n", report.times.comp_s);
+    std::printf("time-comp      %.3f s  (build the mesh, upload, optimize%s)\n", report.times.comp_s,
+                report.simplify ? ", simplify" : "");
     if (report.times.reconstruct_s > 0.0)
         std::printf("time-recon     %.3f s  (the consistent reconstruction, --reconstruct)\n", report.times.reconstruct_s);
     std::printf("time-final     %.3f s  (render + save image; the paper's time-final saved the mesh)\n",

@@ -25,7 +25,8 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
     result.optimize = backend.optimize();
     Mesh mesh = backend.mesh();
     result.values = image;
-    result.simplify = simplifySerial(mesh, result.values, simplifiedVertexCount(image.width, image.height, fraction), max_error);
+    result.simplify = backend.simplify(mesh, result.values, simplifiedVertexCount(image.width, image.height, fraction),
+                                       max_error);
     if (options.mesh) options.mesh->add(mesh, {0, 0, image.width, image.height}, {0, 0, image.width, image.height});
 
     const MeshRenderer renderer(mesh, result.values);

@@ -1,7 +1,7 @@
 // `--simplify R`: the image is optimized whole, its mesh simplified to a fraction R of the
-// vertices by the serial greedy simplifier (core/simplify/greedy_simplify.h), and the output
-// is rendered from that mesh by the same exact-coverage renderer: the surface linear on each
-// triangle, with each vertex's best colour.
+// vertices by the backend (Backend::simplify: the serial greedy simplifier on the CPU, the
+// parallel rule on a device), and the output is rendered from that mesh by the same
+// exact-coverage renderer: the surface linear on each triangle, with each vertex's best colour.
 //
 // The flips do not run again on the simplified mesh: measured, Sederberg's cost made it worse
 // (PSNR against the original at ×4 from quarter size, 10 % of the vertices: astronaut 23.20 dB
@@ -12,8 +12,6 @@
 // at ×4 (128² → 512², PSNR against the original) it scored 21.3 dB at 10 % of the vertices
 // where the linear surface scores 22.7 dB.
 //
-// Simplification runs on the CPU whatever the backend (its Vulkan version is not written yet);
-// the optimization runs on the backend.
 // An image too large for the backend in one piece is refused: simplified tiles would not join.
 #pragma once
 
@@ -26,7 +24,7 @@ namespace ddt {
 
 struct SimplifiedUpscale {
     OptimizeStats optimize;   // the backend's optimization
-    SimplifyStats simplify;
+    ParallelSimplifyStats simplify;  // rounds: 0 where the serial simplifier ran
     Image values;             // the vertices' colours (greedy_simplify.h): what a mesh file holds
 };
 

@@ -176,14 +176,10 @@ void ImageJob::render(Backend& backend) {
         options.reconstruct = settings_.reconstruct == "consistent";
         options.mesh = mesh ? &*mesh : nullptr;
         if (settings_.simplifies()) {
-            // Only the CPU backend renders on the host; on any other, say where simplification runs.
-            if (!backend.handsOverSurface())
-                reporter_.notice(task_.input, inputName(task_.input) +
-                                                  ": simplification runs on the CPU, one thread (its Vulkan version is "
-                                                  "still slower); the optimization ran on the device");
             SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify,
                                                              settings_.max_error, options, sink, on_step);
             report_.stats = simplified.optimize;
+            report_.simplify = simplified.simplify;
             state_->image = std::move(simplified.values);  // the mesh file's colours; the input is not read again
         } else
             report_.stats = upscaleRows(backend, state_->image, out, options, sink, on_step);

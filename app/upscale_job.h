@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct StageTimes {
 
 struct JobReport {
     OptimizeStats stats;
+    std::optional<ParallelSimplifyStats> simplify;  // with --simplify or --max-error
     StageTimes times;
     OutputSize out;
 };

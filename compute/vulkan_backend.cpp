@@ -12,6 +12,7 @@
 #include "raster.h"
 #include "reconstruct/surface_buffers.h"
 #include "reconstruct/surface_passes.h"
+#include "simplify/device_simplify.h"
 #include "vulkan_error.h"
 
 namespace ddt {
@@ -523,6 +524,22 @@ OptimizeStats VulkanBackend::optimizeStepwise(const std::function<void(const Ite
         control = run(1, true, false);
     }
     return s.finishStats(control, cost_init, dispatches, 0.0);
+}
+
+ParallelSimplifyStats VulkanBackend::simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) {
+    State& s = *state_;
+    // The simplifier's arrays come on top of the optimisation's, which the next prepare frees.
+    const uint64_t needed = deviceSimplifierBytes(mesh.edgeCount(), mesh.vertexCount()),
+                   held = s.memoryNeed(s.width, s.height, false).bytes, available = ddt::memoryAvailable(*s.context);
+    std::string problem = deviceSimplifierProblem(*s.context, mesh.edgeCount(), mesh.vertexCount());
+    if (problem.empty() && needed + held > available)
+        problem = "it needs " + mebibytes(needed) + " of device memory beside the optimisation's " + mebibytes(held) +
+                  ", more than the " + mebibytes(available) + " available";
+    if (!problem.empty())
+        throw DeviceOutOfMemory("simplifying the mesh of a " + std::to_string(mesh.width) + "×" +
+                                std::to_string(mesh.height) + " image on " + s.context->info.name + ": " + problem +
+                                "; try --backend cpu");
+    return simplifyOnDevice(*s.context, mesh, values, target, max_error);
 }
 
 Mesh VulkanBackend::mesh() {

@@ -51,6 +51,7 @@ public:
     void reconstruct(const DegradationModel& model) override;
     void renderWindow(const RenderWindow& window, float* rows) override;
     Mesh mesh() override;
+    ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) override;
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override;
     uint64_t memoryAvailable() const override;
     const Image& preparedImage() const override;

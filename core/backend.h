@@ -12,6 +12,7 @@
 #include "image.h"
 #include "lawson.h"
 #include "mesh.h"
+#include "parallel_simplify.h"
 #include "reconstruct.h"
 #include "render.h"
 
@@ -50,6 +51,12 @@ public:
     virtual std::unique_ptr<HostSurface> takeSurface() { return nullptr; }
     // The current mesh (for tests and checks).
     virtual Mesh mesh() = 0;
+    // Simplifies `mesh` (this backend's optimized mesh, from mesh()) to `target` vertices or as
+    // far as `max_error` allows, `values` holding the vertices' colours (greedy_simplify.h).
+    // The CPU backend runs the serial greedy reference, on a CPU both faster and closer to
+    // Garland and Heckbert's order than the parallel rule; a device runs the parallel rule
+    // (core/simplify/parallel_simplify.h) in its kernels. rounds: 0 for the serial one.
+    virtual ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) = 0;
 
     // Bytes prepare, optimize, render and, with `reconstruction`, reconstruct need for a
     // width × height input (UINT64_MAX when one of its buffers exceeds a per-buffer limit of

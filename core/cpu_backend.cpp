@@ -90,6 +90,11 @@ public:
         requireMesh();
         return mesh_;
     }
+    ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) override {
+        ParallelSimplifyStats stats;
+        static_cast<SimplifyStats&>(stats) = simplifySerial(mesh, values, target, max_error);
+        return stats;
+    }
     std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(); }
     const Image& preparedImage() const override { return *image_; }
 

@@ -121,12 +121,15 @@ TEST_CASE("cli mesh: --simplify keeps the fraction of the vertices asked for, an
     CHECK(out.height == 64);
 }
 
-TEST_CASE("cli mesh: on Vulkan, --simplify says that it runs on the CPU") {
+TEST_CASE("cli mesh: --stats names the simplifier: the parallel rule on Vulkan, the serial one on the CPU") {
     TempFolder work;
-    const Run run = runDdtup({kInput, work / "out.png", "--simplify", "0.5", "--backend", "vulkan"});
-    REQUIRE(run.exit_code == 0);
-    CHECK_THAT(run.err, Catch::Contains(kInput + ": simplification runs on the CPU, one thread (its Vulkan version is "
-                                                 "still slower); the optimization ran on the device"));
+    const Run device = runDdtup({kInput, work / "out.png", "--simplify", "0.5", "--backend", "vulkan", "--stats"});
+    REQUIRE(device.exit_code == 0);
+    CHECK_THAT(device.out, Catch::Contains("vertices       1024 -> 512  (the parallel rule on the device, "));
+    CHECK_THAT(device.out, Catch::Contains("(build the mesh, upload, optimize, simplify)"));
+    const Run cpu = runDdtup({kInput, work / "out.png", "--simplify", "0.5", "--backend", "cpu", "--stats"});
+    REQUIRE(cpu.exit_code == 0);
+    CHECK_THAT(cpu.out, Catch::Contains("vertices       1024 -> 512  (the serial greedy simplifier)"));
 }
 
 TEST_CASE("cli mesh: --max-error simplifies as far as the error allows") {

@@ -14,6 +14,7 @@
 #include "greedy_simplify.h"
 #include "parallel_simplify.h"
 #include "simplify/device_simplify.h"
+#include "vulkan_backend.h"
 #include "test_support.h"
 
 using namespace ddt;
@@ -88,30 +89,22 @@ TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's,
         uint32_t differing = 0;
         for (size_t e = 0; e < expected.size(); ++e) differing += !(device.candidates[e] == expected[e]);
         CHECK(differing == 0);
-        // The winners: several (a round collapses them together), far fewer than the candidates
-        // (measured: about 1.3 % of them).
-        const std::vector<uint32_t> winners = selectWinners(mesh, start.edges, keysOf(expected));
+        // The winners among all keys: several (a round collapses them together), far fewer
+        // than the candidates.
+        const std::vector<uint64_t> keys = keysOf(expected);
+        const std::vector<uint32_t> winners = selectWinners(mesh, start.edges, keys, kAllCostWords);
         CHECK(winners.size() > 1);
         CHECK(winners.size() < with_key / 10);
         CHECK(device.winners == winners);
-        // Among the least keys only, with the limit from the device's tally of cost words:
+        // Among the cheapest eighth, by the device's tally of cost words: core's tally and
         // core's winners among the same keys.
-        const uint32_t limit = simplifier.costWordLimit(with_key / 8);
+        CHECK(simplifier.costTally() == costTally(keys));
+        const uint32_t limit = costWordLimit(simplifier.costTally(), with_key / 8);
         REQUIRE(limit != kAllCostWords);
-        const uint64_t key_limit = uint64_t(limit) << 32 | 0xFFFFFFFFu;
-        const std::vector<uint32_t> least_winners = selectWinners(mesh, start.edges, keysOf(expected), key_limit);
-        CHECK(least_winners.size() > 1);
-        CHECK(least_winners.size() < winners.size());
-        CHECK(edgesOf(simplifier.selectWinners(limit), expected) == least_winners);
-        // The limit is the least with that many keys at most it: a bin's width (1/16 of an
-        // octave) lower, fewer.
-        size_t at_most = 0, below = 0;
-        for (const CollapseCandidate& candidate : expected) {
-            at_most += candidate.key <= key_limit;
-            below += candidate.key < uint64_t(limit - 0xFFFFu) << 32;
-        }
-        CHECK(at_most >= with_key / 8);
-        CHECK(below < with_key / 8);
+        const std::vector<uint32_t> cheapest_winners = selectWinners(mesh, start.edges, keys, limit);
+        CHECK(cheapest_winners.size() > 1);
+        CHECK(cheapest_winners.size() < winners.size());
+        CHECK(edgesOf(simplifier.selectWinners(limit), expected) == cheapest_winners);
     }
     CHECK(context->validation_messages == 0);
 }
@@ -153,7 +146,7 @@ TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in c
     CHECK(with_key > 0);
     const DeviceSelection device = selectOnDevice(*context, mesh, start, values);
     CHECK(device.candidates == expected);
-    CHECK(device.winners == selectWinners(mesh, start.edges, keysOf(expected)));
+    CHECK(device.winners == selectWinners(mesh, start.edges, keysOf(expected), kAllCostWords));
     CHECK(context->validation_messages == 0);
 }
 
@@ -169,7 +162,7 @@ TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core"
         uint32_t with_key = 0;
         const std::vector<CollapseCandidate> candidates = coreCandidates(mesh, core_start, with_key);
         std::vector<Collapse> collapses;
-        for (uint32_t e : selectWinners(mesh, core_start.edges, keysOf(candidates)))
+        for (uint32_t e : selectWinners(mesh, core_start.edges, keysOf(candidates), kAllCostWords))
             collapses.push_back({e, candidates[e].b_into_a});
         INFO("share " << share << ": " << collapses.size() << " collapses");
         REQUIRE(collapses.size() > 1);
@@ -227,3 +220,29 @@ TEST_CASE("vulkan simplify: simplifyOnDevice gives simplifyParallel's mesh and c
     CHECK(context->validation_messages == 0);
 }
 
+
+TEST_CASE("vulkan simplify: the Vulkan backend simplifies by the parallel rule, the CPU backend by the serial one") {
+    const Image photo = photoPiece();
+    const uint32_t target = photo.width * photo.height / 5;
+    VulkanOptions options;
+    options.validation = true;
+    VulkanBackend vulkan(options);
+    std::unique_ptr<Backend> cpu = makeCpuBackend();
+    for (Backend* backend : {static_cast<Backend*>(&vulkan), cpu.get()}) {
+        backend->prepare(photo);
+        backend->optimize();
+        const Mesh optimised = backend->mesh();
+        Mesh mesh = optimised, expected = optimised;
+        Image values = photo, expected_values = photo;
+        const ParallelSimplifyStats stats = backend->simplify(mesh, values, target, 0.0);
+        const bool device = backend == &vulkan;
+        INFO((device ? "Vulkan" : "CPU") << " backend");
+        const uint32_t expected_rounds = device ? simplifyParallel(expected, expected_values, target).rounds : 0;
+        if (!device) simplifySerial(expected, expected_values, target);
+        CHECK(stats.vertices_after == target);
+        CHECK(stats.rounds == expected_rounds);
+        CHECK(sameRecords(mesh, expected));
+        CHECK(samePixels(values.pixels, expected_values.pixels));
+    }
+    CHECK(vulkan.validationMessages() == 0);
+}

@@ -13,15 +13,38 @@ static_assert(kCollapseValenceBound == kMaxCollapseValence, "glsl/simplify/simpl
 static_assert(sizeof(Quadric) == kQuadricDoubles * sizeof(double) && std::is_standard_layout_v<Quadric>,
               "quadrics are uploaded as they are");
 
+// Per edge: its two records, candidate, winner entry (16 bytes each), list entry, collapse
+// entry and state; per vertex id: its walk start, least-key words, marks (changed, taken), its
+// values (16 bytes) and its quadric.
+uint64_t deviceSimplifierBytes(uint64_t edges, uint64_t vertices) {
+    return edges * (4 * 16 + 3 * 4) + vertices * (5 * 4 + 16 + sizeof(Quadric)) + kTallyWords * 4;
+}
+
+std::string deviceSimplifierProblem(const VulkanContext& context, uint64_t edges, uint64_t vertices) {
+    const uint64_t elements = std::max(edges, vertices * kQuadricDoubles),
+                   limit = context.properties.limits.maxTexelBufferElements;
+    if (edges >= kCollapseBIntoA) return "more edges than the kernels can index";
+    if (elements > limit)
+        return std::to_string(elements) + (elements == edges ? " edges" : " quadric words") + ", more than the device's " +
+               std::to_string(limit) + " texel-buffer elements";
+    VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &maintenance;
+    vkGetPhysicalDeviceProperties2(context.physical, &properties);
+    if (const uint64_t quadrics = vertices * sizeof(Quadric); quadrics > maintenance.maxMemoryAllocationSize)
+        return "its quadrics need " + std::to_string(quadrics >> 20) + " MiB, more than the largest allocation of " +
+               std::to_string(maintenance.maxMemoryAllocationSize >> 20) + " MiB";
+    return "";
+}
+
 DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start,
                                    const Image& values, double max_error)
     : context_(context), kernels_(context) {
     const uint32_t edges = mesh.edgeCount(), vertices = mesh.vertexCount();
     if (values.channels > kMaxQuadricDimensions - 2 || values.width != mesh.width || values.height != mesh.height)
         throw std::invalid_argument("device simplification: values do not fit the mesh");
-    const uint64_t limit = context.properties.limits.maxTexelBufferElements;
-    if (uint64_t(vertices) * kQuadricDoubles > limit || edges > limit || edges >= kCollapseBIntoA)
-        throw std::invalid_argument("device simplification: the mesh exceeds the device's texel buffers");
+    if (const std::string problem = deviceSimplifierProblem(context, edges, vertices); !problem.empty())
+        throw std::invalid_argument("device simplification: " + problem);
     const uint64_t error_limit = std::bit_cast<uint64_t>(errorLimitOf(max_error));
     push_ = {mesh.width, mesh.height, values.channels, edges, 0, 0, 0, 0, uint32_t(error_limit), uint32_t(error_limit >> 32)};
     // Channels padded to four floats a vertex, for one rgba32f texel.
@@ -45,7 +68,9 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
              start.quadrics.data());
         make(kSimplifyBindingCandidates, edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr);
         make(kSimplifyBindingLeastCost, vertex_words, VK_FORMAT_R32_UINT, nullptr);
-        make(kSimplifyBindingLeastId, vertex_words, VK_FORMAT_R32_UINT, nullptr);
+        make(kSimplifyBindingLeastTie, vertex_words, VK_FORMAT_R32_UINT, nullptr);
+        make(kSimplifyBindingTaken, vertex_words, VK_FORMAT_R32_UINT, nullptr);
+        make(kSimplifyBindingEdgeState, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr);
         make(kSimplifyBindingWinners, edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr, Placement::Readback);
         make(kSimplifyBindingTallies, kTallyWords * 4, VK_FORMAT_R32_UINT, nullptr, Placement::Readback);
         make(kSimplifyBindingListed, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr);
@@ -105,29 +130,22 @@ std::vector<CollapseCandidate> DeviceSimplifier::candidates() const {
     return candidates;
 }
 
-uint32_t DeviceSimplifier::costWordLimit(size_t count) const {
-    uint64_t keys = 0, total = 0;
-    for (uint32_t tally : cost_tally_) total += tally;
-    for (uint32_t bin = 0; bin + 1 < kCostBins; ++bin) {
-        keys += cost_tally_[bin];
-        if (keys == total) break;
-        if (keys >= count) return bin << 16 | 0xFFFFu;
-    }
-    return kAllCostWords;
-}
-
 std::vector<DeviceWinner> DeviceSimplifier::selectWinners(uint32_t cost_word_limit) {
     SimplifyPush push = push_;
     push.edge_count = gatherEdges(kGatherLimited, cost_word_limit);
     push.listed = 1;
     CommandBatch batch(context_);
     const VkCommandBuffer commands = batch.buffer();
-    for (uint32_t binding : {kSimplifyBindingLeastCost, kSimplifyBindingLeastId})
-        vkCmdFillBuffer(commands, buffers_[binding].buffer, 0, VK_WHOLE_SIZE, kNone);
-    computeBarrier(commands);
-    for (uint32_t step : {kSelectLeastCost, kSelectLeastId, kSelectWinners}) {
-        push.step = step;
-        kernels_.dispatchPerEdge(commands, kernels_.select, push);
+    for (uint32_t binding : {kSimplifyBindingTaken, kSimplifyBindingEdgeState})
+        vkCmdFillBuffer(commands, buffers_[binding].buffer, 0, VK_WHOLE_SIZE, 0);
+    for (uint32_t pass = 0; pass < kSelectionPasses; ++pass) {
+        for (uint32_t binding : {kSimplifyBindingLeastCost, kSimplifyBindingLeastTie})
+            vkCmdFillBuffer(commands, buffers_[binding].buffer, 0, VK_WHOLE_SIZE, kNone);
+        computeBarrier(commands);
+        for (uint32_t step : {kSelectLeastCost, kSelectLeastTie, kSelectWinners, kSelectOut}) {
+            push.step = step;
+            kernels_.dispatchPerEdge(commands, kernels_.select, push);
+        }
     }
     batch.submitAndWait();
     uint32_t count = 0;
@@ -136,7 +154,7 @@ std::vector<DeviceWinner> DeviceSimplifier::selectWinners(uint32_t cost_word_lim
     if (count) downloadFromBuffer(context_, buffers_[kSimplifyBindingWinners], words.data(), words.size() * 4);
     std::vector<DeviceWinner> winners(count);
     for (uint32_t i = 0; i < count; ++i)
-        winners[i] = {words[4 * i + 1], {uint64_t(words[4 * i]) << 32 | words[4 * i + 1], words[4 * i + 2] != 0}};
+        winners[i] = {words[4 * i + 3], {uint64_t(words[4 * i]) << 32 | words[4 * i + 1], words[4 * i + 2] != 0}};
     std::sort(winners.begin(), winners.end(),
               [](const DeviceWinner& x, const DeviceWinner& y) { return x.edge < y.edge; });
     return winners;
@@ -173,14 +191,11 @@ ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     SimplifyStart start(mesh, values);
     DeviceSimplifier device(context, mesh, start, values, max_error);
-    size_t keys_per_collapse = 0;  // the last round's (winnersAmongLeastKeys)
     while (stats.vertices_after > target) {
         device.findCandidates();
         const size_t needed = roundCollapses(stats.vertices_after, target);
-        std::vector<DeviceWinner> winners = winnersAmongLeastKeys(needed, keys_per_collapse, [&](size_t count) {
-            const uint32_t limit = device.costWordLimit(count);
-            return std::pair(device.selectWinners(limit), limit == kAllCostWords);
-        });
+        std::vector<DeviceWinner> winners =
+            device.selectWinners(costWordLimit(device.costTally(), kKeysPerCollapse * needed));
         if (winners.empty()) break;  // no legal collapse left
         // The least of them (core's leastWinners).
         std::sort(winners.begin(), winners.end(),

@@ -2,12 +2,13 @@
 // kernels of its own (glsl/simplify/), equal to core's bit for bit: every edge's best legal
 // collapse (the legality walks, the exact orientation and the quadric's value are the same
 // formulas, in fp64 without fused multiply-add, and the key is a cut of the cost, not a
-// rounding), the winners, whose regions hold no smaller key, among the least keys (the limit
-// from a tally of the keys' cost words), and their collapses with the quadrics' merge. On the
-// host: the round's least winners (a sort of the winners, downloaded each round), and the
-// final compaction and best colours.
+// rounding), the tally of the keys' cost words, the winners among the cheapest keys, whose
+// regions hold no smaller tie word, and their collapses with the quadrics' merge. On the host:
+// the cost limit from the tally, the round's least winners (a sort of the winners, downloaded
+// each round), and the final compaction and best colours.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "buffer.h"
@@ -18,14 +19,17 @@
 
 namespace ddt {
 
+// The device memory a DeviceSimplifier of a mesh with `edges` edges and `vertices` vertex ids
+// allocates, and why the device cannot hold one ("" if it can).
+uint64_t deviceSimplifierBytes(uint64_t edges, uint64_t vertices);
+std::string deviceSimplifierProblem(const VulkanContext& context, uint64_t edges, uint64_t vertices);
+
 // A winner of a selection: its edge and candidate.
 struct DeviceWinner {
     uint32_t edge = kNone;
     CollapseCandidate candidate;
 };
 
-// The cost word limit with which every key takes part.
-constexpr uint32_t kAllCostWords = kNone - 1;
 
 // A mesh being simplified on the device: its records, walk starts and quadrics live there.
 class DeviceSimplifier {
@@ -43,9 +47,8 @@ public:
     void findCandidates();
     // Every edge's candidate (downloaded: for tests).
     std::vector<CollapseCandidate> candidates() const;
-    // From the last tally: the least cost word limit with at least `count` keys at most it;
-    // kAllCostWords if that takes every key.
-    uint32_t costWordLimit(size_t count) const;
+    // The keys per cost bin (core's costTally) at the last findCandidates.
+    const std::vector<uint32_t>& costTally() const { return cost_tally_; }
     // Step 2 among the keys whose cost word is at most `limit`: the winners, ascending by edge.
     std::vector<DeviceWinner> selectWinners(uint32_t cost_word_limit = kAllCostWords);
     // Step 3 for `collapses` (winners of one selection, in any order).

@@ -17,12 +17,12 @@ namespace {
 // 1/16 the same, 1/64 36.36 dB in 147 rounds.
 constexpr uint32_t kRoundShare = 64;
 
-// (cost, edge id) in one ordered integer: the cost's double cut to its high 32 bits (sign,
-// exponent and 20 bits of mantissa, so costs within a relative 2^-20 tie and the lower id
-// wins); a non-negative double's bits order as the double does. Cut, not rounded to float:
+// (cost, tieOrder(edge id)) in one ordered integer: the cost's double cut to its high 32
+// bits (sign, exponent and 20 bits of mantissa, so costs within a relative 2^-20 tie and the
+// lower tie word wins); a non-negative double's bits order as the double does. Cut, not rounded to float:
 // Vulkan leaves the rounding of a double-to-float conversion to the implementation, a cut is
 // exact on any device.
-uint64_t keyOf(double cost, uint32_t edge) { return std::bit_cast<uint64_t>(cost) >> 32 << 32 | edge; }
+uint64_t keyOf(double cost, uint32_t edge) { return std::bit_cast<uint64_t>(cost) >> 32 << 32 | tieOrder(edge); }
 
 // The vertices whose records and triangles a collapse of edge e reads or writes: its two
 // vertices and all their neighbours.
@@ -45,9 +45,9 @@ void markRingChanged(const Mesh& mesh, const VertexEdges& edges, uint32_t from, 
     });
 }
 
-void lowerTo(std::atomic<uint64_t>& slot, uint64_t key) {
+void lowerTo(std::atomic<uint64_t>& slot, uint64_t value) {
     uint64_t current = slot.load(std::memory_order_relaxed);
-    while (key < current && !slot.compare_exchange_weak(current, key, std::memory_order_relaxed)) {
+    while (value < current && !slot.compare_exchange_weak(current, value, std::memory_order_relaxed)) {
     }
 }
 
@@ -80,36 +80,68 @@ void leastWinners(std::vector<uint32_t>& winners, const std::vector<uint64_t>& k
     winners.resize(std::min(winners.size(), roundCollapses(vertices, target)));
 }
 
-std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys,
-                                    uint64_t limit) {
-    const size_t grain = 4096;
-    auto takesPart = [&](size_t e) { return keys[e] != kNoCollapseKey && keys[e] <= limit; };
-    // Each vertex's least key over the regions that hold it.
-    std::vector<std::atomic<uint64_t>> vertex_least(mesh.vertexCount());
-    parallelFor(vertex_least.size(), grain, [&](size_t begin, size_t end) {
-        for (size_t v = begin; v < end; ++v) vertex_least[v].store(kNoCollapseKey, std::memory_order_relaxed);
-    });
-    parallelFor(mesh.edgeCount(), grain, [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e)
-            if (takesPart(e))
-                forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { lowerTo(vertex_least[v], keys[e]); });
-    });
-    std::vector<uint32_t> winners;
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-        if (!takesPart(e)) continue;
-        bool least = true;
-        forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { least = least && vertex_least[v].load() == keys[e]; });
-        if (least) winners.push_back(e);
-    }
-    return winners;
+std::vector<uint32_t> costTally(const std::vector<uint64_t>& keys) {
+    std::vector<uint32_t> tally(kCostBins, 0);
+    for (uint64_t key : keys)
+        if (key != kNoCollapseKey) ++tally[costBin(uint32_t(key >> 32))];
+    return tally;
 }
 
-uint64_t keyLimitFor(std::vector<uint64_t> keys, size_t count) {
-    const auto keyed = std::partition(keys.begin(), keys.end(), [](uint64_t key) { return key != kNoCollapseKey; });
-    const size_t keyed_count = size_t(keyed - keys.begin());
-    if (count == 0 || keyed_count <= count) return kNoCollapseKey;
-    std::nth_element(keys.begin(), keys.begin() + (count - 1), keyed);
-    return keys[count - 1];
+uint32_t costWordLimit(const std::vector<uint32_t>& tally, size_t count) {
+    uint64_t total = 0, keys = 0;
+    for (uint32_t keys_in_bin : tally) total += keys_in_bin;
+    for (uint32_t bin = 0; bin + 1 < kCostBins; ++bin) {
+        keys += tally[bin];
+        if (keys == total) break;
+        if (keys >= count) return bin << 16 | 0xFFFFu;
+    }
+    return kAllCostWords;
+}
+
+std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, const std::vector<uint64_t>& keys,
+                                    uint32_t limit) {
+    const size_t grain = 4096, edge_count = mesh.edgeCount(), vertex_count = mesh.vertexCount();
+    enum : uint8_t { kUndecided, kWon, kOut };
+    std::vector<uint8_t> state(edge_count), taken(vertex_count, 0);
+    parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e)
+            state[e] = keys[e] != kNoCollapseKey && uint32_t(keys[e] >> 32) <= limit ? kUndecided : kOut;
+    });
+    std::vector<std::atomic<uint64_t>> vertex_least(vertex_count);
+    std::vector<uint32_t> winners;
+    for (uint32_t pass = 0; pass < kSelectionPasses; ++pass) {
+        // Each vertex's least key over the undecided regions that hold it.
+        parallelFor(vertex_count, grain, [&](size_t begin, size_t end) {
+            for (size_t v = begin; v < end; ++v) vertex_least[v].store(kNoCollapseKey, std::memory_order_relaxed);
+        });
+        parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
+            for (size_t e = begin; e < end; ++e)
+                if (state[e] == kUndecided)
+                    forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { lowerTo(vertex_least[v], keys[e]); });
+        });
+        const size_t earlier = winners.size();
+        for (uint32_t e = 0; e < edge_count; ++e) {
+            if (state[e] != kUndecided) continue;
+            bool least = true;
+            forEachRegionVertex(mesh, edges, e, [&](uint32_t v) { least = least && vertex_least[v].load() == keys[e]; });
+            if (least) winners.push_back(e);
+        }
+        for (size_t i = earlier; i < winners.size(); ++i) {
+            state[winners[i]] = kWon;
+            forEachRegionVertex(mesh, edges, winners[i], [&](uint32_t v) { taken[v] = 1; });
+        }
+        // Out: the undecided whose region touches a winner's.
+        parallelFor(edge_count, grain, [&](size_t begin, size_t end) {
+            for (size_t e = begin; e < end; ++e) {
+                if (state[e] != kUndecided) continue;
+                bool touches = false;
+                forEachRegionVertex(mesh, edges, uint32_t(e), [&](uint32_t v) { touches = touches || taken[v]; });
+                if (touches) state[e] = kOut;
+            }
+        });
+    }
+    std::sort(winners.begin(), winners.end());
+    return winners;
 }
 
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target, double max_error) {
@@ -124,7 +156,6 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
     // The vertices whose edges the last round's collapses changed (markRingChanged); an edge
     // with neither end among them keeps its candidate (all are new at first).
     std::vector<uint8_t> changed(mesh.vertexCount(), 1);
-    size_t keys_per_collapse = 0;  // the last round's (winnersAmongLeastKeys)
     const size_t grain = 4096;
 
     while (stats.vertices_after > target) {
@@ -143,10 +174,8 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
         });
         // 2. Select, and keep the least winners, as many as the target still needs.
         const size_t needed = roundCollapses(stats.vertices_after, target);
-        std::vector<uint32_t> winners = winnersAmongLeastKeys(needed, keys_per_collapse, [&](size_t count) {
-            const uint64_t limit = keyLimitFor(key, count);
-            return std::pair(selectWinners(mesh, edges, key, limit), limit == kNoCollapseKey);
-        });
+        std::vector<uint32_t> winners =
+            selectWinners(mesh, edges, key, costWordLimit(costTally(key), kKeysPerCollapse * needed));
         leastWinners(winners, key, stats.vertices_after, target);
         if (winners.empty()) break;  // no legal collapse left
         // 3. Collapse them.

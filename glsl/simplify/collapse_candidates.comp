@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Step 1 of a simplification round (core/simplify/parallel_simplify.h): every edge's best
-// legal collapse within the error limit, keyed by its cost's high 32 bits and its id; b into
+// legal collapse within the error limit, keyed by its cost's high 32 bits and tieOrder(e); b into
 // a, tried first, stays on equal keys. No candidate: both key words all ones. Only the listed
 // edges, whose candidate may have changed (gather_edges.comp; core's markRingChanged says why
 // that is enough).
@@ -25,7 +25,7 @@ void main() {
                 const double cost = collapseCost(sum, to);
                 if (exceedsErrorLimit(cost, sum.area, error_limit)) continue;
                 const uint cost_word = unpackDouble2x32(cost).y;
-                if (cost_word < best.x) best = uvec4(cost_word, e, direction, 0u);
+                if (cost_word < best.x) best = uvec4(cost_word, tieOrder(e), direction, e);
             }
         }
     }

@@ -24,31 +24,57 @@ const uint kSimplifyBindingEdgeNeighbours = 1u;  // rgba32ui per edge: bl, la, a
 const uint kSimplifyBindingVertexFirst = 2u;     // r32ui per vertex: where its walk starts (VertexEdges)
 const uint kSimplifyBindingValues = 3u;          // rgba32f per vertex: its channels
 const uint kSimplifyBindingQuadrics = 4u;        // rg32ui: kQuadricDoubles doubles per vertex, each as two words
-const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cost word, key's id word, b into a
+const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cost word, key's tie word, b into a, edge
 const uint kSimplifyBindingLeastCost = 6u;       // r32ui per vertex: the least cost word of the regions holding it
-const uint kSimplifyBindingLeastId = 7u;         // r32ui per vertex: the least edge id among keys of that cost word
+const uint kSimplifyBindingLeastTie = 7u;        // r32ui per vertex: the least tie word among keys of that cost word
 const uint kSimplifyBindingWinners = 8u;         // rgba32ui per winner, in no order: as its candidate
 const uint kSimplifyBindingCollapses = 9u;       // r32ui per collapse to make: its edge, bit 31 set for b into a
 const uint kSimplifyBindingChanged = 10u;        // r32ui per vertex: 1 if the last round's collapses changed its edges
 const uint kSimplifyBindingTallies = 11u;        // r32ui: kCostBins keys per bin, kTallyWinners, kTallyListed
 const uint kSimplifyBindingListed = 12u;         // r32ui per listed edge, in no order (gather_edges.comp)
-const uint kSimplifyBindingCount = 13u;
+const uint kSimplifyBindingTaken = 13u;          // r32ui per vertex: 1 in a winner's region
+const uint kSimplifyBindingEdgeState = 14u;      // r32ui per edge in a selection: kEdgeUndecided, …
+const uint kSimplifyBindingCount = 15u;
 // Bit of a collapse entry: b into a.
 const uint kCollapseBIntoA = 0x80000000u;
 // The most edges at the vertex a legal collapse removes: with the collapse's own edge and the
 // removed ones, it leaves at most kCollapseValenceBound at the other (which has two or more).
 const uint kMaxEdgesAtFrom = kCollapseValenceBound + 4u;
 
-// Steps of select_collapses.comp: the keys counted by their cost word's bin; then, among the
-// keys whose cost word is at most a limit, a vertex's least 64-bit key, (cost word, id), in two
-// 32-bit atomic minima (no 64-bit atomics needed), and the winners.
+// Steps of select_collapses.comp: the keys counted by their cost word's bin; then, in each pass
+// over the undecided keys (among those whose cost word is at most a limit), a vertex's least
+// 64-bit key, (cost word, tie word), in two 32-bit atomic minima (no 64-bit atomics needed),
+// the winners, and the undecided edges whose regions touch a winner's, which are out.
 const uint kSelectTallyCosts = 0u;
 const uint kSelectLeastCost = 1u;
-const uint kSelectLeastId = 2u;
+const uint kSelectLeastTie = 2u;
 const uint kSelectWinners = 3u;
+const uint kSelectOut = 4u;
+// An edge's state in a selection.
+const uint kEdgeUndecided = 0u;
+const uint kEdgeWon = 1u;
+const uint kEdgeOut = 2u;
 // A cost word's bin is its high 16 bits (a non-negative double's sign, exponent and 4 bits of
 // mantissa: bins 1/16 of an octave wide), the last bin taking every word beyond.
 const uint kCostBins = 0x8000u;
+// A collapse key's low word, which orders equal cost words: a bijection of the edge id (keys
+// stay unique, and the order is the same on every device), not the id itself. Edge ids follow
+// the grid's rows, and a key wins only where no smaller one is near, so in a flat region
+// (every cost 0) ids made one row of its edges win a round: astronaut.png to 10 % took 2099
+// rounds. The mixing steps are Wellons' "lowbias32" (his hash-prospector), each invertible.
+#ifdef __cplusplus
+inline
+#endif
+uint tieOrder(uint edge) {
+    uint x = edge;
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
 // The tallies after the bins: the winners listed, and the edges listed.
 const uint kTallyWinners = kCostBins;
 const uint kTallyListed = kCostBins + 1u;
