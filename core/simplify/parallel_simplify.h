@@ -22,13 +22,14 @@
 //
 // Why among the cheapest, and in passes: costs change slowly across a mesh, so the least keys
 // of overlapping regions form long descending chains, each ending in one winner. Over all
-// keys in one pass, astronaut.png to 10 % found 37 winners among 97 000 keys in its 300th
-// round and took 434 rounds (chelsea.png 147), and the winners were then costly ones: 34.10 dB
-// against the serial reference's 37.08 (PSNR of the render against the original). Each pass
-// ends the chains' next links, and the cheapest keys alone keep the winners cheap: 37.11 dB
-// in 174 rounds (chelsea.png 36.45 dB against 36.46, 148 rounds). Choosing winners among the
-// cheapest by a scattered order (tieOrder alone) gave as many winners but lost 0.8 dB on a
-// 100 × 70 photograph at 5 %, which these keep within 0.02 dB.
+// keys in one pass (and at most 1/64 of the vertices a round), astronaut.png to 10 % found 37
+// winners among 97 000 keys in its 300th round and took 434 rounds (chelsea.png 147), and the
+// winners were then costly ones: 34.10 dB against the serial reference's 37.08 (PSNR of the
+// render against the original). Each pass ends the chains' next links, and the cheapest keys
+// alone keep the winners cheap: 37.11 dB in 174 rounds (chelsea.png 36.45 dB against 36.46,
+// 148 rounds), and at most 1/32 a round 37.08 dB in 106 (36.43 dB in 77). Choosing winners
+// among the cheapest by a scattered order (tieOrder alone) gave as many winners but lost
+// 0.8 dB on a 100 × 70 photograph at 5 %, where these stay within 0.1 dB.
 //
 // Only edges with an end in the ring of a collapse's `from` get a new candidate: nothing else
 // their candidate reads changed (markRingChanged).
@@ -60,7 +61,7 @@ struct CollapseCandidate {
 CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge, double error_limit = 0.0);
 
 // How many collapses a round makes at most, with `vertices` left: as many as the target still
-// needs and at most 1/64 of the vertices.
+// needs and at most 1/32 of the vertices.
 size_t roundCollapses(uint32_t vertices, uint32_t target);
 
 // Step 2's share: how many of the cheapest keys take part, per collapse the round makes, and
