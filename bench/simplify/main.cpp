@@ -16,10 +16,11 @@
 // triangulation of the picture is rendered as a triangle soup (renderTriangleSoup) and
 // counted as folded.
 //
-//   ddtup-bench-simplify [--data DIR] [--out DIR] [--quick] [--parallel]
+//   ddtup-bench-simplify [--data DIR] [--out DIR] [--images A,B,…] [--quick] [--parallel] [--vulkan]
 //   ddtup-bench-simplify --from-csv FILE [--out DIR]   the table and plot again from a run's CSV
-// --parallel adds the parallel rule (core/simplify/parallel_simplify.h), to compare with the
-// serial reference: several times slower than it on the CPU.
+// --parallel adds the parallel rule (core/simplify/parallel_simplify.h) on the CPU, to compare
+// with the serial reference; --vulkan adds the same rule on the first Vulkan device
+// (compute/simplify/), whose mesh must equal the CPU rule's (checked with --parallel).
 #include <meshoptimizer.h>
 #include <zlib.h>
 
@@ -27,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -43,6 +45,7 @@
 #include "mesh_file.h"
 #include "metrics.h"
 #include "parallel_simplify.h"
+#include "simplify/device_simplify.h"
 #include "render.h"
 #include "svg_plot.h"
 
@@ -52,6 +55,7 @@ using namespace ddt;
 namespace {
 
 const std::string kParallelRule = "ddtup parallel rule";
+const std::string kVulkanRule = "ddtup parallel rule, Vulkan";
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -214,21 +218,21 @@ namespace {
 
 // simplify.md and simplify.svg from the rows: means over the images per share.
 void writeSummary(const std::vector<Row>& rows, const std::vector<double>& shares, size_t images, const std::string& data,
-                  const std::string& out) {
+                  const std::string& out, const std::string& vulkan_device) {
     std::ofstream md(out + "/simplify.md");
-    md << "| vertices asked | ddtup kept | ddtup PSNR dB | ddtup s | parallel rule PSNR dB | parallel rule s | meshopt kept | "
-          "meshopt PSNR dB | meshopt s | PLY MB | SVG MB | SVG.gz MB | PNG MB |\n"
-          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "| vertices asked | ddtup kept | ddtup PSNR dB | ddtup s | parallel rule PSNR dB | parallel rule s | Vulkan s | "
+          "meshopt kept | meshopt PSNR dB | meshopt s | PLY MB | SVG MB | SVG.gz MB | PNG MB |\n"
+          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     bench::PlotSeries ours_series{"ddtup (greedy QEM, colour)", "#1f77b4", "", true, false, {}};
     bench::PlotSeries peer_series{"meshoptimizer (height field, best k)", "#d62728", "6 3", true, true, {}};
     for (double share : shares) {
-        double sums[3][3] = {};  // per method (ddtup, meshopt, the parallel rule): kept, PSNR, seconds
-        int counts[3] = {}, unrenderable = 0;
+        double sums[4][3] = {};  // per method (ddtup, meshopt, the parallel rule, on Vulkan): kept, PSNR, seconds
+        int counts[4] = {}, unrenderable = 0;
         double ply = 0, svg = 0, svg_gz = 0, png = 0;
         bool all_svg = true;
         for (const Row& r : rows) {
             if (r.share != share) continue;
-            const int m = r.method == "ddtup" ? 0 : r.method == kParallelRule ? 2 : 1;
+            const int m = r.method == "ddtup" ? 0 : r.method == kParallelRule ? 2 : r.method == kVulkanRule ? 3 : 1;
             if (r.folded) ++unrenderable;
             sums[m][0] += r.vertices;
             sums[m][1] += r.psnr;
@@ -242,11 +246,12 @@ void writeSummary(const std::vector<Row>& rows, const std::vector<double>& share
                 all_svg = all_svg && r.svg > 0;
             }
         }
-        char line[512], parallel[64] = "— | —";
+        char line[512], parallel[64] = "— | —", vulkan[32] = "—";
         const double n0 = std::max(1, counts[0]), n1 = std::max(1, counts[1]);
         if (counts[2]) std::snprintf(parallel, sizeof(parallel), "%.2f | %.2f", sums[2][1] / counts[2], sums[2][2] / counts[2]);
-        std::snprintf(line, sizeof(line), "| %g %% | %.0f | %.2f | %.2f | %s | %.0f | %.2f%s | %.3f | %.2f | %s | %s | %.2f |\n",
-                      100 * share, sums[0][0] / n0, sums[0][1] / n0, sums[0][2] / n0, parallel, sums[1][0] / n1, sums[1][1] / n1,
+        if (counts[3]) std::snprintf(vulkan, sizeof(vulkan), "%.2f", sums[3][2] / counts[3]);
+        std::snprintf(line, sizeof(line), "| %g %% | %.0f | %.2f | %.2f | %s | %s | %.0f | %.2f%s | %.3f | %.2f | %s | %s | %.2f |\n",
+                      100 * share, sums[0][0] / n0, sums[0][1] / n0, sums[0][2] / n0, parallel, vulkan, sums[1][0] / n1, sums[1][1] / n1,
                       unrenderable ? (" (" + std::to_string(unrenderable) + " folded)").c_str() : "", sums[1][2] / n1,
                       ply / n0 / 1e6, all_svg ? std::to_string(svg / n0 / 1e6).substr(0, 5).c_str() : "over limit",
                       all_svg ? std::to_string(svg_gz / n0 / 1e6).substr(0, 5).c_str() : "over limit", png / n0 / 1e6);
@@ -257,7 +262,8 @@ void writeSummary(const std::vector<Row>& rows, const std::vector<double>& share
     }
     md << "\nMeans over " << images << " images of " << data << "; PSNR of the mesh rendered at the original's size "
        << "against the original (8-bit RGB; inf: the mesh is the picture). Parallel rule (with --parallel): "
-          "core/simplify/parallel_simplify.h on the CPU, the rule the Vulkan kernels are to follow. meshopt: k of {1, 4, 16, 64, 256} best per image and share; "
+          "core/simplify/parallel_simplify.h on the CPU; Vulkan (with --vulkan): the same rule, the same meshes, on "
+       << vulkan_device << ". meshopt: k of {1, 4, 16, 64, 256} best per image and share; "
           "border locked; folded: not a valid triangulation of the picture, rendered as a triangle soup.\n";
     bench::Plot plot;
     plot.title = "Simplified meshes: picture kept against vertices kept";
@@ -273,21 +279,25 @@ void writeSummary(const std::vector<Row>& rows, const std::vector<double>& share
 
 int main(int argc, char** argv) {
     std::string data = std::string(DDTUP_BENCH_DATA) + "/real", out = "simplify-results";
-    std::string from_csv;
-    bool quick = false, parallel = false;
+    std::string from_csv, only;  // only: comma-separated image names (without .png), or all
+    bool quick = false, parallel = false, vulkan = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--data" && i + 1 < argc) data = argv[++i];
         else if (arg == "--out" && i + 1 < argc) out = argv[++i];
         else if (arg == "--from-csv" && i + 1 < argc) from_csv = argv[++i];
+        else if (arg == "--images" && i + 1 < argc) only = "," + std::string(argv[++i]) + ",";
         else if (arg == "--quick") quick = true;
         else if (arg == "--parallel") parallel = true;
+        else if (arg == "--vulkan") vulkan = true;
         else {
-            std::fprintf(stderr, "usage: ddtup-bench-simplify [--data DIR] [--out DIR] [--quick] [--parallel] | --from-csv FILE "
+            std::fprintf(stderr, "usage: ddtup-bench-simplify [--data DIR] [--out DIR] [--images A,B,...] [--quick] [--parallel] [--vulkan] | "
+                                 "--from-csv FILE "
                                  "[--out DIR]\n");
             return 2;
         }
     }
+    parallel = parallel || vulkan;  // the device's meshes are checked against the CPU rule's
     fs::create_directories(out);
     if (!from_csv.empty()) {
         const std::vector<Row> rows = readRows(from_csv);
@@ -297,17 +307,22 @@ int main(int argc, char** argv) {
             if (std::find(shares.begin(), shares.end(), r.share) == shares.end()) shares.push_back(r.share);
             names.insert(r.image);
         }
-        writeSummary(rows, shares, names.size(), from_csv, out);
+        writeSummary(rows, shares, names.size(), from_csv, out, "the device of that run");
         return 0;
     }
     std::vector<fs::path> images;
     for (const auto& entry : fs::directory_iterator(data))
-        if (entry.path().extension() == ".png") images.push_back(entry.path());
+        if (entry.path().extension() == ".png" &&
+            (only.empty() || only.find("," + entry.path().stem().string() + ",") != std::string::npos))
+            images.push_back(entry.path());
     std::sort(images.begin(), images.end());
     if (quick) images.resize(std::min<size_t>(images.size(), 1));
     const std::vector<double> shares = quick ? std::vector<double>{0.1} : std::vector<double>{1.0, 0.5, 0.2, 0.1, 0.05, 0.02, 0.01};
 
+    std::unique_ptr<VulkanContext> context;
+    if (vulkan) context = createContext({-1, false});
     std::vector<Row> rows;
+    int differing_meshes = 0;
     for (const fs::path& path : images) {
         Image original = readImage(path.string());
         if (quick) {  // a 96² crop: seconds, not minutes
@@ -356,6 +371,25 @@ int main(int argc, char** argv) {
                 std::printf("%-10s %5.1f %%  parallel rule %7u vertices %6.2f dB %6.2f s\n", rule.image.c_str(), 100 * share,
                             rule.vertices, rule.psnr, rule.seconds);
                 rows.push_back(rule);
+                if (vulkan) {
+                    Mesh device_mesh = optimised;
+                    Image device_values = original;
+                    const auto device_start = std::chrono::steady_clock::now();
+                    simplifyOnDevice(*context, device_mesh, device_values, target);
+                    Row device = rule;
+                    device.method = kVulkanRule;
+                    device.seconds = secondsSince(device_start);
+                    const bool same = device_mesh.edgeCount() == parallel_mesh.edgeCount() &&
+                                      std::memcmp(device_mesh.vertices.data(), parallel_mesh.vertices.data(),
+                                                  parallel_mesh.edgeCount() * sizeof(EdgeVertices)) == 0 &&
+                                      std::memcmp(device_mesh.neighbours.data(), parallel_mesh.neighbours.data(),
+                                                  parallel_mesh.edgeCount() * sizeof(EdgeNeighbours)) == 0 &&
+                                      device_values.pixels == parallel_values.pixels;
+                    differing_meshes += !same;
+                    std::printf("%-10s %5.1f %%  on %s %6.2f s, %s mesh\n", rule.image.c_str(), 100 * share,
+                                context->info.name.c_str(), device.seconds, same ? "the same" : "A DIFFERENT");
+                    rows.push_back(device);
+                }
             }
             Row peer = meshoptimizerRow(optimised, original, share);
             peer.image = ours.image;
@@ -374,7 +408,11 @@ int main(int argc, char** argv) {
         csv << r.image << "," << r.share << "," << r.method << "," << r.vertices << "," << r.psnr << "," << r.folded << "," << r.seconds << ","
             << r.ply << "," << r.svg << "," << r.svg_gz << "," << r.png << "\n";
 
-    writeSummary(rows, shares, images.size(), data, out);
+    writeSummary(rows, shares, images.size(), data, out, context ? context->info.name : "");
+    if (differing_meshes) {
+        std::fprintf(stderr, "%d meshes from the device differ from the CPU rule's\n", differing_meshes);
+        return 1;
+    }
     std::printf("wrote %s/simplify.md, simplify.csv, simplify.svg\n", out.c_str());
     return 0;
 }
