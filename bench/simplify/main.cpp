@@ -262,8 +262,9 @@ void writeSummary(const std::vector<Row>& rows, const std::vector<double>& share
     }
     md << "\nMeans over " << images << " images of " << data << "; PSNR of the mesh rendered at the original's size "
        << "against the original (8-bit RGB; inf: the mesh is the picture). Parallel rule (with --parallel): "
-          "core/simplify/parallel_simplify.h on the CPU; Vulkan (with --vulkan): the same rule, the same meshes, on "
-       << vulkan_device << ". meshopt: k of {1, 4, 16, 64, 256} best per image and share; "
+          "core/simplify/parallel_simplify.h on the CPU"
+       << (vulkan_device.empty() ? "" : "; Vulkan (with --vulkan): the same rule, the same meshes, on " + vulkan_device)
+       << ". meshopt: k of {1, 4, 16, 64, 256} best per image and share; "
           "border locked; folded: not a valid triangulation of the picture, rendered as a triangle soup.\n";
     bench::Plot plot;
     plot.title = "Simplified meshes: picture kept against vertices kept";
