@@ -132,6 +132,24 @@ TEST_CASE("cli mesh: --stats names the simplifier: the parallel rule on Vulkan, 
     CHECK_THAT(cpu.out, Catch::Contains("vertices       1024 -> 512  (the serial greedy simplifier)"));
 }
 
+TEST_CASE("cli mesh: on Vulkan, --simplify writes the same mesh and image whatever lavapipe's thread count") {
+    TempFolder work;
+    std::string meshes[2], images[2];
+    int i = 0;
+    for (const char* threads : {"1", "3"}) {
+        const std::string mesh = work / (std::string("mesh") + threads + ".ply"),
+                          image = work / (std::string("out") + threads + ".png");
+        REQUIRE(runDdtup({kInput, "-s", "2", image, "--simplify", "0.3", "--mesh", mesh, "--backend", "vulkan", "-q"},
+                         {std::string("LP_NUM_THREADS=") + threads})
+                    .exit_code == 0);
+        meshes[i] = readFile(mesh);
+        images[i++] = readFile(image);
+    }
+    CHECK(!meshes[0].empty());
+    CHECK(meshes[0] == meshes[1]);
+    CHECK(images[0] == images[1]);
+}
+
 TEST_CASE("cli mesh: --max-error simplifies as far as the error allows") {
     TempFolder work;
     long vertices[2];

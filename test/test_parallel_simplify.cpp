@@ -70,7 +70,7 @@ TEST_CASE("parallel simplify: close to the serial reference") {
     }
 }
 
-TEST_CASE("parallel simplify: the cheapest keys' bins take part, and each pass's winners hold the least key of their regions") {
+TEST_CASE("parallel simplify: the cheapest keys' bins take part, each pass's winners hold their regions' least key") {
     const Image photo = photoPiece();
     for (double share : {1.0, 0.2}) {
         Mesh mesh = optimisedGridMesh(photo);
@@ -79,7 +79,8 @@ TEST_CASE("parallel simplify: the cheapest keys' bins take part, and each pass's
         const SimplifyStart start(mesh, values);
         std::vector<uint64_t> keys;
         for (uint32_t e = 0; e < mesh.edgeCount(); ++e) keys.push_back(bestCollapse(mesh, start, e).key);
-        const size_t keyed = size_t(std::count_if(keys.begin(), keys.end(), [](uint64_t k) { return k != kNoCollapseKey; }));
+        const size_t keyed =
+            size_t(std::count_if(keys.begin(), keys.end(), [](uint64_t k) { return k != kNoCollapseKey; }));
         // Each edge's region from a scan of the records (not core's walks): its ends and their
         // neighbours.
         std::vector<std::vector<uint32_t>> adjacent(mesh.vertexCount());
@@ -123,7 +124,8 @@ TEST_CASE("parallel simplify: the cheapest keys' bins take part, and each pass's
                     for (uint32_t v : regions[e]) least[v] = std::min(least[v], keys[e]);
                 std::vector<uint32_t> won, left;
                 for (uint32_t e : undecided)
-                    if (std::all_of(regions[e].begin(), regions[e].end(), [&](uint32_t v) { return least[v] == keys[e]; }))
+                    if (std::all_of(regions[e].begin(), regions[e].end(),
+                                    [&](uint32_t v) { return least[v] == keys[e]; }))
                         won.push_back(e);
                 for (uint32_t e : won)
                     for (uint32_t v : regions[e]) taken[v] = true;
@@ -183,6 +185,10 @@ ParallelSimplifyStats simplifyByTheRule(Mesh& mesh, Image& values, uint32_t targ
         }
         vertices -= uint32_t(winners.size());
         ++stats.rounds;
+        // A valid mesh after every round.
+        Mesh compacted = mesh;
+        compactEdges(compacted);
+        CHECK(checkMesh(compacted) == "");
     }
     stats.vertices_after = vertices;
     compactEdges(mesh);
@@ -198,7 +204,8 @@ TEST_CASE("parallel simplify: equal to the rule with every candidate found anew 
         Image image;
         double max_error;
     };
-    for (const Case& c : {Case{photoPiece(), 0.0}, Case{randomImage(rng, 31, 23, 3, 4), 0.0}, Case{photoPiece(), 6.0}}) {
+    const Case cases[] = {{photoPiece(), 0.0}, {randomImage(rng, 31, 23, 3, 4), 0.0}, {photoPiece(), 6.0}};
+    for (const Case& c : cases) {
         const Mesh optimised = optimisedGridMesh(c.image);
         const uint32_t target = c.image.width * c.image.height / 8;
         Mesh mesh = optimised, fast = optimised;
