@@ -53,20 +53,33 @@ TEST_CASE("parallel simplify: the target with a valid mesh, the same on 1, 2 and
     CHECK(samePixels(values[0].pixels, values[2].pixels));
 }
 
-TEST_CASE("parallel simplify: close to the serial reference") {
-    const Image photo = photoPiece();
-    const Mesh optimised = optimisedGridMesh(photo);
-    for (double share : {0.2, 0.05}) {
-        const uint32_t target = uint32_t(share * photo.width * photo.height);
+TEST_CASE("parallel simplify: close to the serial reference, in about as few rounds as the cap allows") {
+    // The 300 × 200 crop at 20 % and the 100 × 70 piece at 5 %. Over the bench's 12
+    // photographs the rule ends at most 0.11 dB below the serial reference at any share; 0.3 dB
+    // is the alarm. Rules that failed it: local minima over all keys, on the crop 2.5 dB below
+    // in 268 rounds; winners by tie word alone among the cheapest, on the piece 0.8 dB below.
+    struct Case {
+        Image image;
+        double share;
+    };
+    const Case cases[] = {{photoCrop(), 0.2}, {photoPiece(), 0.05}};
+    for (const Case& c : cases) {
+        const Mesh optimised = optimisedGridMesh(c.image);
+        const uint32_t vertices = c.image.width * c.image.height, target = uint32_t(c.share * vertices);
         Mesh serial = optimised, parallel = optimised;
-        Image serial_values = photo, parallel_values = photo;
+        Image serial_values = c.image, parallel_values = c.image;
         simplifySerial(serial, serial_values, target);
-        simplifyParallel(parallel, parallel_values, target);
-        const double serial_psnr = psnrOf(serial, serial_values, photo), parallel_psnr = psnrOf(parallel, parallel_values, photo);
-        WARN("share " << share << ": serial " << serial_psnr << " dB, parallel " << parallel_psnr << " dB");
-        // Each round takes local minima, not the global order; measured on chelsea.png at 10 %,
-        // 0.1 dB below the serial reference. Half a decibel is the alarm.
-        CHECK(parallel_psnr > serial_psnr - 0.5);
+        const ParallelSimplifyStats stats = simplifyParallel(parallel, parallel_values, target);
+        const double serial_psnr = psnrOf(serial, serial_values, c.image);
+        const double parallel_psnr = psnrOf(parallel, parallel_values, c.image);
+        INFO(c.image.width << "×" << c.image.height << " to " << c.share << ": serial " << serial_psnr
+                           << " dB, parallel " << parallel_psnr << " dB in " << stats.rounds << " rounds");
+        CHECK(parallel_psnr > serial_psnr - 0.3);
+        // The fewest rounds: every round making roundCollapses. Measured 59 against 51 on the
+        // crop; the rule over all keys needed 2.6 times its fewest.
+        uint32_t fewest = 0;
+        for (uint32_t left = vertices; left > target; ++fewest) left -= uint32_t(roundCollapses(left, target));
+        CHECK(stats.rounds <= fewest * 3 / 2);
     }
 }
 

@@ -39,7 +39,8 @@ std::vector<uint64_t> keysOf(const std::vector<CollapseCandidate>& candidates) {
     return keys;
 }
 
-// The edges of the device's winners, each checked to carry its edge's candidate.
+// The edges of the device's winners, ascending as core's, each checked to carry its edge's
+// candidate.
 std::vector<uint32_t> edgesOf(const std::vector<DeviceWinner>& winners,
                               const std::vector<CollapseCandidate>& candidates) {
     std::vector<uint32_t> edges;
@@ -47,6 +48,7 @@ std::vector<uint32_t> edgesOf(const std::vector<DeviceWinner>& winners,
         CHECK(winner.candidate == candidates.at(winner.edge));
         edges.push_back(winner.edge);
     }
+    std::sort(edges.begin(), edges.end());
     return edges;
 }
 

@@ -155,8 +155,6 @@ std::vector<DeviceWinner> DeviceSimplifier::selectWinners(uint32_t cost_word_lim
     std::vector<DeviceWinner> winners(count);
     for (uint32_t i = 0; i < count; ++i)
         winners[i] = {words[4 * i + 3], {uint64_t(words[4 * i]) << 32 | words[4 * i + 1], words[4 * i + 2] != 0}};
-    std::sort(winners.begin(), winners.end(),
-              [](const DeviceWinner& x, const DeviceWinner& y) { return x.edge < y.edge; });
     return winners;
 }
 

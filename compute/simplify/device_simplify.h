@@ -49,7 +49,7 @@ public:
     std::vector<CollapseCandidate> candidates() const;
     // The keys per cost bin (core's costTally) at the last findCandidates.
     const std::vector<uint32_t>& costTally() const { return cost_tally_; }
-    // Step 2 among the keys whose cost word is at most `limit`: the winners, ascending by edge.
+    // Step 2 among the keys whose cost word is at most `limit`: the winners, in no order.
     std::vector<DeviceWinner> selectWinners(uint32_t cost_word_limit = kAllCostWords);
     // Step 3 for `collapses` (winners of one selection, in any order).
     void collapse(const std::vector<Collapse>& collapses);

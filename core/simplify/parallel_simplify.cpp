@@ -22,9 +22,9 @@ constexpr uint32_t kRoundShare = 32;
 
 // (cost, tieOrder(edge id)) in one ordered integer: the cost's double cut to its high 32
 // bits (sign, exponent and 20 bits of mantissa, so costs within a relative 2^-20 tie and the
-// lower tie word wins); a non-negative double's bits order as the double does. Cut, not rounded to float:
-// Vulkan leaves the rounding of a double-to-float conversion to the implementation, a cut is
-// exact on any device.
+// lower tie word wins); a non-negative double's bits order as the double does. Cut, not
+// rounded to float: Vulkan leaves the rounding of a double-to-float conversion to the
+// implementation, a cut is exact on any device.
 uint64_t keyOf(double cost, uint32_t edge) { return std::bit_cast<uint64_t>(cost) >> 32 << 32 | tieOrder(edge); }
 
 // The vertices whose records and triangles a collapse of edge e reads or writes: its two
