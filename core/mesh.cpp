@@ -65,13 +65,10 @@ void patchNeighbour(Mesh& mesh, uint32_t n, uint32_t e, uint32_t old_near, uint3
     *slot1 = *slot1 == e ? successor : e;
 }
 
-// Whether p–q runs along one side of the grid's rectangle (a unit step on the initial grid,
-// longer once simplification removed border vertices between them).
-bool onHullSide(uint32_t p, uint32_t q, uint32_t width, uint32_t height) {
-    uint32_t px = p % width, py = p / width, qx = q % width, qy = q / width;
-    bool horizontal = py == qy && (py == 0 || py == height - 1) && px != qx;
-    bool vertical = px == qx && (px == 0 || px == width - 1) && py != qy;
-    return horizontal || vertical;
+// Whether p–q runs along one side of the rectangle (a unit step on the initial grid, longer
+// once simplification removed border vertices between them).
+bool onHullSide(const Mesh& mesh, uint32_t p, uint32_t q) {
+    return (rectangleSides(mesh, p) & rectangleSides(mesh, q)) != 0 && positionOf(mesh, p) != positionOf(mesh, q);
 }
 
 bool joins(const EdgeVertices& v, uint32_t p, uint32_t q) {
@@ -79,6 +76,30 @@ bool joins(const EdgeVertices& v, uint32_t p, uint32_t q) {
 }
 
 }  // namespace
+
+void makePositionsExplicit(Mesh& mesh) {
+    assert(mesh.width <= kMaxPositionedSide && mesh.height <= kMaxPositionedSide);
+    if (!mesh.positions.empty()) return;
+    std::vector<Position> positions(mesh.vertexCount());
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v) positions[v] = positionOf(mesh, v);
+    mesh.positions = std::move(positions);
+}
+
+int orientationSign(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r) {
+    if (mesh.positions.empty()) {
+        const double twice_area = orientation(p, q, r, mesh.width);  // exact: glsl/sederberg.h
+        return (twice_area > 0.0) - (twice_area < 0.0);
+    }
+    const Position a = mesh.positions[p], b = mesh.positions[q], c = mesh.positions[r];
+    const int64_t twice_area = positionOrient(a.x, a.y, b.x, b.y, c.x, c.y);
+    return (twice_area > 0) - (twice_area < 0);
+}
+
+uint32_t rectangleSides(const Mesh& mesh, uint32_t v) {
+    const Position p = positionOf(mesh, v);
+    const int32_t right = int32_t(mesh.width - 1) * kPositionOne, bottom = int32_t(mesh.height - 1) * kPositionOne;
+    return uint32_t(p.x == 0) | uint32_t(p.x == right) << 1 | uint32_t(p.y == 0) << 2 | uint32_t(p.y == bottom) << 3;
+}
 
 uint64_t gridEdgeCount(uint32_t width, uint32_t height) {
     return uint64_t(height - 1) * (3 * uint64_t(width) - 2) + (width - 1);
@@ -198,14 +219,13 @@ namespace {
 
 // Checks one side of edge e: the triangle (p, q, t) with its other edges e_qt, e_tp.
 std::string checkSide(const Mesh& mesh, uint32_t e, uint32_t p, uint32_t q, uint32_t t, uint32_t e_qt, uint32_t e_tp) {
-    const uint32_t w = mesh.width;
     if (t == kNone) {
         if (e_qt != kNone || e_tp != kNone) return "missing triangle but neighbour edges set";
-        if (!onHullSide(p, q, w, mesh.height)) return "one-sided edge not on the hull";
+        if (!onHullSide(mesh, p, q)) return "one-sided edge not on the hull";
         return "";
     }
     if (t >= mesh.vertexCount()) return "adjacent vertex out of range";
-    if (orientation(p, q, t, w) <= 0.0) return "triangle not positive";
+    if (orientationSign(mesh, p, q, t) <= 0) return "triangle not positive";
     if (e_qt == kNone || e_tp == kNone || e_qt >= mesh.edgeCount() || e_tp >= mesh.edgeCount())
         return "neighbour edge missing or out of range";
     if (!joins(mesh.vertices[e_qt], q, t) || !joins(mesh.vertices[e_tp], t, p)) return "neighbour edge has wrong vertices";
@@ -258,9 +278,20 @@ std::string checkMesh(const Mesh& mesh) {
     for (const EdgeVertices& v : mesh.vertices) used[v.a] = used[v.b] = true;
     const int64_t used_count = std::count(used.begin(), used.end(), true);
     if (used_count - int64_t(mesh.edgeCount()) + int64_t(triangles.size()) != 1) return "wrong number of triangles";
-    double twice_area = 0.0;
-    for (const Triangle& t : triangles) twice_area += orientation(t.v0, t.v1, t.v2, w);
-    if (twice_area != 2.0 * double(cells)) return "total area differs from (w-1)(h-1)";
+    if (mesh.positions.empty()) {
+        double twice_area = 0.0;
+        for (const Triangle& t : triangles) twice_area += orientation(t.v0, t.v1, t.v2, w);
+        if (twice_area != 2.0 * double(cells)) return "total area differs from (w-1)(h-1)";
+    } else {
+        if (mesh.positions.size() != mesh.vertexCount()) return "wrong number of positions";
+        // Each triangle's doubled area is below 2^61 (glsl/fixed_position.h); their sum may not be.
+        __int128 twice_area = 0;
+        for (const Triangle& t : triangles) {
+            const Position p = mesh.positions[t.v0], q = mesh.positions[t.v1], r = mesh.positions[t.v2];
+            twice_area += positionOrient(p.x, p.y, q.x, q.y, r.x, r.y);
+        }
+        if (twice_area != __int128(2 * cells) * kPositionOne * kPositionOne) return "total area differs from (w-1)(h-1)";
+    }
     return "";
 }
 

@@ -1,9 +1,11 @@
 // The triangulation of the pixel grid, stored edge-centric as in the paper's Sec. 4.1.
 //
 // Glossary (the code uses these words only in these senses):
-// - vertex: a pixel centre (x, y), integer coordinates, id = y * width + x. y grows downwards.
-//   A simplified mesh (core/simplify/) uses a subset of the vertices, which keep their ids;
-//   its edges are any triangulation of them that still covers the grid's rectangle.
+// - vertex: id = y * width + x, first at the pixel centre (x, y); y grows downwards. The grid's
+//   vertices stay there (positions empty: the fast special case). A simplified mesh
+//   (core/simplify/) uses a subset of the ids, and may move them: then `positions` holds each
+//   vertex's place in fixed point (glsl/fixed_position.h); its edges are any triangulation of
+//   the used vertices that covers the grid's rectangle [0, w − 1] × [0, h − 1].
 // - orientation: orient(p, q, r) = (q - p) × (r - p) = (qx-px)(ry-py) - (qy-py)(rx-px).
 //   "Positive" triangles have orient > 0 (counter-clockwise in a y-up frame, clockwise on
 //   screen). Every triangle of a valid mesh is positive.
@@ -32,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "fixed_position.h"
 #include "sederberg.h"
 
 namespace ddt {
@@ -44,15 +47,40 @@ struct EdgeNeighbours {
     uint32_t bl, la, ar, rb;
 };
 
+// A vertex's place in input pixels × kPositionOne (glsl/fixed_position.h).
+struct Position {
+    int32_t x, y;
+    bool operator==(const Position&) const = default;
+};
+
 struct Mesh {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<EdgeVertices> vertices;
     std::vector<EdgeNeighbours> neighbours;
+    // Per vertex id, where explicit (see the glossary); empty: every vertex at its pixel centre.
+    std::vector<Position> positions;
 
     uint32_t edgeCount() const { return uint32_t(vertices.size()); }
     uint32_t vertexCount() const { return width * height; }
 };
+
+// Vertex v's position (explicit, or its pixel centre's; the sides must then be at most
+// kMaxPositionedSide).
+inline Position positionOf(const Mesh& mesh, uint32_t v) {
+    if (!mesh.positions.empty()) return mesh.positions[v];
+    return {int32_t(v % mesh.width) * kPositionOne, int32_t(v / mesh.width) * kPositionOne};
+}
+
+// Gives every vertex its explicit position, its pixel centre's (a no-op if it has them).
+// Needs sides of at most kMaxPositionedSide.
+void makePositionsExplicit(Mesh& mesh);
+
+// The sign of orient(p, q, r) at the vertices' positions: +1, 0 or −1, exact.
+int orientationSign(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r);
+
+// The sides of the rectangle vertex v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
+uint32_t rectangleSides(const Mesh& mesh, uint32_t v);
 
 // Number of edges of the grid triangulation of a width × height image.
 uint64_t gridEdgeCount(uint32_t width, uint32_t height);

@@ -22,8 +22,6 @@ typedef double DoublePair __attribute__((vector_size(2 * sizeof(double))));
 // Saturates instead of wrapping, so an absurd request (-s 1e12) stays absurd for the checks.
 uint32_t roundedSide(double side) { return side >= 4294967295.0 ? UINT32_MAX : uint32_t(std::llround(side)); }
 
-uint32_t topRow(const Triangle& t, uint32_t width) { return std::min({t.v0, t.v1, t.v2}) / width; }
-
 }  // namespace
 
 OutputSize scaledOutputSize(uint32_t width, uint32_t height, double scale) {
@@ -57,29 +55,36 @@ RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t
 }
 
 MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles)
-    : image_(image), bubbles_(bubbles) {
+    : image_(image), bubbles_(bubbles), positions_(mesh.positions) {
     assert(image.width == mesh.width && image.height == mesh.height);
     assert(!bubbles || bubbles->size() == size_t(mesh.edgeCount()) * image.channels);
     // The triangles sorted by top row (counting sort, stable), so a band of output rows visits
     // only nearby triangles.
-    const DivideBy by_width(mesh.width);
     first_in_row_.assign(mesh.height + 1, 0);
     forEachTriangle(mesh, [&](const Triangle& t) {
-        const uint32_t top = by_width.quotient(std::min({t.v0, t.v1, t.v2}));
+        const auto [top, bottom] = rowsOf(t);
         ++first_in_row_[top + 1];
-        tallest_ = std::max(tallest_, by_width.quotient(std::max({t.v0, t.v1, t.v2})) - top);
+        tallest_ = std::max(tallest_, bottom - top);
     });
     for (uint32_t y = 0; y < mesh.height; ++y) first_in_row_[y + 1] += first_in_row_[y];
     triangles_.resize(first_in_row_.back());
     std::vector<uint32_t> next(first_in_row_.begin(), first_in_row_.end() - 1);
-    forEachTriangle(mesh, [&](const Triangle& t) {
-        triangles_[next[by_width.quotient(std::min({t.v0, t.v1, t.v2}))]++] = t;
-    });
+    forEachTriangle(mesh, [&](const Triangle& t) { triangles_[next[rowsOf(t).first]++] = t; });
+}
+
+std::pair<uint32_t, uint32_t> MeshRenderer::rowsOf(const Triangle& t) const {
+    const uint32_t w = image_.width;
+    if (positions_.empty()) return {std::min({t.v0, t.v1, t.v2}) / w, std::max({t.v0, t.v1, t.v2}) / w};
+    const int32_t y0 = positions_[t.v0].y, y1 = positions_[t.v1].y, y2 = positions_[t.v2].y;
+    const uint32_t top = uint32_t(std::min({y0, y1, y2})) >> kPositionBits;
+    const uint32_t bottom = (uint32_t(std::max({y0, y1, y2})) + kPositionOne - 1) >> kPositionBits;
+    return {top, bottom};
 }
 
 MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles)
-    : image_(image), bubbles_(bubbles), triangles_(std::move(tables.triangles_)),
-      first_in_row_(std::move(tables.first_in_row_)), tallest_(tables.tallest_) {
+    : image_(image), bubbles_(bubbles), positions_(std::move(tables.positions_)),
+      triangles_(std::move(tables.triangles_)), first_in_row_(std::move(tables.first_in_row_)),
+      tallest_(tables.tallest_) {
     assert(image.width == tables.image_.width && image.height == tables.image_.height);
 }
 
@@ -89,34 +94,54 @@ void MeshRenderer::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, 
 
 namespace {
 
-// Where the window's samples lie: their coordinates (raster.h's units) per output column, and
-// the first and last output column or row whose sample lies at or after / at or before each
-// crop column or row, clamped to the window. Tables, so that no division or clamp is left
-// for the triangles and samples.
-struct SampleGrid {
-    std::vector<int64_t> su, sv;        // per window column / row
-    std::vector<int8_t> dir_u, dir_v;   // per window column / row
+// Where the window's samples lie, per window column and row: their coordinates and tie
+// directions (raster.h). On the grid's mesh the coordinates are raster.h's exact ones; on a
+// mesh with explicit positions they are snapped to the positions' fixed-point grid
+// (glsl/fixed_position.h: to the nearest 1/1024 pixel), so that vertices and samples share one
+// unit and every edge function is exact in 64 bits.
+struct SampleAxes {
+    uint32_t x_begin = 0, y_begin = 0;
+    std::vector<int64_t> su, sv;
+    std::vector<int8_t> dir_u, dir_v;
+};
+
+// Sample coordinate s (raster.h's units, 1/(2·out_size)) in 1/kPositionOne pixels, rounded.
+int64_t snappedSample(int64_t s, uint32_t out_size) {
+    const unsigned __int128 twice_out = 2 * uint64_t(out_size);
+    return int64_t((2 * (unsigned __int128)(s) * kPositionOne + twice_out) / (2 * twice_out));
+}
+
+SampleAxes sampleAxesOf(const RenderWindow& window, bool snapped) {
+    const uint32_t in_w = window.input_width, in_h = window.input_height;
+    const uint32_t out_w = window.out.width, out_h = window.out.height;
+    SampleAxes axes;
+    axes.x_begin = window.x_begin;
+    axes.y_begin = window.y_begin;
+    auto fill = [&](uint32_t begin, uint32_t end, uint32_t in, uint32_t out, std::vector<int64_t>& s, std::vector<int8_t>& dir) {
+        for (uint32_t i = begin; i < end; ++i) {
+            const int64_t exact = sampleCoord(i, in, out);
+            s.push_back(snapped ? snappedSample(exact, out) : exact);
+            dir.push_back(int8_t(sampleDirection(exact, in, out)));
+        }
+    };
+    fill(window.x_begin, window.x_end, in_w, out_w, axes.su, axes.dir_u);
+    fill(window.y_begin, window.y_end, in_h, out_h, axes.sv, axes.dir_v);
+    return axes;
+}
+
+// The grid's bounds: the first and last output column or row whose sample lies at or after /
+// at or before each crop column or row, clamped to the window. Tables, so that no division or
+// clamp is left for the triangles.
+struct GridBounds {
     std::vector<uint32_t> col_first, col_last;  // per crop column
     std::vector<uint32_t> row_first, row_last;  // per crop row in [row_base, row_base + size)
     uint32_t row_base = 0;
 };
 
-SampleGrid sampleGridOf(const RenderWindow& window, uint32_t crop_w, uint32_t row_begin, uint32_t row_end) {
+GridBounds gridBoundsOf(const RenderWindow& window, uint32_t crop_w, uint32_t row_begin, uint32_t row_end) {
     const uint32_t in_w = window.input_width, in_h = window.input_height;
     const uint32_t out_w = window.out.width, out_h = window.out.height;
-    SampleGrid grid;
-    grid.su.resize(window.width());
-    grid.dir_u.resize(window.width());
-    for (uint32_t x = window.x_begin; x < window.x_end; ++x) {
-        grid.su[x - window.x_begin] = sampleCoord(x, in_w, out_w);
-        grid.dir_u[x - window.x_begin] = int8_t(sampleDirection(grid.su[x - window.x_begin], in_w, out_w));
-    }
-    grid.sv.resize(window.height());
-    grid.dir_v.resize(window.height());
-    for (uint32_t y = window.y_begin; y < window.y_end; ++y) {
-        grid.sv[y - window.y_begin] = sampleCoord(y, in_h, out_h);
-        grid.dir_v[y - window.y_begin] = int8_t(sampleDirection(grid.sv[y - window.y_begin], in_h, out_h));
-    }
+    GridBounds grid;
     grid.col_first.resize(crop_w);
     grid.col_last.resize(crop_w);
     for (uint32_t x = 0; x < crop_w; ++x) {
@@ -131,6 +156,71 @@ SampleGrid sampleGridOf(const RenderWindow& window, uint32_t crop_w, uint32_t ro
         grid.row_last[y - row_begin] = std::min(lastSampleAtOrBefore(y + window.crop_y, in_h, out_h), window.y_end - 1);
     }
     return grid;
+}
+
+// The window's samples in [lo, hi] along one axis (coordinates ascending): the first and last
+// output index, first > last if none.
+std::pair<uint32_t, uint32_t> samplesWithin(const std::vector<int64_t>& s, uint32_t begin, int64_t lo, int64_t hi) {
+    const auto first = std::lower_bound(s.begin(), s.end(), lo), end = std::upper_bound(s.begin(), s.end(), hi);
+    return {begin + uint32_t(first - s.begin()), begin + uint32_t(end - s.begin()) - 1};
+}
+
+// Calls sample(x, y, l0, l1, l2) for the samples of window columns [x_lo, x_hi] and rows
+// [y_lo, y_hi] that lie in the positive triangle with vertices (px, py)[k], in the samples'
+// units, row by row; l are the barycentric weights.
+template <typename Sample>
+void scanTriangle(const SampleAxes& axes, const int64_t px[3], const int64_t py[3], uint32_t x_lo, uint32_t x_hi,
+                  uint32_t y_lo, uint32_t y_hi, Sample sample) {
+    // Edge k runs from vertex p = k + 1 to q = k + 2 (mod 3), opposite vertex k. Its edge
+    // function (q − p) × (s − p) is weight[k] = slope[k]·su + offset[k] along a row, in
+    // wrapping 64-bit arithmetic: the terms may pass 2^63, the sum is the exact value.
+    int64_t edge_dx[3], edge_dy[3];
+    uint64_t slope[3];
+    // Bit k of ties[v][u]: whether a sample on edge k's line counts as inside by the tie
+    // rule (raster.h's sampleSide), for a sample pushed along v backwards (v = 0) or
+    // forwards (1) and along u backwards (u = 0) or forwards (1).
+    uint32_t ties[2][2] = {};
+    for (int k = 0; k < 3; ++k) {
+        const int p = (k + 1) % 3, q = (k + 2) % 3;
+        edge_dx[k] = px[q] - px[p];
+        edge_dy[k] = py[q] - py[p];
+        slope[k] = uint64_t(-edge_dy[k]);
+        for (int v = 0; v < 2; ++v) {
+            ties[v][1] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] < 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
+            ties[v][0] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] > 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
+        }
+    }
+    for (uint32_t y = y_lo; y <= y_hi; ++y) {
+        const int64_t sv = axes.sv[y - axes.y_begin];
+        const uint32_t* row_ties = ties[axes.dir_v[y - axes.y_begin] > 0];
+        uint64_t offset[3];
+        for (int k = 0; k < 3; ++k) {
+            const int p = (k + 1) % 3;
+            offset[k] = uint64_t(edge_dx[k] * (sv - py[p])) + uint64_t(edge_dy[k]) * uint64_t(px[p]);
+        }
+        // The samples a convex triangle covers are consecutive along a row (the tie rule
+        // moves them all the same way, but for the hull's last column, which is last).
+        bool entered = false;
+        for (uint32_t x = x_lo; x <= x_hi; ++x) {
+            const int64_t su = axes.su[x - axes.x_begin];
+            // The edge function opposite each vertex is its barycentric weight × 2·area.
+            int64_t weight[3];
+            for (int k = 0; k < 3; ++k) weight[k] = int64_t(slope[k] * uint64_t(su) + offset[k]);
+            const uint32_t on_line =
+                uint32_t(weight[0] == 0) | uint32_t(weight[1] == 0) << 1 | uint32_t(weight[2] == 0) << 2;
+            const bool inside = (weight[0] | weight[1] | weight[2]) >= 0 &&
+                                (on_line & ~row_ties[axes.dir_u[x - axes.x_begin] > 0]) == 0;
+            if (!inside) {
+                if (entered) break;
+                continue;
+            }
+            entered = true;
+            const double total = double(weight[0]) + double(weight[1]) + double(weight[2]);
+            // Two of the divisions in one instruction.
+            const DoublePair l01 = DoublePair{double(weight[0]), double(weight[1])} / total;
+            sample(x, y, l01[0], l01[1], double(weight[2]) / total);
+        }
+    }
 }
 
 }  // namespace
@@ -161,10 +251,27 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
     assert(cx + w <= window.input_width && cy + h <= window.input_height);
     assert(window.x_end <= out_w && window.y_end <= out_h);
     if (window.x_begin >= window.x_end || window.y_begin >= window.y_end || first >= end) return;
+    const bool explicit_positions = !positions_.empty();
+    assert(!explicit_positions || (cx == 0 && cy == 0 && w == window.input_width && h == window.input_height));
+    const SampleAxes axes = sampleAxesOf(window, explicit_positions);
+    int64_t px[3], py[3];
+    if (explicit_positions) {
+        for (uint32_t i = first; i < end; ++i) {
+            const Triangle& t = triangles_[i];
+            const uint32_t ids[3] = {t.v0, t.v1, t.v2};
+            for (int k = 0; k < 3; ++k) px[k] = positions_[ids[k]].x, py[k] = positions_[ids[k]].y;
+            const auto [x_lo, x_hi] =
+                samplesWithin(axes.su, window.x_begin, std::min({px[0], px[1], px[2]}), std::max({px[0], px[1], px[2]}));
+            const auto [y_lo, y_hi] =
+                samplesWithin(axes.sv, window.y_begin, std::min({py[0], py[1], py[2]}), std::max({py[0], py[1], py[2]}));
+            if (x_lo > x_hi || y_lo > y_hi || x_hi == UINT32_MAX || y_hi == UINT32_MAX) continue;
+            scanTriangle(axes, px, py, x_lo, x_hi, y_lo, y_hi, visit(i));
+        }
+        return;
+    }
     // The crop rows these triangles span: sorted by top row, each at most tallest_ rows high.
-    const uint32_t top_first = topRow(triangles_[first], w), top_last = topRow(triangles_[end - 1], w);
-    const SampleGrid grid = sampleGridOf(window, w, top_first, std::min(h, top_last + tallest_ + 1));
-
+    const uint32_t top_first = rowsOf(triangles_[first]).first, top_last = rowsOf(triangles_[end - 1]).first;
+    const GridBounds grid = gridBoundsOf(window, w, top_first, std::min(h, top_last + tallest_ + 1));
     const DivideBy by_width(w);
     for (uint32_t i = first; i < end; ++i) {
         const Triangle& t = triangles_[i];
@@ -175,63 +282,11 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
         const uint32_t y_lo = grid.row_first[std::min({ys[0], ys[1], ys[2]}) - grid.row_base];
         const uint32_t y_hi = grid.row_last[std::max({ys[0], ys[1], ys[2]}) - grid.row_base];
         if (x_lo > x_hi || y_lo > y_hi) continue;
-
-        int64_t px[3], py[3];
         for (int k = 0; k < 3; ++k) {
             px[k] = vertexCoord(xs[k] + cx, out_w);
             py[k] = vertexCoord(ys[k] + cy, out_h);
         }
-        // Edge k runs from vertex p = k + 1 to q = k + 2 (mod 3), opposite vertex k. Its edge
-        // function (q − p) × (s − p) is weight[k] = slope[k]·su + offset[k] along a row, in
-        // wrapping 64-bit arithmetic: the terms may pass 2^63, the sum is the exact value.
-        int64_t edge_dx[3], edge_dy[3];
-        uint64_t slope[3];
-        // Bit k of ties[v][u]: whether a sample on edge k's line counts as inside by the tie
-        // rule (raster.h's sampleSide), for a sample pushed along v backwards (v = 0) or
-        // forwards (1) and along u backwards (u = 0) or forwards (1).
-        uint32_t ties[2][2] = {};
-        for (int k = 0; k < 3; ++k) {
-            const int p = (k + 1) % 3, q = (k + 2) % 3;
-            edge_dx[k] = px[q] - px[p];
-            edge_dy[k] = py[q] - py[p];
-            slope[k] = uint64_t(-edge_dy[k]);
-            for (int v = 0; v < 2; ++v) {
-                ties[v][1] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] < 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
-                ties[v][0] |= uint32_t(edge_dy[k] != 0 ? edge_dy[k] > 0 : (v ? edge_dx[k] > 0 : edge_dx[k] < 0)) << k;
-            }
-        }
-        auto sample = visit(i);
-        for (uint32_t y = y_lo; y <= y_hi; ++y) {
-            const int64_t sv = grid.sv[y - window.y_begin];
-            const uint32_t* row_ties = ties[grid.dir_v[y - window.y_begin] > 0];
-            uint64_t offset[3];
-            for (int k = 0; k < 3; ++k) {
-                const int p = (k + 1) % 3;
-                offset[k] = uint64_t(edge_dx[k] * (sv - py[p])) + uint64_t(edge_dy[k]) * uint64_t(px[p]);
-            }
-            // The samples a convex triangle covers are consecutive along a row (the tie rule
-            // moves them all the same way, but for the hull's last column, which is last).
-            bool entered = false;
-            for (uint32_t x = x_lo; x <= x_hi; ++x) {
-                const int64_t su = grid.su[x - window.x_begin];
-                // The edge function opposite each vertex is its barycentric weight × 2·area.
-                int64_t weight[3];
-                for (int k = 0; k < 3; ++k) weight[k] = int64_t(slope[k] * uint64_t(su) + offset[k]);
-                const uint32_t on_line =
-                    uint32_t(weight[0] == 0) | uint32_t(weight[1] == 0) << 1 | uint32_t(weight[2] == 0) << 2;
-                const bool inside = (weight[0] | weight[1] | weight[2]) >= 0 &&
-                                    (on_line & ~row_ties[grid.dir_u[x - window.x_begin] > 0]) == 0;
-                if (!inside) {
-                    if (entered) break;
-                    continue;
-                }
-                entered = true;
-                const double total = double(weight[0]) + double(weight[1]) + double(weight[2]);
-                // Two of the divisions in one instruction.
-                const DoublePair l01 = DoublePair{double(weight[0]), double(weight[1])} / total;
-                sample(x, y, l01[0], l01[1], double(weight[2]) / total);
-            }
-        }
+        scanTriangle(axes, px, py, x_lo, x_hi, y_lo, y_hi, visit(i));
     }
 }
 

@@ -88,11 +88,14 @@ public:
 
 private:
     std::pair<uint32_t, uint32_t> trianglesAround(const RenderWindow& window) const;
+    // The first and last crop row a triangle's vertices touch (rounded outwards).
+    std::pair<uint32_t, uint32_t> rowsOf(const Triangle& t) const;
     template <typename Visit>
     void visitSamples(const RenderWindow& window, uint32_t first, uint32_t end, Visit visit) const;
 
     const Image& image_;
     const std::vector<float>* bubbles_;
+    std::vector<Position> positions_;        // the mesh's explicit positions (empty: the grid's)
     std::vector<Triangle> triangles_;        // sorted by their top row
     std::vector<uint32_t> first_in_row_;     // index of the first triangle per top row, + end
     uint32_t tallest_ = 0;                   // most rows any triangle spans

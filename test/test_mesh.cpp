@@ -268,6 +268,66 @@ TEST_CASE("mesh: checkMesh catches every kind of corruption") {
     }
 }
 
+TEST_CASE("mesh: checkMesh catches explicit positions that break the triangulation") {
+    // A moved mesh (test_support.h) is valid; each corruption moves one vertex. On the 4×4
+    // grid, vertex 5 = (1, 1) is interior, 1 = (1, 0) on the top side, 0 a corner.
+    std::mt19937 rng(3);
+    REQUIRE(ddt::checkMesh(ddt::test::movedMesh(6, 5, rng)) == "");
+    ddt::Mesh good = ddt::buildGridMesh(4, 4);
+    ddt::makePositionsExplicit(good);
+    REQUIRE(ddt::checkMesh(good) == "");
+    const int32_t one = ddt::kPositionOne;
+    struct Corruption {
+        const char* name;
+        uint32_t vertex;
+        ddt::Position to;
+    };
+    const Corruption corruptions[] = {
+        {"interior vertex across its neighbours", 5, {3 * one, one}},
+        {"interior vertex onto another", 5, {2 * one, 2 * one}},
+        {"interior vertex onto an edge (a flat triangle)", 5, {one, 2 * one}},
+        {"border vertex off its side, inwards", 1, {one, one / 2}},
+        {"border vertex off its side, outwards", 1, {one, -one / 2}},
+        {"corner moved along a side", 0, {one / 2, 0}},
+    };
+    for (const Corruption& c : corruptions) {
+        ddt::Mesh mesh = good;
+        mesh.positions[c.vertex] = c.to;
+        INFO(c.name);
+        const std::string problem = ddt::checkMesh(mesh);
+        CHECK(problem != "");
+        UNSCOPED_INFO(c.name << ": " << problem);
+    }
+    ddt::Mesh short_positions = good;
+    short_positions.positions.pop_back();
+    CHECK(ddt::checkMesh(short_positions) == "wrong number of positions");
+}
+
+TEST_CASE("mesh: orientationSign is exact at the extremes of the fixed-point range") {
+    // Coordinates near 2^30 (the largest positioned side): the products reach 2^60, where a
+    // double's 53 bits would round. Checked against 128-bit integer arithmetic written here.
+    ddt::Mesh mesh;
+    mesh.width = mesh.height = ddt::kMaxPositionedSide;
+    const int32_t top = int32_t(ddt::kMaxPositionedSide) * ddt::kPositionOne - 1;
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int32_t> half(0, top / 2), quarter(0, top / 4), nudge(-1, 1);
+    mesh.positions.resize(3);
+    int signs[3] = {};
+    for (int i = 0; i < 20000; ++i) {
+        // r near the middle of p–q (on it without the nudge), where rounding bites.
+        const ddt::Position p{half(rng), half(rng)}, d{quarter(rng), quarter(rng)};
+        const ddt::Position q{p.x + 2 * d.x, p.y + 2 * d.y}, r{p.x + d.x + nudge(rng), p.y + d.y + nudge(rng)};
+        mesh.positions = {p, q, r};
+        const __int128 exact = __int128(q.x - p.x) * (r.y - p.y) - __int128(q.y - p.y) * (r.x - p.x);
+        const int expected = (exact > 0) - (exact < 0);
+        REQUIRE(ddt::orientationSign(mesh, 0, 1, 2) == expected);
+        ++signs[expected + 1];
+    }
+    CHECK(signs[0] > 0);  // every sign occurred: the test met the boundary cases
+    CHECK(signs[1] > 0);
+    CHECK(signs[2] > 0);
+}
+
 TEST_CASE("mesh: the ROI of an interior grid edge is its 12-edge 2-region (paper Fig. 4a)") {
     ddt::Mesh mesh = ddt::buildGridMesh(7, 7);
     auto v = [&](int x, int y) { return uint32_t(y * 7 + x); };

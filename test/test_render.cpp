@@ -37,30 +37,40 @@ int64_t sampleUnits(uint32_t i, uint32_t in, uint32_t out) {
     return std::clamp<int64_t>(u, 0, 2 * int64_t(out) * (in - 1));
 }
 
+// The sample coordinate of sampleUnits in 1/1024 pixels, rounded half up: on a mesh with
+// explicit positions, samples are snapped to the positions' grid (render.h).
+int64_t snappedUnits(uint32_t i, uint32_t in, uint32_t out) {
+    return (sampleUnits(i, in, out) * 1024 + out) / (2 * int64_t(out));
+}
+
 // Counts the triangles containing each output sample under the tie rule of glsl/raster.h: a
 // sample on a triangle's edge is moved by (dir_u·ε, dir_v·ε²), dir = +1 except −1 on the last
 // row/column of the hull. Computed with a concrete ε: all coordinates are scaled by K² and
 // the sample moved by (dir_u·K, dir_v), K = 2^16 > every coordinate difference, so the sign
-// of each 128-bit edge function is that of the symbolic one.
+// of each 128-bit edge function is that of the symbolic one. Coordinates: on the grid's mesh
+// raster.h's exact units, on one with explicit positions 1/1024 pixels (snappedUnits).
 std::vector<int> coverageCounts(const ddt::Mesh& mesh, OutputSize out) {
     const uint32_t w = mesh.width, h = mesh.height;
+    const bool moved = !mesh.positions.empty();
     const __int128 k = __int128(1) << 16;
-    REQUIRE(2 * int64_t(out.width) * w < int64_t(k));
-    REQUIRE(2 * int64_t(out.height) * h < int64_t(k));
+    REQUIRE((moved ? 1024 : 2 * int64_t(out.width)) * w < int64_t(k));
+    REQUIRE((moved ? 1024 : 2 * int64_t(out.height)) * h < int64_t(k));
     std::vector<int> counts(size_t(out.width) * out.height, 0);
     for (const ddt::Triangle& t : ddt::listTriangles(mesh)) {
         const uint32_t ids[3] = {t.v0, t.v1, t.v2};
         __int128 px[3], py[3];
         for (int i = 0; i < 3; ++i) {
-            px[i] = __int128(2 * int64_t(out.width) * (ids[i] % w)) * k * k;
-            py[i] = __int128(2 * int64_t(out.height) * (ids[i] / w)) * k * k;
+            px[i] = moved ? mesh.positions[ids[i]].x : 2 * int64_t(out.width) * (ids[i] % w);
+            py[i] = moved ? mesh.positions[ids[i]].y : 2 * int64_t(out.height) * (ids[i] / w);
+            px[i] *= k * k;
+            py[i] *= k * k;
         }
         for (uint32_t y = 0; y < out.height; ++y) {
-            const int64_t v = sampleUnits(y, h, out.height);
-            const int dir_v = v == 2 * int64_t(out.height) * (h - 1) ? -1 : 1;
+            const int64_t v = moved ? snappedUnits(y, h, out.height) : sampleUnits(y, h, out.height);
+            const int dir_v = sampleUnits(y, h, out.height) == 2 * int64_t(out.height) * (h - 1) ? -1 : 1;
             for (uint32_t x = 0; x < out.width; ++x) {
-                const int64_t u = sampleUnits(x, w, out.width);
-                const int dir_u = u == 2 * int64_t(out.width) * (w - 1) ? -1 : 1;
+                const int64_t u = moved ? snappedUnits(x, w, out.width) : sampleUnits(x, w, out.width);
+                const int dir_u = sampleUnits(x, w, out.width) == 2 * int64_t(out.width) * (w - 1) ? -1 : 1;
                 const __int128 su = __int128(u) * k * k + dir_u * k, sv = __int128(v) * k * k + dir_v;
                 bool inside = true;
                 for (int i = 0; i < 3 && inside; ++i) {
@@ -142,10 +152,14 @@ TEST_CASE("render: every output pixel belongs to exactly one triangle and is wri
                           {3, 7, 8, 19},  {13, 9, 95, 66}, {6, 4, 6, 29},  {4, 4, 32, 32}, {11, 5, 12, 6}};
     for (const Case& c : cases) {
         ddt::Image image = ddt::test::randomImage(rng, c.w, c.h, 3);
-        for (int variant = 0; variant < 2; ++variant) {
-            const ddt::Mesh mesh = variant == 0 ? ddt::buildGridMesh(c.w, c.h) : scrambledMesh(c.w, c.h, rng);
+        for (int variant = 0; variant < 3; ++variant) {
+            const ddt::Mesh mesh = variant == 0   ? ddt::buildGridMesh(c.w, c.h)
+                                   : variant == 1 ? scrambledMesh(c.w, c.h, rng)
+                                                  : ddt::test::movedMesh(c.w, c.h, rng);
             const OutputSize out{c.out_w, c.out_h};
-            INFO(c.w << "x" << c.h << " -> " << c.out_w << "x" << c.out_h << (variant ? " scrambled" : " grid"));
+            const char* const kinds[] = {"grid", "scrambled", "moved"};
+            INFO(c.w << "x" << c.h << " -> " << c.out_w << "x" << c.out_h << " " << kinds[variant]);
+            if (variant == 2) REQUIRE(ddt::checkMesh(mesh).empty());
             const std::vector<float> rows = renderInto(mesh, image, out, nan);
             CHECK(std::none_of(rows.begin(), rows.end(), [](float v) { return std::isnan(v); }));
             const std::vector<int> counts = coverageCounts(mesh, out);
@@ -158,7 +172,7 @@ TEST_CASE("render: rendering in bands equals rendering at once, bit for bit") {
     std::mt19937 rng(99);
     for (auto [w, h, s] : {std::tuple{5u, 3u, 2.5}, {13u, 9u, 7.3}, {8u, 8u, 3.0}, {2u, 6u, 4.0}}) {
         ddt::Image image = ddt::test::randomImage(rng, w, h, 4);
-        ddt::Mesh mesh = scrambledMesh(w, h, rng);
+        for (const ddt::Mesh& mesh : {scrambledMesh(w, h, rng), ddt::test::movedMesh(w, h, rng)}) {
         const OutputSize out = ddt::scaledOutputSize(w, h, s);
         const std::vector<float> whole = renderInto(mesh, image, out, 0.0f);
         const ddt::MeshRenderer renderer(mesh, image);
@@ -167,8 +181,9 @@ TEST_CASE("render: rendering in bands equals rendering at once, bit for bit") {
             const size_t row_floats = size_t(out.width) * image.channels;
             for (uint32_t y = 0; y < out.height; y += band)
                 renderer.renderRows(out, y, std::min(y + band, out.height), banded.data() + y * row_floats);
-            INFO(w << "x" << h << " s=" << s << " bands of " << band);
+            INFO(w << "x" << h << " s=" << s << " bands of " << band << (mesh.positions.empty() ? "" : ", moved"));
             CHECK(ddt::test::samePixels(banded, whole));
+        }
         }
     }
 }
@@ -201,6 +216,56 @@ TEST_CASE("render: a linear image renders to the exact linear function") {
             }
         INFO(w << "x" << h << " s=" << s);
         CHECK(worst < 1e-6);
+    }
+}
+
+TEST_CASE("render: on a mesh with explicit positions, a linear image renders to the exact linear function") {
+    // As above, with each vertex's value the plane at its moved position and each sample at
+    // its snapped one (1/1024 pixel): the same 1e-6 for the same reasons.
+    std::mt19937 rng(6);
+    const double planes[2][3] = {{0.25, 1.0 / 64, -1.0 / 32}, {0.5, -1.0 / 16, 1.0 / 128}};
+    for (auto [w, h, s] : {std::tuple{9u, 7u, 2.5}, {5u, 8u, 7.3}, {4u, 4u, 8.0}}) {
+        const ddt::Mesh mesh = ddt::test::movedMesh(w, h, rng);
+        REQUIRE(ddt::checkMesh(mesh).empty());
+        std::vector<float> pixels;
+        for (const ddt::Position& p : mesh.positions)
+            for (const auto& plane : planes) pixels.push_back(float(plane[0] + plane[1] * p.x / 1024.0 + plane[2] * p.y / 1024.0));
+        const ddt::Image image = makeImage(w, h, 2, pixels);
+        const OutputSize out = ddt::scaledOutputSize(w, h, s);
+        const ddt::Image rendered = ddt::renderImage(mesh, image, out);
+        double worst = 0.0;
+        for (uint32_t y = 0; y < out.height; ++y)
+            for (uint32_t x = 0; x < out.width; ++x) {
+                const double u = snappedUnits(x, w, out.width) / 1024.0, v = snappedUnits(y, h, out.height) / 1024.0;
+                for (int k = 0; k < 2; ++k) {
+                    const double expected = planes[k][0] + planes[k][1] * u + planes[k][2] * v;
+                    worst = std::max(worst, std::abs(rendered.pixels[(size_t(y) * out.width + x) * 2 + k] - expected));
+                }
+            }
+        INFO(w << "x" << h << " s=" << s);
+        CHECK(worst < 1e-6);
+    }
+}
+
+TEST_CASE("render: the grid's mesh with its positions made explicit renders as the grid's, but for snapped samples") {
+    // Explicit positions snap each sample to 1/1024 pixel: it moves by at most 1/2048 along
+    // each axis. Values lie in [0, 1], so on the grid's unit triangles the surface changes by
+    // at most 1 per pixel along each axis (a flipped mesh's thin triangles are steeper): the
+    // two renders differ by at most 2/2048, plus float rounding.
+    // At s = 1 and 2 the samples lie on the grid already (x/2 − 1/4): the renders are equal.
+    std::mt19937 rng(7);
+    for (auto [w, h, s] : {std::tuple{9u, 7u, 2.5}, {5u, 8u, 7.3}, {6u, 6u, 1.0}, {7u, 3u, 2.0}}) {
+        const ddt::Image image = ddt::test::randomImage(rng, w, h, 3);
+        ddt::Mesh mesh = ddt::buildGridMesh(w, h);
+        const OutputSize out = ddt::scaledOutputSize(w, h, s);
+        const std::vector<float> implicit = renderInto(mesh, image, out, 0.0f);
+        ddt::makePositionsExplicit(mesh);
+        const std::vector<float> explicit_positions = renderInto(mesh, image, out, 0.0f);
+        double worst = 0.0;
+        for (size_t i = 0; i < implicit.size(); ++i) worst = std::max(worst, double(std::abs(implicit[i] - explicit_positions[i])));
+        INFO(w << "x" << h << " s=" << s);
+        CHECK(worst <= 2.0 / 2048 + 1e-6);
+        if (s == 1.0 || s == 2.0) CHECK(worst == 0.0);
     }
 }
 

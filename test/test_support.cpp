@@ -77,6 +77,27 @@ uint32_t flipRandomEdges(Mesh& mesh, std::mt19937& rng, uint32_t count) {
     return done;
 }
 
+Mesh movedMesh(uint32_t width, uint32_t height, std::mt19937& rng) {
+    Mesh mesh = buildGridMesh(width, height);
+    flipRandomEdges(mesh, rng, 4 * width * height);
+    makePositionsExplicit(mesh);
+    const std::vector<Triangle> triangles = listTriangles(mesh);
+    std::uniform_int_distribution<int32_t> step(-kPositionOne * 9 / 20, kPositionOne * 9 / 20);
+    for (int pass = 0; pass < 3; ++pass)
+        for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+            const uint32_t sides = rectangleSides(mesh, v);
+            if (sides != 0 && (sides & (sides - 1)) != 0) continue;  // a corner
+            const Position old = mesh.positions[v];
+            const int32_t dx = step(rng), dy = step(rng);
+            mesh.positions[v] = {old.x + ((sides & 3) ? 0 : dx), old.y + ((sides & 12) ? 0 : dy)};
+            const bool positive = std::all_of(triangles.begin(), triangles.end(), [&](const Triangle& t) {
+                return orientationSign(mesh, t.v0, t.v1, t.v2) > 0;
+            });
+            if (!positive) mesh.positions[v] = old;
+        }
+    return mesh;
+}
+
 namespace {
 
 bool onHull(const Mesh& mesh, uint32_t p, uint32_t q) {

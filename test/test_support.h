@@ -43,6 +43,12 @@ bool quadIsStrictlyConvex(const Mesh& mesh, uint32_t e);
 // Flips `count` random edges whose quadrilateral is strictly convex; returns the flips done.
 uint32_t flipRandomEdges(Mesh& mesh, std::mt19937& rng, uint32_t count);
 
+// A width × height grid mesh scrambled by random convex flips whose vertices then move off
+// the pixel centres (explicit positions): interior ones by up to 0.45 pixels along each axis,
+// border ones along their side, corners not at all; each move kept only if every triangle
+// stays positive. A general mesh, as simplification's new vertices make.
+Mesh movedMesh(uint32_t width, uint32_t height, std::mt19937& rng);
+
 // Independent invariant check: every edge joins two distinct vertices and appears once;
 // each side's triangle is positive and listed by all three of its edges with the right
 // neighbour links; hull edges have one triangle, others two; 2(w−1)(h−1) triangles whose
