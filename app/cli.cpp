@@ -161,7 +161,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         ->default_str("none");
     app.add_option("--simplify", settings.simplify,
                    "Keep this fraction of the mesh's vertices, in (0, 1]: edge collapses in order of least quadric "
-                   "error over position and colour (Garland-Heckbert), each vertex kept where it was; the output is the linear surface on the simplified mesh with each vertex's best colour, "
+                   "error over position and colour (Garland-Heckbert), each merged vertex at the place and colour its quadric calls for "
+                   "(to 1/1024 pixel; corners stay, border vertices slide along their side); the output is the linear surface on the simplified mesh, "
                    "and --mesh writes that mesh. The CPU backend simplifies serially; a Vulkan device by a parallel rule "
                    "(rounds of collapses whose neighbourhoods do not touch). Only images the backend holds in one piece")
         ->default_str("none");

@@ -19,6 +19,10 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
         throw UserError("simplification needs the image in one piece, and " + std::to_string(image.width) + "×" +
                         std::to_string(image.height) + (options.tile ? " is larger than --tile"
                                                                      : " is larger than the backend's memory holds at once"));
+    if (image.width > kMaxPositionedSide || image.height > kMaxPositionedSide)
+        throw UserError("simplification places vertices on a fixed-point grid for sides up to " +
+                        std::to_string(kMaxPositionedSide) + " pixels, and " + std::to_string(image.width) + "×" +
+                        std::to_string(image.height) + " is wider or taller");
     SimplifiedUpscale result;
     if (on_step) on_step({0, 1, TilePhase::Optimize});
     backend.prepare(image);

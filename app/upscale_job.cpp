@@ -187,13 +187,13 @@ void ImageJob::render(Backend& backend) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }
     timeOf(phase) += secondsSince(mark);
-    if (mesh) writeMesh(mesh->take());
+    if (mesh) writeMesh(mesh->take(), mesh->takePositions());
     state_->image.pixels = {};  // the next image may need the memory
 }
 
-void ImageJob::writeMesh(std::vector<uint32_t> triangles) {
+void ImageJob::writeMesh(std::vector<uint32_t> triangles, std::vector<Position> positions) {
     const Image& image = state_->image;
-    if (std::string problem = StitchedMesh::check(triangles, image.width, image.height); !problem.empty())
+    if (std::string problem = StitchedMesh::check(triangles, image.width, image.height, positions); !problem.empty())
         throw UserError(task_.mesh + ": the tiles' meshes do not join (" + problem +
                         "); a larger --tile, or none, avoids it");
     const OutputSize out = report_.out;
@@ -206,8 +206,8 @@ void ImageJob::writeMesh(std::vector<uint32_t> triangles) {
     const std::string comment = std::string("ddtup ") + DDTUP_VERSION + ": the optimised DDT mesh of " +
                                 inputName(task_.input) + " for a " + std::to_string(out.width) + "x" +
                                 std::to_string(out.height) + " output; x, y in output pixels, the vertex at input " +
-                                "pixel centre (x, y) at ((x + 0.5) sx, (y + 0.5) sy) from the top left; " + details;
-    writeMeshFile(task_.mesh, indexedMeshOf(triangles, image, out, settings_.mesh_height), comment);
+                                "position (x, y) (pixel centres at integers) at ((x + 0.5) sx, (y + 0.5) sy) from the top left; " + details;
+    writeMeshFile(task_.mesh, indexedMeshOf(triangles, positions, image, out, settings_.mesh_height), comment);
 }
 
 bool ImageJob::write() {

@@ -34,8 +34,13 @@ public:
         mesh_.positions.insert(mesh_.positions.end(), {x, double(mesh_.out.height) - y, height_ * luma});
         return mesh_.vertexCount() - 1;
     }
-    // The vertex at input pixel centre (px, py).
-    uint32_t addPixelVertex(uint32_t px, uint32_t py) { return addVertex((px + 0.5) * sx_, (py + 0.5) * sy_, px, py); }
+    // The vertex of pixel (px, py) at `p` (input pixels × kPositionOne).
+    uint32_t addPixelVertex(uint32_t px, uint32_t py, Position p) {
+        return addVertex(outputX(p), outputY(p), px, py);
+    }
+    // Where position p lies in the output, y down.
+    double outputX(Position p) const { return (double(p.x) / kPositionOne + 0.5) * sx_; }
+    double outputY(Position p) const { return (double(p.y) / kPositionOne + 0.5) * sy_; }
 
     void addFace(uint32_t a, uint32_t b, uint32_t c) {
         const double* p = &mesh_.positions[3 * size_t(a)];
@@ -57,21 +62,24 @@ private:
 
 }  // namespace
 
-IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& input, OutputSize out, double height) {
+IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const std::vector<Position>& positions,
+                          const Image& input, OutputSize out, double height) {
     const uint32_t w = input.width, h = input.height;
     const double W = out.width, H = out.height;
     MeshBuilder builder(input, out, height);
+    auto at = [&](uint32_t v) {
+        return positions.empty() ? Position{int32_t(v % w) * kPositionOne, int32_t(v / w) * kPositionOne} : positions[v];
+    };
     // The vertices the triangles use, in id order (all of the grid's but for a simplified mesh).
     std::vector<uint32_t> index(size_t(w) * h, kNone);
     for (uint32_t v : triangles) index[v] = 0;
     for (uint32_t v = 0; v < w * h; ++v)
-        if (index[v] != kNone) index[v] = builder.addPixelVertex(v % w, v / w);
+        if (index[v] != kNone) index[v] = builder.addPixelVertex(v % w, v / w, at(v));
     for (size_t t = 0; t + 2 < triangles.size(); t += 3)
         builder.addFace(index[triangles[t]], index[triangles[t + 1]], index[triangles[t + 2]]);
 
     // The ring: each hull vertex's copy on the rectangle's side, then the four corners. A side
     // with n vertices gets n copies and 2(n − 1) triangles; a corner is on two sides.
-    const double sx = W / w, sy = H / h;
     using Point = std::pair<double, double>;
     // Walks one side's used vertices in order; returns its first and last copies.
     auto side = [&](uint32_t n, auto pixel_at, auto copy_at) {
@@ -79,7 +87,7 @@ IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& i
         for (uint32_t i = 0; i < n; ++i) {
             const uint32_t pixel_id = pixel_at(i);
             if (index[pixel_id] == kNone) continue;
-            const auto [cx, cy] = copy_at(i);
+            const auto [cx, cy] = copy_at(at(pixel_id));
             const uint32_t pixel = index[pixel_id], copy = builder.addVertex(cx, cy, pixel_id % w, pixel_id / w);
             if (previous_pixel != kNone) {
                 builder.addFace(previous_pixel, pixel, copy);
@@ -91,10 +99,12 @@ IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& i
         }
         return std::pair<uint32_t, uint32_t>{first_copy, previous_copy};
     };
-    const auto top = side(w, [&](uint32_t i) { return i; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, 0.0}; });
-    const auto bottom = side(w, [&](uint32_t i) { return (h - 1) * w + i; }, [&](uint32_t i) { return Point{(i + 0.5) * sx, H}; });
-    const auto left = side(h, [&](uint32_t i) { return i * w; }, [&](uint32_t i) { return Point{0.0, (i + 0.5) * sy}; });
-    const auto right = side(h, [&](uint32_t i) { return i * w + w - 1; }, [&](uint32_t i) { return Point{W, (i + 0.5) * sy}; });
+    const auto top = side(w, [&](uint32_t i) { return i; }, [&](Position p) { return Point{builder.outputX(p), 0.0}; });
+    const auto bottom =
+        side(w, [&](uint32_t i) { return (h - 1) * w + i; }, [&](Position p) { return Point{builder.outputX(p), H}; });
+    const auto left = side(h, [&](uint32_t i) { return i * w; }, [&](Position p) { return Point{0.0, builder.outputY(p)}; });
+    const auto right =
+        side(h, [&](uint32_t i) { return i * w + w - 1; }, [&](Position p) { return Point{W, builder.outputY(p)}; });
     // Each corner square: the corner pixel, its copies on the two sides, the rectangle's corner.
     auto corner = [&](uint32_t px, uint32_t py, uint32_t horizontal_copy, uint32_t vertical_copy, double cx, double cy) {
         const uint32_t c = builder.addVertex(cx, cy, px, py), pixel = index[py * w + px];

@@ -2,7 +2,8 @@
 // positions and colours, triangles as vertex indices.
 //
 // Conventions, chosen for viewers (MeshLab, Blender, assimp) and stated in every file:
-// - Positions in output pixels with y up: the vertex at input pixel centre (x, y) sits at
+// - Positions in output pixels with y up: a vertex at input position (x, y) (pixel centres at
+//   integers; a simplified mesh's vertices may lie between them) sits at
 //   ((x + 0.5)·sx, H − (y + 0.5)·sy), sx = W/w and sy = H/h the realised factors of the
 //   W × H output. A viewer shows the picture upright.
 // - Triangles counter-clockwise seen from +z (front-facing in y-up viewers). The mesh's own
@@ -42,10 +43,13 @@ struct IndexedMesh {
 
 // The mesh of `triangles` (three vertex ids each, positive in the grid's y-down frame, as
 // core/mesh.h's triangles are) over the pixel grid of `input` (vertex id y·width + x of the
-// whole input, which tiles stitched together use too), coloured by `input`'s pixels, for an
-// output of size `out`, with z = luma × `height` (0: flat). The vertices the triangles use
+// whole input, which tiles stitched together use too), each vertex at `positions` (explicit,
+// per id: a simplified mesh's) or else at its pixel centre, coloured by `input`'s pixels, for
+// an output of size `out`, with z = luma × `height` (0: flat). The vertices the triangles use
 // come first, in id order (all the pixels, unless the mesh was simplified); the ring's follow.
-IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const Image& input, OutputSize out, double height = 0.0);
+// A vertex at input position (x, y) lies at output ((x + 0.5)·sx, H − (y + 0.5)·sy).
+IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const std::vector<Position>& positions,
+                          const Image& input, OutputSize out, double height = 0.0);
 
 // The triangles indexedMeshOf makes from a triangulation of all a width × height grid's
 // vertices: the grid's 2(w − 1)(h − 1), two per hull segment and two per corner (a simplified

@@ -95,8 +95,7 @@ int orientationSign(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r) {
     return (twice_area > 0) - (twice_area < 0);
 }
 
-uint32_t rectangleSides(const Mesh& mesh, uint32_t v) {
-    const Position p = positionOf(mesh, v);
+uint32_t rectangleSides(const Mesh& mesh, Position p) {
     const int32_t right = int32_t(mesh.width - 1) * kPositionOne, bottom = int32_t(mesh.height - 1) * kPositionOne;
     return uint32_t(p.x == 0) | uint32_t(p.x == right) << 1 | uint32_t(p.y == 0) << 2 | uint32_t(p.y == bottom) << 3;
 }

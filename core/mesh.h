@@ -79,8 +79,9 @@ void makePositionsExplicit(Mesh& mesh);
 // The sign of orient(p, q, r) at the vertices' positions: +1, 0 or −1, exact.
 int orientationSign(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r);
 
-// The sides of the rectangle vertex v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
-uint32_t rectangleSides(const Mesh& mesh, uint32_t v);
+// The sides of the rectangle position p lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
+uint32_t rectangleSides(const Mesh& mesh, Position p);
+inline uint32_t rectangleSides(const Mesh& mesh, uint32_t v) { return rectangleSides(mesh, positionOf(mesh, v)); }
 
 // Number of edges of the grid triangulation of a width × height image.
 uint64_t gridEdgeCount(uint32_t width, uint32_t height);

@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 
 namespace ddt {
 
 void StitchedMesh::add(const Mesh& mesh, const PixelRect& crop, const PixelRect& core) {
     const uint32_t cw = crop.width();
+    assert(mesh.positions.empty() || (crop.width() == width_ && crop.height() == height_ && core.width() == width_ &&
+                                      core.height() == height_));
+    if (!mesh.positions.empty()) positions_ = mesh.positions;
     forEachTriangle(mesh, [&](const Triangle& t) {
         uint32_t ids[3], sum_x = 0, sum_y = 0;
         const uint32_t local[3] = {t.v0, t.v1, t.v2};
@@ -43,26 +47,38 @@ std::vector<uint32_t> StitchedMesh::take() {
     return result;
 }
 
-std::string StitchedMesh::check(const std::vector<uint32_t>& triangles, uint32_t width, uint32_t height) {
+std::string StitchedMesh::check(const std::vector<uint32_t>& triangles, uint32_t width, uint32_t height,
+                                const std::vector<Position>& positions) {
     const uint32_t vertices = width * height;
     const size_t count = triangles.size() / 3;
     if (count == 0) return "no triangles";
+    if (!positions.empty() && positions.size() != vertices) return "positions for another grid";
     auto where = [&](uint32_t v) {  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "(" + ...
         std::string text = "(";
         return text.append(std::to_string(v % width)).append(", ").append(std::to_string(v / width)).append(")");
     };
-    double doubled_area = 0.0;  // integers below 2^53: exact
+    // Coordinates in pixels (the grid's, of any size) or in 1/kPositionOne pixels (explicit).
+    struct Point {
+        int64_t x, y;
+    };
+    const int64_t unit = positions.empty() ? 1 : kPositionOne;
+    auto at = [&](uint32_t v) {
+        return positions.empty() ? Point{v % width, v / width} : Point{positions[v].x, positions[v].y};
+    };
+    __int128 doubled_area = 0;  // in units², exact
     // The directed edges by their start vertex (compressed rows), to find each one's reverse.
     std::vector<uint32_t> first(size_t(vertices) + 1, 0);
     for (size_t i = 0; i < count; ++i) {
         const uint32_t* t = &triangles[3 * i];
         if (t[0] >= vertices || t[1] >= vertices || t[2] >= vertices) return "a vertex outside the grid";
-        const double orient = orientation(t[0], t[1], t[2], width);  // exact: glsl/sederberg.h
-        if (orient <= 0.0) return "the triangle " + where(t[0]) + " " + where(t[1]) + " " + where(t[2]) + " is not positive";
+        const Point p = at(t[0]), q = at(t[1]), r = at(t[2]);
+        const __int128 orient = __int128(q.x - p.x) * (r.y - p.y) - __int128(q.y - p.y) * (r.x - p.x);
+        if (orient <= 0) return "the triangle " + where(t[0]) + " " + where(t[1]) + " " + where(t[2]) + " is not positive";
         doubled_area += orient;
         for (int k = 0; k < 3; ++k) ++first[t[k] + 1];
     }
-    if (doubled_area != 2.0 * double(width - 1) * (height - 1)) return "the triangles' area is not the grid's";
+    if (doubled_area != __int128(2) * (width - 1) * (height - 1) * unit * unit)
+        return "the triangles' area is not the grid's";
     for (uint32_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
     std::vector<uint32_t> ends(first.begin(), first.end() - 1), targets(3 * count);
     for (size_t i = 0; i < count; ++i)
@@ -73,9 +89,10 @@ std::string StitchedMesh::check(const std::vector<uint32_t>& triangles, uint32_t
     };
     // A segment along one side of the rectangle (longer than a step where simplification
     // removed the border vertices between).
+    const int64_t right = (width - 1) * unit, bottom = (height - 1) * unit;
     auto onBorder = [&](uint32_t u, uint32_t v) {
-        const uint32_t ux = u % width, uy = u / width, vx = v % width, vy = v / width;
-        return (uy == vy && (uy == 0 || uy == height - 1)) || (ux == vx && (ux == 0 || ux == width - 1));
+        const Point a = at(u), b = at(v);
+        return (a.y == b.y && (a.y == 0 || a.y == bottom)) || (a.x == b.x && (a.x == 0 || a.x == right));
     };
     for (uint32_t u = 0; u < vertices; ++u) {
         std::sort(targets.begin() + first[u], targets.begin() + first[u + 1]);

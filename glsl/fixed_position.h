@@ -14,6 +14,7 @@
 #ifdef __cplusplus
 #include <cstdint>
 namespace ddt {
+typedef uint32_t uint;
 #define DDT_FN inline
 #else
 #define DDT_FN
@@ -22,12 +23,12 @@ namespace ddt {
 // Fraction bits: a position resolves 1/1024 pixel. Rendering samples are snapped to the same
 // grid (core/render.h), moving a sample by at most 1/2048 pixel.
 const int kPositionBits = 10;
-const int32_t kPositionOne = 1 << kPositionBits;
+const int kPositionOne = 1 << kPositionBits;
 // The widest and tallest input whose mesh can hold explicit positions (2^20 = 1 048 576 pixels).
-const uint32_t kMaxPositionedSide = 1u << 20;
+const uint kMaxPositionedSide = 1u << 20;
 
 // Twice the signed area of (p, q, r): positive for positive (core/mesh.h) triangles. Exact.
-DDT_FN int64_t positionOrient(int32_t px, int32_t py, int32_t qx, int32_t qy, int32_t rx, int32_t ry) {
+DDT_FN int64_t positionOrient(int px, int py, int qx, int qy, int rx, int ry) {
     return int64_t(qx - px) * int64_t(ry - py) - int64_t(qy - py) * int64_t(rx - px);
 }
 

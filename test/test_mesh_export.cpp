@@ -71,6 +71,16 @@ std::vector<double> valueAt(const IndexedMesh& m, double x, double y) {
     return {};
 }
 
+// Where the renderer samples output column or row i of a mesh with explicit positions
+// (render.h), in output pixels: the input coordinate (i + 0.5)·in/out − 0.5, clamped into
+// [0, in − 1] and rounded (half up) to 1/1024 pixel, in exact integers, then mapped to the
+// output as the files map positions.
+double snappedSample(uint32_t i, uint32_t in, uint32_t out) {
+    const int64_t u = std::clamp<int64_t>((2 * int64_t(i) + 1) * in - out, 0, 2 * int64_t(out) * (in - 1));
+    const int64_t snapped = (u * 1024 + out) / (2 * int64_t(out));
+    return (double(snapped) / 1024 + 0.5) * out / in;
+}
+
 std::string fileBytes(MeshFormat format, const IndexedMesh& mesh) {
     std::string bytes;
     writeMesh(format, mesh, "test", [&](const char* data, size_t size) { bytes.append(data, size); });
@@ -85,7 +95,7 @@ TEST_CASE("mesh export: a ring out to the image rectangle, faces counter-clockwi
     const Mesh mesh = shuffledMesh(w, h, rng);
     const Image image = randomImage(rng, w, h, 3);
     const OutputSize out{13, 10};  // factors 2.6 and 2.5
-    const IndexedMesh m = indexedMeshOf(triangleIds(mesh), image, out);
+    const IndexedMesh m = indexedMeshOf(triangleIds(mesh), mesh.positions, image, out);
 
     // The grid's vertices, one copy per hull vertex, the four corners; the ring has two
     // triangles per hull segment and two per corner.
@@ -127,7 +137,7 @@ TEST_CASE("mesh export: the file's linear surface is plain DDT's render, out to 
     const Image image = randomImage(rng, w, h, 3);
     const OutputSize out{17, 12};
     const Image plain = renderImage(mesh, image, out);
-    const IndexedMesh m = indexedMeshOf(triangleIds(mesh), image, out);
+    const IndexedMesh m = indexedMeshOf(triangleIds(mesh), mesh.positions, image, out);
     for (uint32_t y = 0; y < out.height; ++y)
         for (uint32_t x = 0; x < out.width; ++x) {
             INFO("output pixel (" << x << ", " << y << ")");
@@ -148,7 +158,7 @@ TEST_CASE("mesh export: a simplified mesh's file has only its vertices and is st
     REQUIRE(checkMesh(mesh) == "");
     const OutputSize out{29, 20};
     const Image plain = renderImage(mesh, values, out);
-    const IndexedMesh m = indexedMeshOf(triangleIds(mesh), values, out);
+    const IndexedMesh m = indexedMeshOf(triangleIds(mesh), mesh.positions, values, out);
     // The kept vertices, a copy of each kept hull vertex (a corner on two sides), four corners.
     uint32_t hull = 0;
     std::vector<bool> used(w * h, false);
@@ -164,10 +174,14 @@ TEST_CASE("mesh export: a simplified mesh's file has only its vertices and is st
         area += twiceFaceArea(m, f) / 2;
     }
     CHECK(area == Approx(double(out.width) * out.height).epsilon(1e-12));  // rounding only, as above
+    // The vertices moved off the pixel centres: the renderer samples at snapped positions.
+    CHECK(std::count_if(mesh.positions.begin(), mesh.positions.end(),
+                        [](Position p) { return p.x % 1024 != 0 || p.y % 1024 != 0; }) > 0);
     for (uint32_t y = 0; y < out.height; ++y)
         for (uint32_t x = 0; x < out.width; ++x) {
             INFO("output pixel (" << x << ", " << y << ")");
-            const std::vector<double> value = valueAt(m, x + 0.5, out.height - (y + 0.5));
+            const std::vector<double> value =
+                valueAt(m, snappedSample(x, w, out.width), out.height - snappedSample(y, h, out.height));
             for (uint32_t k = 0; k < 3; ++k) CHECK(value[k] == Approx(plain.row(y)[x * 3 + k]).margin(1e-6));  // as above
         }
 }
@@ -175,7 +189,7 @@ TEST_CASE("mesh export: a simplified mesh's file has only its vertices and is st
 TEST_CASE("mesh export: straight colours, and z from luma times the height") {
     const Image rgba = makeImage(2, 2, 4, {0.25f, 0.1f, 0.05f, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f,  //
                                            0.2f, 0.4f, 0.6f, 1.0f, 0.3f, 0.3f, 0.3f, 0.6f});
-    const IndexedMesh m = indexedMeshOf(triangleIds(buildGridMesh(2, 2)), rgba, {4, 4}, 10.0);
+    const IndexedMesh m = indexedMeshOf(triangleIds(buildGridMesh(2, 2)), {}, rgba, {4, 4}, 10.0);
     REQUIRE(m.channels == 4);
     const float expected[4][4] = {{0.5f, 0.2f, 0.1f, 0.5f}, {0, 0, 0, 0}, {0.2f, 0.4f, 0.6f, 1.0f}, {0.5f, 0.5f, 0.5f, 0.6f}};
     for (int v = 0; v < 4; ++v)
@@ -186,7 +200,7 @@ TEST_CASE("mesh export: straight colours, and z from luma times the height") {
     CHECK(m.positions[3 * 3 + 2] == Approx(10.0 * 0.5));
 
     const Image grey = makeImage(2, 2, 1, {0.0f, 0.25f, 0.5f, 1.0f});
-    const IndexedMesh g = indexedMeshOf(triangleIds(buildGridMesh(2, 2)), grey, {6, 6}, 4.0);
+    const IndexedMesh g = indexedMeshOf(triangleIds(buildGridMesh(2, 2)), {}, grey, {6, 6}, 4.0);
     for (uint32_t v = 0; v < g.vertexCount(); ++v) CHECK(g.positions[3 * size_t(v) + 2] == Approx(4.0 * g.colours[v]));
 }
 
@@ -247,7 +261,7 @@ TEST_CASE("mesh files: PLY is binary little-endian with the input's colour type"
     for (SampleType type : {SampleType::UInt8, SampleType::UInt16, SampleType::Float}) {
         INFO(sampleTypeName(type));
         image.sample_type = type;
-        const IndexedMesh m = indexedMeshOf(triangleIds(buildGridMesh(4, 3)), image, {8, 6});
+        const IndexedMesh m = indexedMeshOf(triangleIds(buildGridMesh(4, 3)), {}, image, {8, 6});
         const std::string bytes = fileBytes(MeshFormat::Ply, m);
         const size_t header_end = bytes.find("end_header\n");
         REQUIRE(header_end != std::string::npos);
@@ -296,7 +310,7 @@ TEST_CASE("mesh files: PLY is binary little-endian with the input's colour type"
 TEST_CASE("mesh files: OBJ has v x y z r g b lines and 1-based faces, numbers read back exactly") {
     std::mt19937 rng(5);
     const Image image = randomImage(rng, 3, 3, 2);  // grey + alpha: r = g = b = grey, alpha dropped
-    const IndexedMesh m = indexedMeshOf(triangleIds(buildGridMesh(3, 3)), image, {7, 7});
+    const IndexedMesh m = indexedMeshOf(triangleIds(buildGridMesh(3, 3)), {}, image, {7, 7});
     std::istringstream lines(fileBytes(MeshFormat::Obj, m));
     std::string line;
     std::getline(lines, line);
@@ -353,7 +367,7 @@ TEST_CASE("mesh files: the format comes from the extension or a bare name, any c
 TEST_CASE("mesh files: SVG gradients reproduce a grey mesh's colours at its corners") {
     std::mt19937 rng(9);
     const Image grey = randomImage(rng, 6, 5, 1);
-    const IndexedMesh m = indexedMeshOf(triangleIds(shuffledMesh(6, 5, rng)), grey, {15, 12});
+    const IndexedMesh m = indexedMeshOf(triangleIds(shuffledMesh(6, 5, rng)), {}, grey, {15, 12});
     const std::string svg = fileBytes(MeshFormat::Svg, m);
     CHECK_THAT(svg, Catch::Contains("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"15\" height=\"12\" viewBox=\"0 0 15 12\" "
                                     "shape-rendering=\"crispEdges\">"));

@@ -176,6 +176,7 @@ namespace {
 // found anew each round, not only those of the edges at a changed ring.
 ParallelSimplifyStats simplifyByTheRule(Mesh& mesh, Image& values, uint32_t target, double max_error) {
     ParallelSimplifyStats stats;
+    makePositionsExplicit(mesh);
     SimplifyStart start(mesh, values);
     uint32_t vertices = usedVertexCount(mesh);
     while (vertices > target) {
@@ -191,7 +192,7 @@ ParallelSimplifyStats simplifyByTheRule(Mesh& mesh, Image& values, uint32_t targ
         if (winners.empty()) break;
         leastWinners(winners, keys, vertices, target);
         for (uint32_t e : winners) {
-            const Collapse collapse{e, candidates[e].b_into_a};
+            const Collapse collapse{e, candidates[e].b_into_a, candidates[e].moves, candidates[e].target};
             const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
             collapseEdge(mesh, start.edges, collapse);
             start.quadrics[to] += start.quadrics[from];

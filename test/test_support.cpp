@@ -175,7 +175,7 @@ bool sameRecords(const Mesh& a, const Mesh& b) {
         if (u.a != v.a || u.b != v.b || u.l != v.l || u.r != v.r) return false;
         if (m.bl != n.bl || m.la != n.la || m.ar != n.ar || m.rb != n.rb) return false;
     }
-    return true;
+    return a.positions == b.positions;
 }
 
 bool samePixels(const std::vector<float>& a, const std::vector<float>& b) {

@@ -56,7 +56,7 @@ Mesh movedMesh(uint32_t width, uint32_t height, std::mt19937& rng);
 std::string triangulationProblem(const Mesh& mesh);
 
 // Records equal field by field.
-bool sameRecords(const Mesh& a, const Mesh& b);
+bool sameRecords(const Mesh& a, const Mesh& b);  // records and explicit positions
 
 // Exact float equality of two pixel arrays (NaN never equal).
 bool samePixels(const std::vector<float>& a, const std::vector<float>& b);

@@ -76,6 +76,7 @@ TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's,
         Mesh mesh = optimised;
         Image values = photo;
         if (share < 1.0) simplifySerial(mesh, values, uint32_t(share * photo.width * photo.height));
+        makePositionsExplicit(mesh);
         REQUIRE(checkMesh(mesh) == "");
         const SimplifyStart start(mesh, values);
         uint32_t with_key = 0;
@@ -119,6 +120,7 @@ TEST_CASE("vulkan simplify: grey, grey + alpha and RGBA values cost as in core")
         Mesh mesh = optimisedGridMesh(image);
         Image values = image;
         simplifySerial(mesh, values, 23 * 17 / 3);
+        REQUIRE_FALSE(mesh.positions.empty());  // moved vertices among them
         const SimplifyStart start(mesh, values);
         uint32_t with_key = 0;
         const std::vector<CollapseCandidate> expected = coreCandidates(mesh, start, with_key);
@@ -135,6 +137,7 @@ TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in c
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
     Mesh mesh = centreFanMesh(24);
     compactEdges(mesh);
+    makePositionsExplicit(mesh);
     // The centre is at the bound: a neighbour with more than 4 edges cannot collapse into it.
     const VertexEdges edges(mesh);
     uint32_t centre_edges = 0;
@@ -160,18 +163,25 @@ TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core"
         Mesh mesh = optimised;
         Image values = photo;
         if (share < 1.0) simplifySerial(mesh, values, uint32_t(share * photo.width * photo.height));
+        makePositionsExplicit(mesh);
         SimplifyStart core_start(mesh, values);
         uint32_t with_key = 0;
         const std::vector<CollapseCandidate> candidates = coreCandidates(mesh, core_start, with_key);
         std::vector<Collapse> collapses;
-        for (uint32_t e : selectWinners(mesh, core_start.edges, keysOf(candidates), kAllCostWords))
-            collapses.push_back({e, candidates[e].b_into_a});
-        INFO("share " << share << ": " << collapses.size() << " collapses");
+        uint32_t moving = 0;
+        for (uint32_t e : selectWinners(mesh, core_start.edges, keysOf(candidates), kAllCostWords)) {
+            collapses.push_back({e, candidates[e].b_into_a, candidates[e].moves, candidates[e].target});
+            moving += candidates[e].moves;
+        }
+        INFO("share " << share << ": " << collapses.size() << " collapses, " << moving << " moving");
         REQUIRE(collapses.size() > 1);
+        CHECK(moving > 0);
+        CHECK(moving < collapses.size());  // and some stay at an endpoint
         Mesh device_mesh = mesh;
         SimplifyStart device_start(mesh, values);
         {
             DeviceSimplifier device(*context, mesh, device_start, values);
+            device.findCandidates();  // the targets of moving collapses
             device.collapse(collapses);
             device.download(device_mesh, device_start);
         }
@@ -184,6 +194,7 @@ TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core"
         CHECK(std::memcmp(device_mesh.neighbours.data(), mesh.neighbours.data(),
                           mesh.edgeCount() * sizeof(EdgeNeighbours)) == 0);
         CHECK(device_start.edges.first == core_start.edges.first);
+        CHECK(device_mesh.positions == mesh.positions);
         CHECK(std::memcmp(device_start.quadrics.data(), core_start.quadrics.data(),
                           core_start.quadrics.size() * sizeof(Quadric)) == 0);
         compactEdges(device_mesh);

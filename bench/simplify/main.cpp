@@ -350,7 +350,7 @@ int main(int argc, char** argv) {
             ours.vertices = usedVertexCount(mesh);
             const Image rendered = renderImage(mesh, values, {original.width, original.height});
             ours.psnr = peakSignalToNoiseRatio(toBytes(original), toBytes(rendered));
-            const IndexedMesh file = indexedMeshOf(triangleIds(mesh), values, {original.width, original.height});
+            const IndexedMesh file = indexedMeshOf(triangleIds(mesh), mesh.positions, values, {original.width, original.height});
             ours.ply = fileSize(MeshFormat::Ply, file);
             if (file.faceCount() <= kMaxSvgTriangles) {
                 ours.svg = fileSize(MeshFormat::Svg, file);

@@ -13,19 +13,19 @@ static_assert(kCollapseValenceBound == kMaxCollapseValence, "glsl/simplify/simpl
 static_assert(sizeof(Quadric) == kQuadricDoubles * sizeof(double) && std::is_standard_layout_v<Quadric>,
               "quadrics are uploaded as they are");
 
-// Per edge: its two records, candidate, winner entry (16 bytes each), list entry, collapse
-// entry and state; per vertex id: its walk start, least-key words, marks (changed, taken), its
-// values (16 bytes) and its quadric.
+// Per edge: its two records, candidate, winner entry (16 bytes each, the winner's twice),
+// target (8), list entry, collapse entry and state; per vertex id: its walk start, least-key
+// words, marks (changed, taken), its position (8), its values (16) and its quadric.
 uint64_t deviceSimplifierBytes(uint64_t edges, uint64_t vertices) {
-    return edges * (4 * 16 + 3 * 4) + vertices * (5 * 4 + 16 + sizeof(Quadric)) + kTallyWords * 4;
+    return edges * (5 * 16 + 8 + 3 * 4) + vertices * (5 * 4 + 8 + 16 + sizeof(Quadric)) + kTallyWords * 4;
 }
 
 std::string deviceSimplifierProblem(const VulkanContext& context, uint64_t edges, uint64_t vertices) {
-    const uint64_t elements = std::max(edges, vertices * kQuadricDoubles),
+    const uint64_t elements = std::max(2 * edges, vertices * kQuadricDoubles),
                    limit = context.properties.limits.maxTexelBufferElements;
-    if (edges >= kCollapseBIntoA) return "more edges than the kernels can index";
+    if (edges >= kCollapseMoves) return "more edges than the kernels can index";
     if (elements > limit)
-        return std::to_string(elements) + (elements == edges ? " edges" : " quadric words") + ", more than the device's " +
+        return std::to_string(elements) + (elements == 2 * edges ? " winner texels" : " quadric words") + ", more than the device's " +
                std::to_string(limit) + " texel-buffer elements";
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -43,6 +43,8 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
     const uint32_t edges = mesh.edgeCount(), vertices = mesh.vertexCount();
     if (values.channels > kMaxQuadricDimensions - 2 || values.width != mesh.width || values.height != mesh.height)
         throw std::invalid_argument("device simplification: values do not fit the mesh");
+    if (mesh.positions.size() != mesh.vertexCount())
+        throw std::invalid_argument("device simplification: the mesh's positions are not explicit");
     if (const std::string problem = deviceSimplifierProblem(context, edges, vertices); !problem.empty())
         throw std::invalid_argument("device simplification: " + problem);
     const uint64_t error_limit = std::bit_cast<uint64_t>(errorLimitOf(max_error));
@@ -66,12 +68,14 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
         make(kSimplifyBindingValues, VkDeviceSize(vertices) * 16, VK_FORMAT_R32G32B32A32_SFLOAT, texels.data());
         make(kSimplifyBindingQuadrics, VkDeviceSize(vertices) * sizeof(Quadric), VK_FORMAT_R32G32_UINT,
              start.quadrics.data());
+        make(kSimplifyBindingPositions, VkDeviceSize(vertices) * 8, VK_FORMAT_R32G32_SINT, mesh.positions.data());
         make(kSimplifyBindingCandidates, edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr);
+        make(kSimplifyBindingTargets, VkDeviceSize(edges) * 8, VK_FORMAT_R32G32_SINT, nullptr);
         make(kSimplifyBindingLeastCost, vertex_words, VK_FORMAT_R32_UINT, nullptr);
         make(kSimplifyBindingLeastTie, vertex_words, VK_FORMAT_R32_UINT, nullptr);
         make(kSimplifyBindingTaken, vertex_words, VK_FORMAT_R32_UINT, nullptr);
         make(kSimplifyBindingEdgeState, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr);
-        make(kSimplifyBindingWinners, edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr, Placement::Readback);
+        make(kSimplifyBindingWinners, 2 * edge_texels, VK_FORMAT_R32G32B32A32_UINT, nullptr, Placement::Readback);
         make(kSimplifyBindingTallies, kTallyWords * 4, VK_FORMAT_R32_UINT, nullptr, Placement::Readback);
         make(kSimplifyBindingListed, VkDeviceSize(edges) * 4, VK_FORMAT_R32_UINT, nullptr);
         // Winners' regions are disjoint, so a round has fewer collapses than edges.
@@ -120,13 +124,26 @@ void DeviceSimplifier::findCandidates() {
     downloadFromBuffer(context_, buffers_[kSimplifyBindingTallies], cost_tally_.data(), kCostBins * 4);
 }
 
+namespace {
+
+// A candidate from its four words (collapse_candidates.comp) and its target.
+CollapseCandidate candidateOf(const uint32_t* words, Position target) {
+    const bool moves = (words[2] & kCandidateMoves) != 0;
+    return {uint64_t(words[0]) << 32 | words[1], (words[2] & kCandidateBIntoA) != 0, moves, moves ? target : Position{0, 0}};
+}
+
+}  // namespace
+
 std::vector<CollapseCandidate> DeviceSimplifier::candidates() const {
     const uint32_t edges = push_.edge_count;
     std::vector<uint32_t> words(size_t(edges) * 4);
-    if (edges) downloadFromBuffer(context_, buffers_[kSimplifyBindingCandidates], words.data(), words.size() * 4);
+    std::vector<Position> targets(edges);
+    if (edges) {
+        downloadFromBuffer(context_, buffers_[kSimplifyBindingCandidates], words.data(), words.size() * 4);
+        downloadFromBuffer(context_, buffers_[kSimplifyBindingTargets], targets.data(), targets.size() * 8);
+    }
     std::vector<CollapseCandidate> candidates(edges);
-    for (uint32_t e = 0; e < edges; ++e)
-        candidates[e] = {uint64_t(words[4 * e]) << 32 | words[4 * e + 1], words[4 * e + 2] != 0};
+    for (uint32_t e = 0; e < edges; ++e) candidates[e] = candidateOf(&words[4 * e], targets[e]);
     return candidates;
 }
 
@@ -150,18 +167,21 @@ std::vector<DeviceWinner> DeviceSimplifier::selectWinners(uint32_t cost_word_lim
     batch.submitAndWait();
     uint32_t count = 0;
     downloadFromBuffer(context_, buffers_[kSimplifyBindingTallies], &count, 4, kTallyWinners * 4);
-    std::vector<uint32_t> words(size_t(count) * 4);
+    std::vector<uint32_t> words(size_t(count) * 8);
     if (count) downloadFromBuffer(context_, buffers_[kSimplifyBindingWinners], words.data(), words.size() * 4);
     std::vector<DeviceWinner> winners(count);
-    for (uint32_t i = 0; i < count; ++i)
-        winners[i] = {words[4 * i + 3], {uint64_t(words[4 * i]) << 32 | words[4 * i + 1], words[4 * i + 2] != 0}};
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t* winner = &words[8 * i];
+        winners[i] = {winner[3], candidateOf(winner, {int32_t(winner[4]), int32_t(winner[5])})};
+    }
     return winners;
 }
 
 void DeviceSimplifier::collapse(const std::vector<Collapse>& collapses) {
     if (collapses.empty()) return;
     std::vector<uint32_t> entries;
-    for (const Collapse& collapse : collapses) entries.push_back(collapse.edge | (collapse.b_into_a ? kCollapseBIntoA : 0));
+    for (const Collapse& collapse : collapses)
+        entries.push_back(collapse.edge | (collapse.b_into_a ? kCollapseBIntoA : 0) | (collapse.moves ? kCollapseMoves : 0));
     if (entries.size() > push_.edge_count) throw std::invalid_argument("DeviceSimplifier: more collapses than edges");
     uploadToBuffer(context_, buffers_[kSimplifyBindingCollapses], entries.data(), entries.size() * 4);
     CommandBatch batch(context_);
@@ -180,6 +200,7 @@ void DeviceSimplifier::download(Mesh& mesh, SimplifyStart& start) const {
         downloadFromBuffer(context_, buffers_[kSimplifyBindingEdgeNeighbours], mesh.neighbours.data(), edges * 16);
     }
     downloadFromBuffer(context_, buffers_[kSimplifyBindingVertexFirst], start.edges.first.data(), vertices * 4);
+    downloadFromBuffer(context_, buffers_[kSimplifyBindingPositions], mesh.positions.data(), vertices * 8);
     downloadFromBuffer(context_, buffers_[kSimplifyBindingQuadrics], start.quadrics.data(), vertices * sizeof(Quadric));
 }
 
@@ -187,6 +208,7 @@ ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image
                                        double max_error) {
     ParallelSimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
+    makePositionsExplicit(mesh);
     SimplifyStart start(mesh, values);
     DeviceSimplifier device(context, mesh, start, values, max_error);
     while (stats.vertices_after > target) {
@@ -201,7 +223,7 @@ ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image
         winners.resize(std::min(winners.size(), needed));
         std::vector<Collapse> collapses;
         for (const DeviceWinner& winner : winners) {
-            collapses.push_back({winner.edge, winner.candidate.b_into_a});
+            collapses.push_back({winner.edge, winner.candidate.b_into_a, winner.candidate.moves, winner.candidate.target});
             stats.last_cost = std::max(stats.last_cost, collapseKeyCost(winner.candidate.key));
         }
         device.collapse(collapses);

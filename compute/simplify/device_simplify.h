@@ -1,8 +1,8 @@
 // The parallel simplification rule (core/simplify/parallel_simplify.h) on a Vulkan device, in
 // kernels of its own (glsl/simplify/), equal to core's bit for bit: every edge's best legal
-// collapse (the legality walks, the exact orientation and the quadric's value are the same
-// formulas, in fp64 without fused multiply-add, and the key is a cut of the cost, not a
-// rounding), the tally of the keys' cost words, the winners among the cheapest keys, whose
+// collapse (the legality walks, the exact orientation, the placement's solve and the
+// quadric's value are the same formulas, in fp64 without fused multiply-add, and the key is a
+// cut of the cost, not a rounding), the tally of the keys' cost words, the winners among the cheapest keys, whose
 // regions hold no smaller tie word, and their collapses with the quadrics' merge. On the host:
 // the cost limit from the tally, the round's least winners (a sort of the winners, downloaded
 // each round), and the final compaction and best colours.
@@ -34,7 +34,7 @@ struct DeviceWinner {
 // A mesh being simplified on the device: its records, walk starts and quadrics live there.
 class DeviceSimplifier {
 public:
-    // Uploads the mesh, its walks' starts and quadrics in `start`, and the vertex values
+    // Uploads the mesh (its positions explicit), its walks' starts and quadrics in `start`, and the vertex values
     // `values` (what start.points reads); collapses beyond `max_error` are no candidates.
     DeviceSimplifier(VulkanContext& context, const Mesh& mesh, const SimplifyStart& start, const Image& values,
                      double max_error = 0.0);
@@ -51,9 +51,10 @@ public:
     const std::vector<uint32_t>& costTally() const { return cost_tally_; }
     // Step 2 among the keys whose cost word is at most `limit`: the winners, in no order.
     std::vector<DeviceWinner> selectWinners(uint32_t cost_word_limit = kAllCostWords);
-    // Step 3 for `collapses` (winners of one selection, in any order).
+    // Step 3 for `collapses` (winners of one selection, in any order); one that moves goes to
+    // its edge's candidate's target (of the last findCandidates).
     void collapse(const std::vector<Collapse>& collapses);
-    // The current records, walk starts and quadrics, into `mesh` and `start`.
+    // The current records, positions, walk starts and quadrics, into `mesh` and `start`.
     void download(Mesh& mesh, SimplifyStart& start) const;
 
 private:

@@ -1,6 +1,7 @@
 #include "edge_collapse.h"
 
 #include <algorithm>
+#include <cassert>
 #include <bit>
 
 namespace ddt {
@@ -8,12 +9,6 @@ namespace ddt {
 namespace {
 
 uint32_t otherEnd(const EdgeVertices& v, uint32_t p) { return v.a == p ? v.b : v.a; }
-
-// The rectangle's sides vertex v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
-uint32_t sidesOf(uint32_t v, uint32_t width, uint32_t height) {
-    const uint32_t x = v % width, y = v / width;
-    return uint32_t(x == 0) | uint32_t(x == width - 1) << 1 | uint32_t(y == 0) << 2 | uint32_t(y == height - 1) << 3;
-}
 
 // The triangles on the sides of edge f, positive: (a, b, l) and (b, a, r) where they exist.
 template <typename Visit>
@@ -40,9 +35,14 @@ VertexEdges::VertexEdges(const Mesh& mesh) : first(mesh.vertexCount(), kNone) {
 bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) {
     const EdgeVertices& ev = mesh.vertices[collapse.edge];
     const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
-    const uint32_t from_sides = sidesOf(from, mesh.width, mesh.height);
+    const uint32_t from_sides = rectangleSides(mesh, from);
     if (std::popcount(from_sides) >= 2) return false;  // a corner
     if (from_sides && ev.l != kNone && ev.r != kNone) return false;  // a border vertex leaves its side
+    const Position target = collapse.moves ? collapse.target : positionOf(mesh, to);
+    if (collapse.moves) {
+        const uint32_t kept = from_sides | rectangleSides(mesh, to);
+        if ((rectangleSides(mesh, target) & kept) != kept) return false;
+    }
     // Valence: `to` ends with the edges of both but e and the removed ones.
     uint32_t valence = 0;
     forEachEdgeAt(mesh, edges, from, [&](uint32_t) { ++valence; });
@@ -61,17 +61,22 @@ bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) 
         });
     });
     if (!linked || common != uint32_t(ev.l != kNone) + uint32_t(ev.r != kNone)) return false;
-    // No fold-over: the triangles at `from` that stay, with `to` in its place, stay positive.
-    bool folds = false;
-    forEachEdgeAt(mesh, edges, from, [&](uint32_t f) {
-        if (f == collapse.edge) return;
-        forEachSide(mesh.vertices[f], [&](uint32_t p, uint32_t q, uint32_t r) {
-            if (p == to || q == to || r == to) return;  // one of e's triangles, which go
-            auto moved = [&](uint32_t v) { return v == from ? to : v; };
-            folds = folds || orientation(moved(p), moved(q), moved(r), mesh.width) <= 0.0;  // exact: glsl/sederberg.h
+    // No fold-over: the triangles around `from` (and `to`, if it moves) that stay are still
+    // positive with the merged vertex at its place.
+    auto placed = [&](uint32_t v) { return v == from || v == to ? target : positionOf(mesh, v); };
+    auto staysPositive = [&](uint32_t centre, uint32_t other) {
+        bool positive = true;
+        forEachEdgeAt(mesh, edges, centre, [&](uint32_t f) {
+            if (f == collapse.edge) return;
+            forEachSide(mesh.vertices[f], [&](uint32_t p, uint32_t q, uint32_t r) {
+                if (p == other || q == other || r == other) return;  // one of e's triangles, which go
+                const Position a = placed(p), b = placed(q), c = placed(r);
+                positive = positive && positionOrient(a.x, a.y, b.x, b.y, c.x, c.y) > 0;
+            });
         });
-    });
-    return !folds;
+        return positive;
+    };
+    return staysPositive(from, to) && (!collapse.moves || staysPositive(to, from));
 }
 
 void collapseEdge(Mesh& mesh, VertexEdges& edges, Collapse collapse) {
@@ -153,6 +158,10 @@ void collapseEdge(Mesh& mesh, VertexEdges& edges, Collapse collapse) {
         }
     }
 
+    if (collapse.moves) {
+        assert(!mesh.positions.empty());
+        mesh.positions[to] = collapse.target;
+    }
     // The walks' starts: a kept edge for `to` and each third vertex (whose edge may have gone).
     edges.first[from] = kNone;
     for (const Side& side : sides) edges.first[to] = edges.first[side.third] = side.kept;

@@ -2,10 +2,8 @@
 //
 // Collapsing vertex `from` into its neighbour `to` along edge e = (a, b) removes `from`, e, the
 // triangles (a, b, l) and (b, a, r) and, of each, the edge from–l (from–r), whose outer side
-// the edge to–l (to–r) takes over. `to` keeps its position: the best endpoint of Garland and
-// Heckbert's two choices, so that every vertex stays a pixel centre and the exact integer
-// predicates and the renderer apply unchanged (the optimum position would leave the grid:
-// that needs the explicit fixed-point positions the scattered-samples work brings).
+// the edge to–l (to–r) takes over. `to` keeps its position, or moves to a given one (the
+// merged vertex's best place, core/simplify/placement.h) on a mesh with explicit positions.
 //
 // A collapse is legal when (canCollapse):
 // - link condition: the vertices adjacent to both a and b are exactly e's l and r, so the mesh
@@ -66,10 +64,13 @@ void forEachEdgeAt(const Mesh& mesh, const VertexEdges& edges, uint32_t v, Visit
         for (f = turnAround(mesh, v, start, false); f != kNone; f = turnAround(mesh, v, f, false)) visit(f);
 }
 
-// A collapse of edge e: `from` is its endpoint b (b into a), or a (a into b).
+// A collapse of edge e: `from` is its endpoint b (b into a), or a (a into b). The merged
+// vertex stays at `to`'s place, or, if `moves`, goes to `target`.
 struct Collapse {
     uint32_t edge = kNone;
     bool b_into_a = true;
+    bool moves = false;
+    Position target = {0, 0};
 
     uint32_t from(const Mesh& mesh) const { return b_into_a ? mesh.vertices[edge].b : mesh.vertices[edge].a; }
     uint32_t to(const Mesh& mesh) const { return b_into_a ? mesh.vertices[edge].a : mesh.vertices[edge].b; }

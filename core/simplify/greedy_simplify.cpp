@@ -4,6 +4,7 @@
 #include <queue>
 
 #include "edge_collapse.h"
+#include "placement.h"
 #include "vertex_quadrics.h"
 
 namespace ddt {
@@ -12,15 +13,14 @@ namespace {
 
 struct Candidate {
     double cost;
-    uint32_t edge;
-    bool b_into_a;
+    Collapse collapse;
     uint32_t version;
 
     // The queue's top is the least cost, then the lowest edge id, then b into a.
     bool operator<(const Candidate& other) const {
         if (cost != other.cost) return cost > other.cost;
-        if (edge != other.edge) return edge > other.edge;
-        return b_into_a < other.b_into_a;
+        if (collapse.edge != other.collapse.edge) return collapse.edge > other.collapse.edge;
+        return collapse.b_into_a < other.collapse.b_into_a;
     }
 };
 
@@ -34,6 +34,7 @@ uint32_t usedVertexCount(const Mesh& mesh) {
 SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double max_error) {
     SimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
+    makePositionsExplicit(mesh);
     SimplifyStart start(mesh, image);
     const double error_limit = errorLimitOf(max_error);
     auto& [points, quadrics, edges] = start;
@@ -44,20 +45,25 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
     auto push = [&](uint32_t e) {
         ++version[e];
         blocked[e] = false;
-        queue.push({collapseCost(mesh, quadrics, points, {e, true}), e, true, version[e]});
-        queue.push({collapseCost(mesh, quadrics, points, {e, false}), e, false, version[e]});
+        for (bool b_into_a : {true, false}) {
+            const Collapse collapse{e, b_into_a};
+            Quadric merged = quadrics[collapse.from(mesh)];
+            merged += quadrics[collapse.to(mesh)];
+            const PlacedCollapse placed = placeCollapse(mesh, edges, points, merged, collapse);
+            queue.push({placed.cost, placed.collapse, version[e]});
+        }
     };
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) push(e);
 
     while (stats.vertices_after > target && !queue.empty()) {
         const Candidate next = queue.top();
         queue.pop();
-        if (next.version != version[next.edge] || removedEdge(mesh, next.edge)) continue;  // stale
-        const Collapse collapse{next.edge, next.b_into_a};
+        if (next.version != version[next.collapse.edge] || removedEdge(mesh, next.collapse.edge)) continue;  // stale
+        const Collapse collapse = next.collapse;
         // An illegal collapse waits until a change around it pushes its edge again. (Its other
         // direction is still queued, unless it came up first.)
         if (!canCollapse(mesh, edges, collapse)) {
-            blocked[next.edge] = true;
+            blocked[collapse.edge] = true;
             continue;
         }
         const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);

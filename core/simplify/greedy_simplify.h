@@ -2,10 +2,9 @@
 // core/lawson.h is for the flips): Garland and Heckbert's loop — always the legal collapse of
 // least quadric error next (core/simplify/quadric.h), ties by edge id and then b into a first —
 // until at most the target count of vertices is left. Each vertex starts with the quadric of
-// its triangles; a collapse adds `from`'s quadric to `to`'s. The cost of collapsing `from` into
-// `to` is the summed quadric at `to`'s point: `to` stays where it is (the best endpoint, see
-// edge_collapse.h), so no quadric is ever inverted and flat regions, whose quadrics are
-// singular, need no fallback.
+// its triangles; a collapse adds `from`'s quadric to `to`'s. The merged vertex goes where the
+// summed quadric is least, if that is legal, else stays at `to`'s place (placement.h); the
+// cost is the summed quadric there. The mesh's positions become explicit (core/mesh.h).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +28,7 @@ uint32_t usedVertexCount(const Mesh& mesh);
 // the picture's pixels, the vertices' colours, on entry; on return each kept vertex has the
 // colour its quadric calls for where it stands (the least-squares colour of the planes it
 // absorbed), within [0, 1] for integer sample types and, premultiplied, within its alpha.
+// The mesh's sides must be at most kMaxPositionedSide (glsl/fixed_position.h).
 //
 // With `max_error` > 0, no collapse is made whose error exceeds it, as a root-mean-square
 // distance to the planes the merged vertices stood for, in 8-bit levels (1/255 of the colour

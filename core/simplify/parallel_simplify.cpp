@@ -5,6 +5,7 @@
 #include <bit>
 
 #include "parallel.h"
+#include "placement.h"
 #include "vertex_quadrics.h"
 
 namespace ddt {
@@ -38,14 +39,14 @@ void forEachRegionVertex(const Mesh& mesh, const VertexEdges& edges, uint32_t e,
 }
 
 // A collapse of `from` changes the edges at `from` and at each of its neighbours (`to`
-// among them), and no other record; it changes the quadric of `to` only. An edge's candidate
-// reads only its own record, the edges at its two ends and their quadrics (canCollapse,
-// collapseCost), so only edges with an end marked here can have a new one.
-void markRingChanged(const Mesh& mesh, const VertexEdges& edges, uint32_t from, std::vector<uint8_t>& changed) {
-    changed[from] = 1;
-    forEachEdgeAt(mesh, edges, from, [&](uint32_t f) {
-        changed[mesh.vertices[f].a == from ? mesh.vertices[f].b : mesh.vertices[f].a] = 1;
-    });
+// among them), and no other record; it changes the quadric of `to` only, and, if it moves,
+// `to`'s position. An edge's candidate reads only its own record, the edges at its two ends,
+// their quadrics and the positions of the ends and their neighbours (canCollapse,
+// placeCollapse), so only edges with an end marked here, for `from` before the collapse and
+// for `to` after it if it moved, can have a new one.
+void markRingChanged(const Mesh& mesh, const VertexEdges& edges, uint32_t v, std::vector<uint8_t>& changed) {
+    changed[v] = 1;
+    forEachEdgeAt(mesh, edges, v, [&](uint32_t f) { changed[mesh.vertices[f].a == v ? mesh.vertices[f].b : mesh.vertices[f].a] = 1; });
 }
 
 void lowerTo(std::atomic<uint64_t>& slot, uint64_t value) {
@@ -61,12 +62,14 @@ CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uin
     if (removedEdge(mesh, edge)) return best;
     for (bool direction : {true, false}) {
         const Collapse collapse{edge, direction};
-        if (!canCollapse(mesh, start.edges, collapse)) continue;
-        const double cost = collapseCost(mesh, start.quadrics, start.points, collapse);
         const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
-        if (exceedsErrorLimit(cost, start.quadrics[from].area + start.quadrics[to].area, error_limit)) continue;
-        const uint64_t key = keyOf(cost, edge);
-        if (key < best.key) best = {key, direction};  // equal keys: b into a, tried first, stays
+        Quadric merged = start.quadrics[from];
+        merged += start.quadrics[to];
+        const PlacedCollapse placed = placeCollapse(mesh, start.edges, start.points, merged, collapse);
+        if (!placed.collapse.moves && !canCollapse(mesh, start.edges, collapse)) continue;  // a move is legal
+        if (exceedsErrorLimit(placed.cost, merged.area, error_limit)) continue;
+        const uint64_t key = keyOf(placed.cost, edge);
+        if (key < best.key) best = {key, direction, placed.collapse.moves, placed.collapse.target};  // equal keys: b into a stays
     }
     return best;
 }
@@ -150,12 +153,13 @@ std::vector<uint32_t> selectWinners(const Mesh& mesh, const VertexEdges& edges, 
 ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t target, double max_error) {
     ParallelSimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
+    makePositionsExplicit(mesh);
     SimplifyStart start(mesh, values);
     auto& [points, quadrics, edges] = start;
     const uint32_t edge_count = mesh.edgeCount();
     const double error_limit = errorLimitOf(max_error);
     std::vector<uint64_t> key(edge_count);
-    std::vector<uint8_t> b_into_a(edge_count);
+    std::vector<CollapseCandidate> candidates(edge_count);
     // The vertices whose edges the last round's collapses changed (markRingChanged); an edge
     // with neither end among them keeps its candidate (all are new at first).
     std::vector<uint8_t> changed(mesh.vertexCount(), 1);
@@ -170,9 +174,8 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
                     continue;
                 }
                 if (!changed[mesh.vertices[e].a] && !changed[mesh.vertices[e].b]) continue;
-                const CollapseCandidate best = bestCollapse(mesh, start, uint32_t(e), error_limit);
-                key[e] = best.key;
-                b_into_a[e] = best.b_into_a;
+                candidates[e] = bestCollapse(mesh, start, uint32_t(e), error_limit);
+                key[e] = candidates[e].key;
             }
         });
         // 2. Select, and keep the least winners, as many as the target still needs.
@@ -184,12 +187,13 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
         // 3. Collapse them.
         std::fill(changed.begin(), changed.end(), 0);
         for (uint32_t e : winners) {
-            const Collapse collapse{e, bool(b_into_a[e])};
+            const Collapse collapse{e, candidates[e].b_into_a, candidates[e].moves, candidates[e].target};
             const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
             markRingChanged(mesh, edges, from, changed);
             stats.last_cost = std::max(stats.last_cost, collapseKeyCost(key[e]));
             collapseEdge(mesh, edges, collapse);
             quadrics[to] += quadrics[from];
+            if (collapse.moves) markRingChanged(mesh, edges, to, changed);
         }
         stats.collapses += winners.size();
         stats.vertices_after -= uint32_t(winners.size());

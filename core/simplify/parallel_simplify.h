@@ -4,8 +4,9 @@
 // the order of collapses, and so the mesh, depend on thread timing.
 //
 // Each round:
-// 1. candidates: every edge's best legal collapse (canCollapse; the cheaper direction, b into
-//    a on ties), keyed by (its cost cut to 32 bits, tieOrder of its edge id);
+// 1. candidates: every edge's best legal collapse (canCollapse, with the merged vertex placed
+//    by placeCollapse; the cheaper direction, b into a on ties), keyed by (its cost cut to
+//    32 bits, tieOrder of its edge id);
 // 2. select among the cheapest: the keys in the least cost bins (costBin: 1/16 of an octave
 //    wide) that hold kKeysPerCollapse keys per collapse the round makes, or all keys, take
 //    part. A collapse's region is its two vertices and all their neighbours, which holds every
@@ -48,13 +49,15 @@ struct ParallelSimplifyStats : SimplifyStats {
     uint32_t rounds = 0;
 };
 
-// Step 1's result for one edge: the key of its best legal collapse, kNoCollapseKey if it has
-// none (or was removed), and its direction. A collapse that exceeds `error_limit`
-// (exceedsErrorLimit; 0: none) is not a candidate.
+// Step 1's result for one edge: the key of its best legal collapse (placed by placeCollapse),
+// kNoCollapseKey if it has none (or was removed), its direction and where the merged vertex
+// goes. A collapse that exceeds `error_limit` (exceedsErrorLimit; 0: none) is not a candidate.
 constexpr uint64_t kNoCollapseKey = UINT64_MAX;
 struct CollapseCandidate {
     uint64_t key = kNoCollapseKey;
     bool b_into_a = true;
+    bool moves = false;
+    Position target = {0, 0};
 
     bool operator==(const CollapseCandidate&) const = default;
 };

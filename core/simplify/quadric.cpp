@@ -26,19 +26,19 @@ Quadric& Quadric::operator+=(const Quadric& other) {
 
 double Quadric::at(const double* v, uint32_t n) const { return quadricValue(a, b, c, v, n); }
 
-bool Quadric::minimiseTail(double* v, uint32_t fixed, uint32_t n) const {
-    // ∂Q/∂v_t = 2 (A_tt v_t + A_tf v_f + b_t) = 0: Gaussian elimination with partial pivoting
-    // on the tail block (at most four unknowns).
-    const uint32_t m = n - fixed;
+bool Quadric::minimiseFree(double* v, uint32_t free, uint32_t n) const {
+    // ∂Q/∂v_i = 2 (Σ_j A_ij v_j + b_i) = 0 for the free i: Gaussian elimination with partial
+    // pivoting on the free block (at most six unknowns).
+    uint32_t index[kMaxQuadricDimensions], m = 0;
+    for (uint32_t k = 0; k < n; ++k)
+        if (free >> k & 1) index[m++] = k;
+    auto entry = [&](uint32_t i, uint32_t j) { return a[i <= j ? quadricIndex(i, j) : quadricIndex(j, i)]; };
     double system[kMaxQuadricDimensions][kMaxQuadricDimensions + 1];
     for (uint32_t i = 0; i < m; ++i) {
-        const uint32_t ti = fixed + i;
-        double rhs = -b[ti];
-        for (uint32_t f = 0; f < fixed; ++f) rhs -= a[quadricIndex(f, ti)] * v[f];
-        for (uint32_t j = 0; j < m; ++j) {
-            const uint32_t tj = fixed + j;
-            system[i][j] = a[ti <= tj ? quadricIndex(ti, tj) : quadricIndex(tj, ti)];
-        }
+        double rhs = -b[index[i]];
+        for (uint32_t k = 0; k < n; ++k)
+            if (!(free >> k & 1)) rhs -= entry(index[i], k) * v[k];
+        for (uint32_t j = 0; j < m; ++j) system[i][j] = entry(index[i], index[j]);
         system[i][m] = rhs;
     }
     for (uint32_t col = 0; col < m; ++col) {
@@ -52,13 +52,13 @@ bool Quadric::minimiseTail(double* v, uint32_t fixed, uint32_t n) const {
             for (uint32_t j = col; j <= m; ++j) system[r][j] -= factor * system[col][j];
         }
     }
-    double tail[kMaxQuadricDimensions];
+    double solution[kMaxQuadricDimensions];
     for (uint32_t i = m; i-- > 0;) {
         double sum = system[i][m];
-        for (uint32_t j = i + 1; j < m; ++j) sum -= system[i][j] * tail[j];
-        tail[i] = sum / system[i][i];
+        for (uint32_t j = i + 1; j < m; ++j) sum -= system[i][j] * solution[j];
+        solution[i] = sum / system[i][i];
     }
-    for (uint32_t i = 0; i < m; ++i) v[fixed + i] = tail[i];
+    for (uint32_t i = 0; i < m; ++i) v[index[i]] = solution[i];
     return true;
 }
 

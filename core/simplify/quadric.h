@@ -5,13 +5,15 @@
 // to their planes, Q(v) = vᵀAv + 2bᵀv + c, each plane weighted by its triangle's area.
 //
 // The picture is planar (all z = 0), so without colour every quadric would vanish: the colour
-// axes carry the error. Positions are in input pixels times kPositionWeight, against colour
-// values in [0, 1]. With a weight w, a plane of colour gradient g (range per pixel) measures
-// a colour error δ as δ / √(1 + (g/w)²): a large w makes the metric the colour error alone,
-// a small one lets vertices slide freely along hard edges. Measured (PSNR against the
-// original, five photographs at ×4 from quarter size, --simplify 0.1 and 0.05, means): w = 1,
-// 4 and 16 give 23.67 dB at 10 % and 22.55, 22.55, 22.52 dB at 5 %; the weight matters little.
-// (With the flips run again after simplifying, since dropped, 0.25 was 0.2 dB worse than 4.)
+// axes carry the error. Positions are in input pixels times kPositionWeight (4, in
+// quadric_value.h), against colour values in [0, 1]. With a weight w, a plane of colour
+// gradient g (range per pixel) measures a colour error δ as δ / √(1 + (g/w)²): a large w makes
+// the metric the colour error alone, a small one lets vertices slide freely along hard edges.
+// Measured (PSNR against the original, five photographs at ×4 from quarter size, means): with
+// the merged vertex at an endpoint, w = 1, 4 and 16 gave 23.67 dB at 10 % and 22.55, 22.55,
+// 22.52 dB at 5 %; at its optimal place (placement.h), at 10 %, 23.97, 23.98 and 23.98 dB: the
+// weight matters little. (With the flips run again after simplifying, since dropped, 0.25 was
+// 0.2 dB worse than 4.)
 #pragma once
 
 #include <cstdint>
@@ -19,8 +21,6 @@
 #include "simplify/quadric_value.h"
 
 namespace ddt {
-
-constexpr double kPositionWeight = 4.0;
 
 // Plain doubles, uploaded as they are to the simplification kernels.
 struct Quadric {
@@ -32,10 +32,11 @@ struct Quadric {
     Quadric& operator+=(const Quadric& other);
     // Q(v) for a point v of `n` coordinates (never below 0: rounding is clamped away).
     double at(const double* v, uint32_t n) const;
-    // The coordinates fixed..n−1 of v that minimise Q(v) with v's first `fixed` ones given: a
-    // vertex's best colour where it stands. False (v unchanged) if that block of A is singular,
-    // which needs planes that all contain a colour axis: vertical ones, not a picture's.
-    bool minimiseTail(double* v, uint32_t fixed, uint32_t n) const;
+    // The coordinates of v whose bits are set in `free` that minimise Q(v) with the others
+    // given: a vertex's best colour where it stands (the colour axes free), or its best place
+    // and colour (all free). False (v unchanged) if that block of A is singular: planes that
+    // all contain a free axis, as a flat region's contain the position axes.
+    bool minimiseFree(double* v, uint32_t free, uint32_t n) const;
 };
 
 // The area-weighted quadric of the plane through p, q and r (n coordinates each); `area` is

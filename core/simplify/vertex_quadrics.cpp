@@ -22,15 +22,6 @@ std::vector<Quadric> vertexQuadrics(const Mesh& mesh, const QuadricPoints& point
     return quadrics;
 }
 
-double collapseCost(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Collapse collapse) {
-    const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
-    Quadric sum = quadrics[from];
-    sum += quadrics[to];
-    double point[kMaxQuadricDimensions];
-    points.of(to, point);
-    return sum.at(point, points.n);
-}
-
 std::vector<bool> usedVertices(const Mesh& mesh) {
     std::vector<bool> used(mesh.vertexCount(), false);
     for (const EdgeVertices& v : mesh.vertices)
@@ -47,7 +38,7 @@ void setBestColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, cons
         if (!used[v]) continue;
         double point[kMaxQuadricDimensions];
         points.of(v, point);
-        if (!quadrics[v].minimiseTail(point, 2, points.n)) continue;
+        if (!quadrics[v].minimiseFree(point, points.colourAxes(), points.n)) continue;
         float* colour = &best[size_t(v) * c];
         for (uint32_t k = 0; k < c; ++k) colour[k] = bounded ? float(std::clamp(point[2 + k], 0.0, 1.0)) : float(point[2 + k]);
         if (image.hasAlpha())

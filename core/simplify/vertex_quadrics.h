@@ -1,6 +1,6 @@
 // What the serial and the parallel simplifier share: vertices as points of the quadrics'
-// space (quadric.h), each vertex's starting quadric, the collapse costs, and the kept
-// vertices' best colours at the end.
+// space (quadric.h), each vertex's starting quadric, and the kept vertices' best colours at
+// the end (the collapses' places and costs: placement.h).
 #pragma once
 
 #include <cstdint>
@@ -13,23 +13,29 @@
 
 namespace ddt {
 
-// A vertex as a point: its position times kPositionWeight, then its pixel's channels.
+// A vertex as a point: its position (in pixels) times kPositionWeight, then its pixel's
+// channels.
 struct QuadricPoints {
+    const Mesh& mesh;  // whose positions the simplifier moves
     const Image& image;
     uint32_t n;  // 2 + channels
 
     void of(uint32_t v, double* point) const {
-        point[0] = kPositionWeight * double(v % image.width);
-        point[1] = kPositionWeight * double(v / image.width);
+        at(positionOf(mesh, v), point);
         for (uint32_t k = 0; k < image.channels; ++k) point[2 + k] = image.pixels[size_t(v) * image.channels + k];
     }
+    // Sets the point's position coordinates to `p`'s.
+    static void at(Position p, double* point) {
+        point[0] = kPositionWeight * double(p.x) / kPositionOne;
+        point[1] = kPositionWeight * double(p.y) / kPositionOne;
+    }
+    // The bits of minimiseFree's `free` for the colour axes, and for all axes.
+    uint32_t colourAxes() const { return ((1u << n) - 1) & ~3u; }
+    uint32_t allAxes() const { return (1u << n) - 1; }
 };
 
 // Each vertex's quadric: the planes of its triangles, weighted by their areas.
 std::vector<Quadric> vertexQuadrics(const Mesh& mesh, const QuadricPoints& points);
-
-// The error of a collapse: the merged quadric at the point of the vertex that stays.
-double collapseCost(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Collapse collapse);
 
 // exceedsErrorLimit's limit for an error of `max_error` 8-bit levels (0: none).
 inline double errorLimitOf(double max_error) { return max_error > 0.0 ? (max_error / 255.0) * (max_error / 255.0) : 0.0; }
@@ -41,7 +47,7 @@ struct SimplifyStart {
     VertexEdges edges;
 
     SimplifyStart(const Mesh& mesh, const Image& values)
-        : points{values, 2 + values.channels}, quadrics(vertexQuadrics(mesh, points)), edges(mesh) {}
+        : points{mesh, values, 2 + values.channels}, quadrics(vertexQuadrics(mesh, points)), edges(mesh) {}
 };
 
 // Which vertex ids the mesh's edges use.

@@ -2,11 +2,19 @@
 #extension GL_GOOGLE_include_directive : require
 // Step 3 of a simplification round: the chosen winners collapse, one invocation each, as
 // core's collapseEdge does (its comments explain each change), and the vertex that stays takes
-// the other's quadric into its own. Winners' regions are disjoint and hold every record a
-// collapse reads or writes, so they run in any order to the same mesh.
+// the other's quadric into its own and, if the collapse moves it, its target as its position.
+// Winners' regions are disjoint and hold every record a collapse reads or writes, so they run
+// in any order to the same mesh.
 #include "collapse_rule.glsl"
 
 layout(binding = kSimplifyBindingCollapses, r32ui) uniform readonly uimageBuffer collapses;
+layout(binding = kSimplifyBindingTargets, rg32i) uniform readonly iimageBuffer targets;
+
+// Marks v and its neighbours changed, for the next round's candidates.
+void markRing(uint v) {
+    imageStore(changed, int(v), uvec4(1u));
+    for (Walk w = beginWalk(v); w.f != kNone; advance(w)) imageStore(changed, int(otherEnd(verticesOf(w.f), v)), uvec4(1u));
+}
 
 void setVertices(uint e, uvec4 v) { imageStore(edge_vertices, int(e), v); }
 void setNeighbours(uint e, uvec4 n) { imageStore(edge_neighbours, int(e), n); }
@@ -27,15 +35,13 @@ void main() {
     const uint index = push.first_edge + gl_GlobalInvocationID.x;
     if (index >= push.edge_count) return;
     const uint entry = imageLoad(collapses, int(index)).x;
-    const uint e = entry & ~kCollapseBIntoA;
-    const bool b_into_a = (entry & kCollapseBIntoA) != 0u;
+    const uint e = entry & ~(kCollapseBIntoA | kCollapseMoves);
+    const bool b_into_a = (entry & kCollapseBIntoA) != 0u, moves = (entry & kCollapseMoves) != 0u;
     const uvec4 ev = verticesOf(e), en = neighboursOf(e);  // (a, b, l, r), (bl, la, ar, rb)
     const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
     // `from` and its neighbours, whose edges change, for the next round's candidates (the host
     // cleared the marks; core's markRingChanged).
-    imageStore(changed, int(from), uvec4(1u));
-    for (Walk w = beginWalk(from); w.f != kNone; advance(w))
-        imageStore(changed, int(otherEnd(verticesOf(w.f), from)), uvec4(1u));
+    markRing(from);
     uint at_from[kMaxEdgesAtFrom];
     uint at_from_count = 0u;
     for (Walk w = beginWalk(from); w.f != kNone; advance(w)) at_from[at_from_count++] = w.f;
@@ -127,5 +133,11 @@ void main() {
     for (uint k = 0u; k < kQuadricDoubles; ++k) {
         const double sum = quadricWord(to, k) + quadricWord(from, k);
         imageStore(quadrics, int(to * kQuadricDoubles + k), uvec4(unpackDouble2x32(sum), 0u, 0u));
+    }
+    // A moved vertex changes the triangles around it: its new ring, marked after the records'
+    // changes (this invocation's own writes, which it reads back in program order).
+    if (moves) {
+        imageStore(positions, int(to), imageLoad(targets, int(e)));
+        markRing(to);
     }
 }

@@ -1,11 +1,13 @@
-// The legality and cost of a half-edge collapse as core/simplify/edge_collapse.h and
-// vertex_quadrics.h define them, over the texel buffers of simplify_layout.h; the walks
-// around a vertex follow core's forEachEdgeAt (the same edges; order does not matter here).
+// The legality, placement and cost of a half-edge collapse as core/simplify/edge_collapse.h
+// and placement.h define them, over the texel buffers of simplify_layout.h; the walks around a
+// vertex follow core's forEachEdgeAt (the same edges; order does not matter here). The
+// arithmetic is core's, operation for operation, in fp64 without fused multiply-add.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
 #include "../layout.h"
 #include "simplify_layout.h"
 #include "quadric_value.h"
+#include "../fixed_position.h"
 #include "../sederberg.h"
 
 layout(local_size_x = kGroupSize) in;
@@ -20,6 +22,7 @@ layout(binding = kSimplifyBindingEdgeNeighbours, rgba32ui) uniform uimageBuffer 
 layout(binding = kSimplifyBindingVertexFirst, r32ui) uniform uimageBuffer vertex_first;
 layout(binding = kSimplifyBindingValues, rgba32f) uniform readonly imageBuffer values;
 layout(binding = kSimplifyBindingQuadrics, rg32ui) uniform uimageBuffer quadrics;
+layout(binding = kSimplifyBindingPositions, rg32i) uniform iimageBuffer positions;
 
 uvec4 verticesOf(uint e) { return imageLoad(edge_vertices, int(e)); }
 uvec4 neighboursOf(uint e) { return imageLoad(edge_neighbours, int(e)); }
@@ -67,20 +70,31 @@ uint invocationEdge() {
     return push.listed != 0u ? imageLoad(listed, int(i)).x : i;
 }
 
-// The rectangle's sides v lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
-uint sidesOf(uint v) {
-    const uint x = v % push.width, y = v / push.width;
-    return uint(x == 0u) | uint(x == push.width - 1u) << 1 | uint(y == 0u) << 2 | uint(y == push.height - 1u) << 3;
-}
+ivec2 positionOf(uint v) { return imageLoad(positions, int(v)).xy; }
 
-// Whether triangle (p, q, r) at `from`, with `to` in its place, is not positive any more (one
-// of the collapsing edge's own triangles, which go, never is).
-bool folds(uint p, uint q, uint r, uint from, uint to) {
-    if (p == to || q == to || r == to) return false;
-    p = p == from ? to : p;
-    q = q == from ? to : q;
-    r = r == from ? to : r;
-    return orientation(p, q, r, push.width) <= 0.0lf;
+// core's rectangleSides: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
+uint sidesAt(ivec2 p) {
+    const int right = int(push.width - 1u) * kPositionOne, bottom = int(push.height - 1u) * kPositionOne;
+    return uint(p.x == 0) | uint(p.x == right) << 1 | uint(p.y == 0) << 2 | uint(p.y == bottom) << 3;
+}
+uint sidesOf(uint v) { return sidesAt(positionOf(v)); }
+
+// Whether every triangle around `centre` but e's own (those holding `other`) stays positive
+// with `from` and `to` at `target`.
+bool staysPositive(uint e, uint centre, uint other, uint from, uint to, ivec2 target) {
+    for (Walk w = beginWalk(centre); w.f != kNone; advance(w)) {
+        if (w.f == e) continue;
+        const uvec4 fv = verticesOf(w.f);
+        for (uint side = 0u; side < 2u; ++side) {
+            const uint p = side == 0u ? fv.x : fv.y, q = side == 0u ? fv.y : fv.x, r = side == 0u ? fv.z : fv.w;
+            if (r == kNone || p == other || q == other || r == other) continue;
+            const ivec2 a = p == from || p == to ? target : positionOf(p);
+            const ivec2 b = q == from || q == to ? target : positionOf(q);
+            const ivec2 c = r == from || r == to ? target : positionOf(r);
+            if (positionOrient(a.x, a.y, b.x, b.y, c.x, c.y) <= 0l) return false;
+        }
+    }
+    return true;
 }
 
 // core's canCollapse for edge e, in two parts: what holds for both directions (the valence
@@ -113,20 +127,20 @@ bool eitherWayLegal(uint e) {
 }
 
 // The rest of core's canCollapse, `from` e's endpoint b (b_into_a) or a: the rectangle kept,
-// no fold-over.
-bool directionLegal(uint e, bool b_into_a) {
+// no fold-over, with the merged vertex at `to`'s place or, if it `moves`, at `target`.
+bool directionLegal(uint e, bool b_into_a, bool moves, ivec2 target) {
     const uvec4 ev = verticesOf(e);
     const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
     const uint from_sides = sidesOf(from);
     if (bitCount(from_sides) >= 2) return false;                           // a corner
     if (from_sides != 0u && ev.z != kNone && ev.w != kNone) return false;  // a border vertex leaves its side
-    for (Walk w = beginWalk(from); w.f != kNone; advance(w)) {
-        if (w.f == e) continue;
-        const uvec4 fv = verticesOf(w.f);
-        if (fv.z != kNone && folds(fv.x, fv.y, fv.z, from, to)) return false;
-        if (fv.w != kNone && folds(fv.y, fv.x, fv.w, from, to)) return false;
+    if (moves) {
+        const uint kept = from_sides | sidesOf(to);
+        if ((sidesAt(target) & kept) != kept) return false;
+    } else {
+        target = positionOf(to);
     }
-    return true;
+    return staysPositive(e, from, to, from, to, target) && (!moves || staysPositive(e, to, from, from, to, target));
 }
 
 double quadricWord(uint v, uint k) { return packDouble2x32(imageLoad(quadrics, int(v * kQuadricDoubles + k)).xy); }
@@ -156,14 +170,104 @@ QuadricSum quadricSum(uint p, uint q) {
     return sum;
 }
 
-// core's collapseCost: the two quadrics' sum at the point of the vertex that stays (its
-// position times kPositionWeight = 4, then its channels).
-double collapseCost(QuadricSum sum, uint to) {
-    double point[kMaxQuadricDimensions];
+// A of the sum at (i, j), either way round.
+double entry(QuadricSum sum, uint i, uint j) { return sum.a[i <= j ? quadricIndex(i, j) : quadricIndex(j, i)]; }
+
+// core's Quadric::minimiseFree: the coordinates of v whose bits are set in `free` that minimise
+// the sum with the others given; false (v unchanged) where that block is singular.
+bool minimiseFree(QuadricSum sum, inout double v[kMaxQuadricDimensions], uint free, uint n) {
+    uint index[kMaxQuadricDimensions];
+    uint m = 0u;
+    for (uint k = 0u; k < n; ++k)
+        if ((free >> k & 1u) != 0u) index[m++] = k;
+    precise double system[kMaxQuadricDimensions][kMaxQuadricDimensions + 1u];
+    for (uint i = 0u; i < m; ++i) {
+        precise double rhs = -sum.b[index[i]];
+        for (uint k = 0u; k < n; ++k)
+            if ((free >> k & 1u) == 0u) rhs -= entry(sum, index[i], k) * v[k];
+        for (uint j = 0u; j < m; ++j) system[i][j] = entry(sum, index[i], index[j]);
+        system[i][m] = rhs;
+    }
+    for (uint col = 0u; col < m; ++col) {
+        uint pivot = col;
+        for (uint r = col + 1u; r < m; ++r)
+            if (abs(system[r][col]) > abs(system[pivot][col])) pivot = r;
+        if (abs(system[pivot][col]) < 1e-12lf) return false;
+        for (uint j = 0u; j <= m; ++j) {
+            const double swapped = system[col][j];
+            system[col][j] = system[pivot][j];
+            system[pivot][j] = swapped;
+        }
+        for (uint r = col + 1u; r < m; ++r) {
+            precise double factor = system[r][col] / system[col][col];
+            for (uint j = col; j <= m; ++j) system[r][j] -= factor * system[col][j];
+        }
+    }
+    precise double solution[kMaxQuadricDimensions];
+    for (uint i = m; i-- > 0u;) {
+        precise double total = system[i][m];
+        for (uint j = i + 1u; j < m; ++j) total -= system[i][j] * solution[j];
+        solution[i] = total / system[i][i];
+    }
+    for (uint i = 0u; i < m; ++i) v[index[i]] = solution[i];
+    return true;
+}
+
+// core's QuadricPoints: vertex v's colour with position p (pixels × kPositionWeight first).
+void pointAt(ivec2 p, uint v, out double point[kMaxQuadricDimensions]) {
     for (uint k = 0u; k < kMaxQuadricDimensions; ++k) point[k] = 0.0lf;
-    point[0] = 4.0lf * double(to % push.width);
-    point[1] = 4.0lf * double(to / push.width);
-    const vec4 value = imageLoad(values, int(to));
+    precise double x = kPositionWeight * double(p.x), y = kPositionWeight * double(p.y);
+    point[0] = x / double(kPositionOne);
+    point[1] = y / double(kPositionOne);
+    const vec4 value = imageLoad(values, int(v));
     for (uint k = 0u; k < push.channels; ++k) point[2u + k] = double(value[k]);
-    return quadricValue(sum.a, sum.b, sum.c, point, 2u + push.channels);
+}
+
+// core's costAt: the sum at position p with the colour that is best there (v's own if the
+// colour block is singular).
+double costAt(QuadricSum sum, ivec2 p, uint v) {
+    double point[kMaxQuadricDimensions];
+    pointAt(p, v, point);
+    const uint n = 2u + push.channels;
+    minimiseFree(sum, point, ((1u << n) - 1u) & ~3u, n);
+    return quadricValue(sum.a, sum.b, sum.c, point, n);
+}
+
+// core's snapped: a point's position coordinate on the fixed-point grid, −1 if not finite or
+// off the rectangle's [0, side − 1].
+int snapped(double coordinate, uint side) {
+    precise double scaled = coordinate / kPositionWeight;
+    precise double grid = roundEven(scaled * double(kPositionOne));
+    if (!(grid >= 0.0lf && grid <= double(side - 1u) * double(kPositionOne))) return -1;
+    return int(grid);
+}
+
+// core's placeCollapse, the mesh's positions explicit: where the merged vertex of e's collapse
+// in direction b_into_a goes, and its cost.
+struct Placed {
+    bool moves;
+    ivec2 target;
+    double cost;
+};
+Placed placeCollapse(QuadricSum sum, uint e, bool b_into_a) {
+    const uvec4 ev = verticesOf(e);
+    const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
+    const ivec2 at_to = positionOf(to);
+    const Placed stays = Placed(false, at_to, costAt(sum, at_to, to));
+    const uint from_sides = sidesOf(from), to_sides = sidesOf(to), n = 2u + push.channels;
+    uint free = (1u << n) - 1u;
+    if (from_sides != 0u || to_sides != 0u) {
+        if (bitCount(to_sides) != 1 || (from_sides != 0u && from_sides != to_sides)) return stays;
+        free &= (to_sides & 3u) != 0u ? ~1u : ~2u;
+    }
+    double point[kMaxQuadricDimensions];
+    pointAt(at_to, to, point);
+    if (!minimiseFree(sum, point, free, n)) return stays;
+    const int x = snapped(point[0], push.width), y = snapped(point[1], push.height);
+    if (x < 0 || y < 0) return stays;
+    const ivec2 target = ivec2(x, y);
+    if (target == at_to || !directionLegal(e, b_into_a, true, target)) return stays;
+    const double cost = costAt(sum, target, to);
+    if (!(cost <= stays.cost)) return stays;
+    return Placed(true, target, cost);
 }

@@ -23,6 +23,10 @@ const uint kMaxQuadricDimensions = 6u;
 // A's upper triangle, stored row by row.
 const uint kQuadricUpperSize = kMaxQuadricDimensions * (kMaxQuadricDimensions + 1u) / 2u;
 
+// Positions (in pixels) enter a quadric's point times this weight, against colour values in
+// [0, 1]: core/simplify/quadric.h measures it.
+const double kPositionWeight = 4.0;
+
 // Index of A[i][j], i <= j, in the upper triangle.
 DDT_FN uint quadricIndex(uint i, uint j) { return i * kMaxQuadricDimensions - i * (i - 1u) / 2u + (j - i); }
 

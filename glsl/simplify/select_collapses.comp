@@ -15,6 +15,7 @@ layout(binding = kSimplifyBindingCandidates, rgba32ui) uniform readonly uimageBu
 layout(binding = kSimplifyBindingLeastCost, r32ui) uniform coherent uimageBuffer least_cost;
 layout(binding = kSimplifyBindingLeastTie, r32ui) uniform coherent uimageBuffer least_tie;
 layout(binding = kSimplifyBindingWinners, rgba32ui) uniform writeonly uimageBuffer winners;
+layout(binding = kSimplifyBindingTargets, rg32i) uniform readonly iimageBuffer targets;
 layout(binding = kSimplifyBindingTallies, r32ui) uniform uimageBuffer tallies;
 layout(binding = kSimplifyBindingTaken, r32ui) uniform uimageBuffer taken;
 layout(binding = kSimplifyBindingEdgeState, r32ui) uniform uimageBuffer edge_state;
@@ -63,7 +64,9 @@ void main() {
     }
     if (push.step == kSelectWinners && all) {
         imageStore(edge_state, int(e), uvec4(kEdgeWon));
-        imageStore(winners, int(imageAtomicAdd(tallies, int(kTallyWinners), 1u)), candidate);
+        const uint slot = imageAtomicAdd(tallies, int(kTallyWinners), 1u);
+        imageStore(winners, int(2u * slot), candidate);
+        imageStore(winners, int(2u * slot + 1u), uvec4(imageLoad(targets, int(e))));
         takeRegion(ev);
     } else if (push.step == kSelectOut && !all) {
         imageStore(edge_state, int(e), uvec4(kEdgeOut));

@@ -24,19 +24,25 @@ const uint kSimplifyBindingEdgeNeighbours = 1u;  // rgba32ui per edge: bl, la, a
 const uint kSimplifyBindingVertexFirst = 2u;     // r32ui per vertex: where its walk starts (VertexEdges)
 const uint kSimplifyBindingValues = 3u;          // rgba32f per vertex: its channels
 const uint kSimplifyBindingQuadrics = 4u;        // rg32ui: kQuadricDoubles doubles per vertex, each as two words
-const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cost word, key's tie word, b into a, edge
+const uint kSimplifyBindingCandidates = 5u;      // rgba32ui per edge: key's cost word, key's tie word, kCandidate… bits, edge
 const uint kSimplifyBindingLeastCost = 6u;       // r32ui per vertex: the least cost word of the regions holding it
 const uint kSimplifyBindingLeastTie = 7u;        // r32ui per vertex: the least tie word among keys of that cost word
-const uint kSimplifyBindingWinners = 8u;         // rgba32ui per winner, in no order: as its candidate
-const uint kSimplifyBindingCollapses = 9u;       // r32ui per collapse to make: its edge, bit 31 set for b into a
+const uint kSimplifyBindingWinners = 8u;         // 2 rgba32ui per winner, in no order: its candidate, its target
+const uint kSimplifyBindingCollapses = 9u;       // r32ui per collapse to make: its edge | kCollapse… bits
 const uint kSimplifyBindingChanged = 10u;        // r32ui per vertex: 1 if the last round's collapses changed its edges
 const uint kSimplifyBindingTallies = 11u;        // r32ui: kCostBins keys per bin, kTallyWinners, kTallyListed
 const uint kSimplifyBindingListed = 12u;         // r32ui per listed edge, in no order (gather_edges.comp)
 const uint kSimplifyBindingTaken = 13u;          // r32ui per vertex: 1 in a winner's region
 const uint kSimplifyBindingEdgeState = 14u;      // r32ui per edge in a selection: kEdgeUndecided, …
-const uint kSimplifyBindingCount = 15u;
-// Bit of a collapse entry: b into a.
+const uint kSimplifyBindingPositions = 15u;      // rg32i per vertex: its position (core/mesh.h, explicit)
+const uint kSimplifyBindingTargets = 16u;        // rg32i per edge: its candidate's target, where it moves
+const uint kSimplifyBindingCount = 17u;
+// Bits of a candidate's third word: b into a; the merged vertex moves (to its target).
+const uint kCandidateBIntoA = 1u;
+const uint kCandidateMoves = 2u;
+// Bits of a collapse entry (below them, the edge): b into a; the merged vertex moves.
 const uint kCollapseBIntoA = 0x80000000u;
+const uint kCollapseMoves = 0x40000000u;
 // The most edges at the vertex a legal collapse removes: with the collapse's own edge and the
 // removed ones, it leaves at most kCollapseValenceBound at the other (which has two or more).
 const uint kMaxEdgesAtFrom = kCollapseValenceBound + 4u;
