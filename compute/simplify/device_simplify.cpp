@@ -233,7 +233,7 @@ ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image
     }
     device.download(mesh, start);
     compactEdges(mesh);
-    setBestColours(mesh, start.quadrics, start.points, values);
+    setVertexColours(mesh, start.quadrics, start.points, values);
     return stats;
 }
 

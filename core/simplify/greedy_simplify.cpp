@@ -85,7 +85,7 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
         });
     }
     compactEdges(mesh);
-    setBestColours(mesh, quadrics, points, image);
+    setVertexColours(mesh, quadrics, points, image);
     return stats;
 }
 

@@ -200,7 +200,7 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
         ++stats.rounds;
     }
     compactEdges(mesh);
-    setBestColours(mesh, quadrics, points, values);
+    setVertexColours(mesh, quadrics, points, values);
     return stats;
 }
 

@@ -12,7 +12,7 @@
 // the free axes (a flat region, whose planes leave the position undetermined), the merged
 // vertex stays at `to`'s place, Garland and Heckbert's fallback to the better endpoint (the
 // other direction is the other endpoint). The cost is Q at the place with the colour that is
-// best there, which the vertex then gets (setBestColours).
+// best there, the start of the vertex's final colour (setVertexColours).
 #pragma once
 
 #include "edge_collapse.h"

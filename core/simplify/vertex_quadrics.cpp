@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "colour_fit.h"
 #include "reconstruct.h"
 
 namespace ddt {
@@ -29,7 +30,7 @@ std::vector<bool> usedVertices(const Mesh& mesh) {
     return used;
 }
 
-void setBestColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image) {
+void setVertexColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image) {
     const std::vector<bool> used = usedVertices(mesh);
     const uint32_t c = image.channels;
     const bool bounded = boundedToUnit(image.sample_type);
@@ -44,7 +45,10 @@ void setBestColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, cons
         if (image.hasAlpha())
             for (uint32_t k = 0; k + 1 < c; ++k) colour[k] = std::min(colour[k], colour[c - 1]);
     }
-    image.pixels = std::move(best);
+    Image colours = image;
+    colours.pixels = std::move(best);
+    fitColours(mesh, image, colours);
+    image.pixels = std::move(colours.pixels);
 }
 
 }  // namespace ddt

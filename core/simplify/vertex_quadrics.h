@@ -1,6 +1,6 @@
 // What the serial and the parallel simplifier share: vertices as points of the quadrics'
-// space (quadric.h), each vertex's starting quadric, and the kept vertices' best colours at
-// the end (the collapses' places and costs: placement.h).
+// space (quadric.h), each vertex's starting quadric, and the kept vertices' colours at the end
+// (the collapses' places and costs: placement.h).
 #pragma once
 
 #include <cstdint>
@@ -53,8 +53,9 @@ struct SimplifyStart {
 // Which vertex ids the mesh's edges use.
 std::vector<bool> usedVertices(const Mesh& mesh);
 
-// Each kept vertex's colour: its quadric's minimum where it stands, within [0, 1] for integer
-// sample types and, premultiplied, within its alpha.
-void setBestColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image);
+// Each kept vertex's colour: its quadric's minimum where it stands, then all of them fitted
+// together to the picture's pixels (colour_fit.h), within [0, 1] for integer sample types and,
+// premultiplied, within its alpha. `image` holds the picture on entry.
+void setVertexColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image);
 
 }  // namespace ddt

@@ -1,0 +1,28 @@
+// The kept vertices' colours of a simplified mesh, fitted to the picture: the colours whose
+// linear surface comes closest, in least squares, to the picture's pixels at their centres.
+//
+// The quadrics give each vertex the colour that fits the planes it absorbed, one vertex at a
+// time; neighbours do not see each other's choice. The surface at a pixel mixes up to three
+// vertices, so fitting them together is better: measured at 10 % of the vertices (five
+// photographs ×4 from quarter size, PSNR against the original), 23.98 dB with the quadrics'
+// colours, 24.25 dB fitted (+0.09 to +0.41 per photograph).
+//
+// The fit minimises Σ_pixels |surface(centre) − pixel|² + μ Σ_vertices |colour − start|²
+// per channel, the start being the quadric colour: μ = 1e-3 (a pixel weighs λ² ≤ 1, a vertex
+// has tens) only holds a vertex no pixel centre sees, which thin triangles can leave. Conjugate
+// gradients from the start, a fixed sum order (deterministic), until the residual is 1e-6 of
+// the first (about 10 iterations on the photographs). Colours of integer sample types are then
+// clamped to [0, 1], premultiplied ones to at most their alpha.
+#pragma once
+
+#include "image.h"
+#include "mesh.h"
+
+namespace ddt {
+
+// `colours` holds each vertex's starting colour (per vertex id, as the picture's pixels are
+// laid out) on entry and the fitted one on return; `picture` is the picture the mesh was made
+// from (the same size).
+void fitColours(const Mesh& mesh, const Image& picture, Image& colours);
+
+}  // namespace ddt
