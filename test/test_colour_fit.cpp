@@ -31,7 +31,7 @@ TEST_CASE("colour fit: a plane is found again on a simplified mesh") {
     // Vertex colours on the plane z = 0.3 + x/64 − y/128 make the surface match every pixel of
     // that plane: the least-squares solution, found from a start off the plane by up to 0.2
     // (μ = 1e-3 pulls towards the start, against several pixels per vertex, and the conjugate
-    // gradients stop at 1e-6 of the first residual: within 1e-3 of the plane).
+    // gradients stop at 1e-6 of the right-hand side: within 1e-3 of the plane).
     std::mt19937 rng(5);
     const uint32_t w = 40, h = 30;
     Mesh mesh = optimisedGridMesh(randomImage(rng, w, h, 1));

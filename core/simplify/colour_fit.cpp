@@ -73,7 +73,7 @@ void fitChannel(const PixelSamples& samples, const Image& picture, Image& colour
     applyNormal(samples, x, product);
     for (size_t v = 0; v < vertices; ++v) residual[v] = direction[v] = rhs[v] - product[v];
     double norm = dot(residual, residual);
-    const double stop = norm * kResidualShare * kResidualShare;
+    const double stop = dot(rhs, rhs) * kResidualShare * kResidualShare;
     for (int iteration = 0; iteration < kMaxIterations && norm > stop; ++iteration) {
         applyNormal(samples, direction, product);
         const double step = norm / dot(direction, product);

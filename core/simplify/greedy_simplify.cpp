@@ -34,6 +34,7 @@ uint32_t usedVertexCount(const Mesh& mesh) {
 SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double max_error) {
     SimplifyStats stats;
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
+    if (stats.vertices_after <= target) return stats;  // nothing to do: the picture is the mesh's colours
     makePositionsExplicit(mesh);
     SimplifyStart start(mesh, image);
     const double error_limit = errorLimitOf(max_error);
