@@ -46,13 +46,10 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
     auto push = [&](uint32_t e) {
         ++version[e];
         blocked[e] = false;
-        for (bool b_into_a : {true, false}) {
-            const Collapse collapse{e, b_into_a};
-            Quadric merged = quadrics[collapse.from(mesh)];
-            merged += quadrics[collapse.to(mesh)];
-            const PlacedCollapse placed = placeCollapse(mesh, edges, points, merged, collapse);
+        Quadric merged = quadrics[mesh.vertices[e].a];
+        merged += quadrics[mesh.vertices[e].b];
+        for (const PlacedCollapse& placed : placeCollapses(mesh, edges, points, merged, e))
             queue.push({placed.cost, placed.collapse, version[e]});
-        }
     };
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) push(e);
 

@@ -42,7 +42,7 @@ void forEachRegionVertex(const Mesh& mesh, const VertexEdges& edges, uint32_t e,
 // among them), and no other record; it changes the quadric of `to` only, and, if it moves,
 // `to`'s position. An edge's candidate reads only its own record, the edges at its two ends,
 // their quadrics and the positions of the ends and their neighbours (canCollapse,
-// placeCollapse), so only edges with an end marked here, for `from` before the collapse and
+// placeCollapses), so only edges with an end marked here, for `from` before the collapse and
 // for `to` after it if it moved, can have a new one.
 void markRingChanged(const Mesh& mesh, const VertexEdges& edges, uint32_t v, std::vector<uint8_t>& changed) {
     changed[v] = 1;
@@ -60,16 +60,15 @@ void lowerTo(std::atomic<uint64_t>& slot, uint64_t value) {
 CollapseCandidate bestCollapse(const Mesh& mesh, const SimplifyStart& start, uint32_t edge, double error_limit) {
     CollapseCandidate best;
     if (removedEdge(mesh, edge)) return best;
-    for (bool direction : {true, false}) {
-        const Collapse collapse{edge, direction};
-        const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
-        Quadric merged = start.quadrics[from];
-        merged += start.quadrics[to];
-        const PlacedCollapse placed = placeCollapse(mesh, start.edges, start.points, merged, collapse);
-        if (!placed.collapse.moves && !canCollapse(mesh, start.edges, collapse)) continue;  // a move is legal
-        if (exceedsErrorLimit(placed.cost, merged.area, error_limit)) continue;
-        const uint64_t key = keyOf(placed.cost, edge);
-        if (key < best.key) best = {key, direction, placed.collapse.moves, placed.collapse.target};  // equal keys: b into a stays
+    Quadric merged = start.quadrics[mesh.vertices[edge].a];
+    merged += start.quadrics[mesh.vertices[edge].b];
+    const std::array<PlacedCollapse, 2> placed = placeCollapses(mesh, start.edges, start.points, merged, edge);
+    for (int direction : {1, 0}) {  // b into a first: it stays on equal keys
+        const Collapse& collapse = placed[direction].collapse;
+        if (!collapse.moves && !canCollapse(mesh, start.edges, collapse)) continue;  // a move is legal
+        if (exceedsErrorLimit(placed[direction].cost, merged.area, error_limit)) continue;
+        const uint64_t key = keyOf(placed[direction].cost, edge);
+        if (key < best.key) best = {key, collapse.b_into_a, collapse.moves, collapse.target};
     }
     return best;
 }

@@ -5,7 +5,7 @@
 //
 // Each round:
 // 1. candidates: every edge's best legal collapse (canCollapse, with the merged vertex placed
-//    by placeCollapse; the cheaper direction, b into a on ties), keyed by (its cost cut to
+//    by placeCollapses; the cheaper direction, b into a on ties), keyed by (its cost cut to
 //    32 bits, tieOrder of its edge id);
 // 2. select among the cheapest: the keys in the least cost bins (costBin: 1/16 of an octave
 //    wide) that hold kKeysPerCollapse keys per collapse the round makes, or all keys, take
@@ -49,7 +49,7 @@ struct ParallelSimplifyStats : SimplifyStats {
     uint32_t rounds = 0;
 };
 
-// Step 1's result for one edge: the key of its best legal collapse (placed by placeCollapse),
+// Step 1's result for one edge: the key of its best legal collapse (placed by placeCollapses),
 // kNoCollapseKey if it has none (or was removed), its direction and where the merged vertex
 // goes. A collapse that exceeds `error_limit` (exceedsErrorLimit; 0: none) is not a candidate.
 constexpr uint64_t kNoCollapseKey = UINT64_MAX;

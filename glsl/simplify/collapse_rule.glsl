@@ -242,32 +242,51 @@ int snapped(double coordinate, uint side) {
     return int(grid);
 }
 
-// core's placeCollapse, the mesh's positions explicit: where the merged vertex of e's collapse
-// in direction b_into_a goes, and its cost.
+// A collapse's place and cost (core's PlacedCollapse).
 struct Placed {
     bool moves;
     ivec2 target;
     double cost;
 };
-Placed placeCollapse(QuadricSum sum, uint e, bool b_into_a) {
+
+// core's moveTo: the least point of the sum with the axes `free` (the others `to`'s), snapped,
+// if legal and not `to`'s place, with its cost; moves = false otherwise.
+Placed moveTo(QuadricSum sum, uint e, bool b_into_a, uint free) {
     const uvec4 ev = verticesOf(e);
-    const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
+    const uint to = b_into_a ? ev.x : ev.y, n = 2u + push.channels;
+    const Placed none = Placed(false, ivec2(0), 0.0lf);
     const ivec2 at_to = positionOf(to);
-    const Placed stays = Placed(false, at_to, costAt(sum, at_to, to));
-    const uint from_sides = sidesOf(from), to_sides = sidesOf(to), n = 2u + push.channels;
-    uint free = (1u << n) - 1u;
-    if (from_sides != 0u || to_sides != 0u) {
-        if (bitCount(to_sides) != 1 || (from_sides != 0u && from_sides != to_sides)) return stays;
-        free &= (to_sides & 3u) != 0u ? ~1u : ~2u;
-    }
     double point[kMaxQuadricDimensions];
     pointAt(at_to, to, point);
-    if (!minimiseFree(sum, point, free, n)) return stays;
+    if (!minimiseFree(sum, point, free, n)) return none;
     const int x = snapped(point[0], push.width), y = snapped(point[1], push.height);
-    if (x < 0 || y < 0) return stays;
+    if (x < 0 || y < 0) return none;
     const ivec2 target = ivec2(x, y);
-    if (target == at_to || !directionLegal(e, b_into_a, true, target)) return stays;
-    const double cost = costAt(sum, target, to);
-    if (!(cost <= stays.cost)) return stays;
-    return Placed(true, target, cost);
+    if (target == at_to || !directionLegal(e, b_into_a, true, target)) return none;
+    precise double px = kPositionWeight * double(target.x), py = kPositionWeight * double(target.y);
+    point[0] = px / double(kPositionOne);
+    point[1] = py / double(kPositionOne);
+    if (!minimiseFree(sum, point, ((1u << n) - 1u) & ~3u, n)) return none;
+    return Placed(true, target, quadricValue(sum.a, sum.b, sum.c, point, n));
+}
+
+// core's placeCollapses, the mesh's positions explicit: e's collapses placed, [0] a into b,
+// [1] b into a (their legality at `to`'s place not checked).
+void placeCollapses(QuadricSum sum, uint e, out Placed placed[2]) {
+    const uvec4 ev = verticesOf(e);
+    const uint sides[2] = uint[2](sidesOf(ev.x), sidesOf(ev.y));
+    const uint all = (1u << (2u + push.channels)) - 1u;
+    Placed inside = Placed(false, ivec2(0), 0.0lf);
+    if (sides[0] == 0u && sides[1] == 0u) inside = moveTo(sum, e, true, all);
+    for (uint direction = 0u; direction < 2u; ++direction) {
+        const uint from_sides = sides[direction], to_sides = sides[1u - direction];
+        const uint to = direction == 1u ? ev.x : ev.y;
+        const ivec2 at_to = positionOf(to);
+        const Placed stays = Placed(false, at_to, costAt(sum, at_to, to));
+        Placed moved = Placed(false, ivec2(0), 0.0lf);
+        if (inside.moves) moved = inside;
+        else if (bitCount(to_sides) == 1 && (from_sides == 0u || from_sides == to_sides))
+            moved = moveTo(sum, e, direction == 1u, all & ((to_sides & 3u) != 0u ? ~1u : ~2u));
+        placed[direction] = moved.moves && moved.cost <= stays.cost ? moved : stays;
+    }
 }
