@@ -67,9 +67,7 @@ IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const std::vec
     const uint32_t w = input.width, h = input.height;
     const double W = out.width, H = out.height;
     MeshBuilder builder(input, out, height);
-    auto at = [&](uint32_t v) {
-        return positions.empty() ? Position{int32_t(v % w) * kPositionOne, int32_t(v / w) * kPositionOne} : positions[v];
-    };
+    auto at = [&](uint32_t v) { return positions.empty() ? gridPosition(v, w) : positions[v]; };
     // The vertices the triangles use, in id order (all of the grid's but for a simplified mesh).
     std::vector<uint32_t> index(size_t(w) * h, kNone);
     for (uint32_t v : triangles) index[v] = 0;

@@ -86,11 +86,7 @@ void makePositionsExplicit(Mesh& mesh) {
 }
 
 int orientationSign(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r) {
-    if (mesh.positions.empty()) {
-        const double twice_area = orientation(p, q, r, mesh.width);  // exact: glsl/sederberg.h
-        return (twice_area > 0.0) - (twice_area < 0.0);
-    }
-    const Position a = mesh.positions[p], b = mesh.positions[q], c = mesh.positions[r];
+    const Position a = positionOf(mesh, p), b = positionOf(mesh, q), c = positionOf(mesh, r);
     const int64_t twice_area = positionOrient(a.x, a.y, b.x, b.y, c.x, c.y);
     return (twice_area > 0) - (twice_area < 0);
 }
@@ -247,6 +243,7 @@ std::string checkMesh(const Mesh& mesh) {
     const uint32_t w = mesh.width, h = mesh.height;
     if (w < 2 || h < 2) return "mesh smaller than 2x2";
     if (mesh.neighbours.size() != mesh.vertices.size()) return "wrong number of edges";
+    if (!mesh.positions.empty() && mesh.positions.size() != mesh.vertexCount()) return "wrong number of positions";
     std::vector<uint64_t> keys;
     keys.reserve(mesh.edgeCount());
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
@@ -277,20 +274,13 @@ std::string checkMesh(const Mesh& mesh) {
     for (const EdgeVertices& v : mesh.vertices) used[v.a] = used[v.b] = true;
     const int64_t used_count = std::count(used.begin(), used.end(), true);
     if (used_count - int64_t(mesh.edgeCount()) + int64_t(triangles.size()) != 1) return "wrong number of triangles";
-    if (mesh.positions.empty()) {
-        double twice_area = 0.0;
-        for (const Triangle& t : triangles) twice_area += orientation(t.v0, t.v1, t.v2, w);
-        if (twice_area != 2.0 * double(cells)) return "total area differs from (w-1)(h-1)";
-    } else {
-        if (mesh.positions.size() != mesh.vertexCount()) return "wrong number of positions";
-        // Each triangle's doubled area is below 2^61 (glsl/fixed_position.h); their sum may not be.
-        __int128 twice_area = 0;
-        for (const Triangle& t : triangles) {
-            const Position p = mesh.positions[t.v0], q = mesh.positions[t.v1], r = mesh.positions[t.v2];
-            twice_area += positionOrient(p.x, p.y, q.x, q.y, r.x, r.y);
-        }
-        if (twice_area != __int128(2 * cells) * kPositionOne * kPositionOne) return "total area differs from (w-1)(h-1)";
+    // Each triangle's doubled area is below 2^61 (glsl/fixed_position.h); their sum may not be.
+    __int128 twice_area = 0;
+    for (const Triangle& t : triangles) {
+        const Position p = positionOf(mesh, t.v0), q = positionOf(mesh, t.v1), r = positionOf(mesh, t.v2);
+        twice_area += positionOrient(p.x, p.y, q.x, q.y, r.x, r.y);
     }
+    if (twice_area != __int128(2 * cells) * kPositionOne * kPositionOne) return "total area differs from (w-1)(h-1)";
     return "";
 }
 

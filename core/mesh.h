@@ -67,16 +67,18 @@ struct Mesh {
 
 // Vertex v's position (explicit, or its pixel centre's; the sides must then be at most
 // kMaxPositionedSide).
+inline Position gridPosition(uint32_t v, uint32_t width) {
+    return {int32_t(v % width) * kPositionOne, int32_t(v / width) * kPositionOne};
+}
 inline Position positionOf(const Mesh& mesh, uint32_t v) {
-    if (!mesh.positions.empty()) return mesh.positions[v];
-    return {int32_t(v % mesh.width) * kPositionOne, int32_t(v / mesh.width) * kPositionOne};
+    return mesh.positions.empty() ? gridPosition(v, mesh.width) : mesh.positions[v];
 }
 
 // Gives every vertex its explicit position, its pixel centre's (a no-op if it has them).
 // Needs sides of at most kMaxPositionedSide.
 void makePositionsExplicit(Mesh& mesh);
 
-// The sign of orient(p, q, r) at the vertices' positions: +1, 0 or −1, exact.
+// The sign of orient(p, q, r) at the vertices' positions (positionOf): +1, 0 or −1, exact.
 int orientationSign(const Mesh& mesh, uint32_t p, uint32_t q, uint32_t r);
 
 // The sides of the rectangle position p lies on: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
@@ -135,8 +137,9 @@ void forEachTriangle(const Mesh& mesh, F f) {
 
 // Checks the mesh: every record consistent with its neighbours, every triangle positive,
 // interior edges shared by two triangles, boundary edges along the rectangle's sides with
-// one, Euler's count for a disk, total area (w−1)(h−1), no duplicate edge. Returns "" if
-// valid, else the first problem found.
+// one, Euler's count for a disk, total area (w−1)(h−1), no duplicate edge, all at the
+// vertices' positions (positionOf: sides of at most kMaxPositionedSide). Returns "" if valid,
+// else the first problem found.
 std::string checkMesh(const Mesh& mesh);
 
 }  // namespace ddt

@@ -158,11 +158,11 @@ GridBounds gridBoundsOf(const RenderWindow& window, uint32_t crop_w, uint32_t ro
     return grid;
 }
 
-// The window's samples in [lo, hi] along one axis (coordinates ascending): the first and last
-// output index, first > last if none.
+// The window's samples in [lo, hi] along one axis (coordinates ascending): output indices
+// [first, end), empty if none.
 std::pair<uint32_t, uint32_t> samplesWithin(const std::vector<int64_t>& s, uint32_t begin, int64_t lo, int64_t hi) {
-    const auto first = std::lower_bound(s.begin(), s.end(), lo), end = std::upper_bound(s.begin(), s.end(), hi);
-    return {begin + uint32_t(first - s.begin()), begin + uint32_t(end - s.begin()) - 1};
+    const auto first = std::lower_bound(s.begin(), s.end(), lo), end = std::upper_bound(first, s.end(), hi);
+    return {begin + uint32_t(first - s.begin()), begin + uint32_t(end - s.begin())};
 }
 
 // Calls sample(x, y, l0, l1, l2) for the samples of window columns [x_lo, x_hi] and rows
@@ -260,12 +260,11 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
             const Triangle& t = triangles_[i];
             const uint32_t ids[3] = {t.v0, t.v1, t.v2};
             for (int k = 0; k < 3; ++k) px[k] = positions_[ids[k]].x, py[k] = positions_[ids[k]].y;
-            const auto [x_lo, x_hi] =
+            const auto [x_lo, x_end] =
                 samplesWithin(axes.su, window.x_begin, std::min({px[0], px[1], px[2]}), std::max({px[0], px[1], px[2]}));
-            const auto [y_lo, y_hi] =
+            const auto [y_lo, y_end] =
                 samplesWithin(axes.sv, window.y_begin, std::min({py[0], py[1], py[2]}), std::max({py[0], py[1], py[2]}));
-            if (x_lo > x_hi || y_lo > y_hi || x_hi == UINT32_MAX || y_hi == UINT32_MAX) continue;
-            scanTriangle(axes, px, py, x_lo, x_hi, y_lo, y_hi, visit(i));
+            if (x_lo < x_end && y_lo < y_end) scanTriangle(axes, px, py, x_lo, x_end - 1, y_lo, y_end - 1, visit(i));
         }
         return;
     }

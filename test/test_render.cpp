@@ -188,62 +188,42 @@ TEST_CASE("render: rendering in bands equals rendering at once, bit for bit") {
     }
 }
 
-TEST_CASE("render: a linear image renders to the exact linear function") {
-    // z = c + a·x + b·y per channel (dyadic values, exact in float). Piecewise-linear
-    // interpolation reproduces a plane on any triangulation; the weights are exact integer
-    // edge functions divided once in double (~1e-16), and the output is a float (2^-24
-    // relative, < 6e-8 for values ≤ 1), so 1e-6 is a tolerance with margin.
+TEST_CASE("render: a linear image renders to the exact linear function, at pixel centres or moved vertices") {
+    // z = c + a·x + b·y per channel (dyadic values, exact in float), each vertex's value the
+    // plane at its position: piecewise-linear interpolation reproduces a plane on any
+    // triangulation, at the sample's position (raster.h's exact one on the grid's vertices, the
+    // snapped one, 1/1024 pixel, on moved vertices). The weights are exact integer edge
+    // functions divided once in double (~1e-16), and the output is a float (2^-24 relative,
+    // < 6e-8 for values ≤ 1), so 1e-6 is a tolerance with margin.
     std::mt19937 rng(5);
     const double planes[3][3] = {{0.125, 1.0 / 64, 1.0 / 32}, {0.75, -1.0 / 32, 1.0 / 128}, {0.5, 0.0, -1.0 / 16}};
     for (auto [w, h, s] : {std::tuple{9u, 7u, 2.5}, {5u, 8u, 7.3}, {4u, 4u, 8.0}}) {
-        std::vector<float> pixels;
-        for (uint32_t y = 0; y < h; ++y)
-            for (uint32_t x = 0; x < w; ++x)
-                for (const auto& p : planes) pixels.push_back(float(p[0] + p[1] * x + p[2] * y));
-        ddt::Image image = makeImage(w, h, 3, pixels);
-        const ddt::Mesh mesh = scrambledMesh(w, h, rng);
-        const OutputSize out = ddt::scaledOutputSize(w, h, s);
-        const ddt::Image rendered = ddt::renderImage(mesh, image, out);
-        double worst = 0.0;
-        for (uint32_t y = 0; y < out.height; ++y)
-            for (uint32_t x = 0; x < out.width; ++x) {
-                const double u = double(sampleUnits(x, w, out.width)) / (2.0 * out.width);
-                const double v = double(sampleUnits(y, h, out.height)) / (2.0 * out.height);
-                for (int k = 0; k < 3; ++k) {
-                    const double expected = planes[k][0] + planes[k][1] * u + planes[k][2] * v;
-                    worst = std::max(worst, std::abs(rendered.pixels[(size_t(y) * out.width + x) * 3 + k] - expected));
-                }
+        for (bool moved : {false, true}) {
+            const ddt::Mesh mesh = moved ? ddt::test::movedMesh(w, h, rng) : scrambledMesh(w, h, rng);
+            REQUIRE(ddt::checkMesh(mesh).empty());
+            std::vector<float> pixels;
+            for (uint32_t v = 0; v < w * h; ++v) {
+                const ddt::Position p = ddt::positionOf(mesh, v);
+                for (const auto& plane : planes) pixels.push_back(float(plane[0] + plane[1] * p.x / 1024.0 + plane[2] * p.y / 1024.0));
             }
-        INFO(w << "x" << h << " s=" << s);
-        CHECK(worst < 1e-6);
-    }
-}
-
-TEST_CASE("render: on a mesh with explicit positions, a linear image renders to the exact linear function") {
-    // As above, with each vertex's value the plane at its moved position and each sample at
-    // its snapped one (1/1024 pixel): the same 1e-6 for the same reasons.
-    std::mt19937 rng(6);
-    const double planes[2][3] = {{0.25, 1.0 / 64, -1.0 / 32}, {0.5, -1.0 / 16, 1.0 / 128}};
-    for (auto [w, h, s] : {std::tuple{9u, 7u, 2.5}, {5u, 8u, 7.3}, {4u, 4u, 8.0}}) {
-        const ddt::Mesh mesh = ddt::test::movedMesh(w, h, rng);
-        REQUIRE(ddt::checkMesh(mesh).empty());
-        std::vector<float> pixels;
-        for (const ddt::Position& p : mesh.positions)
-            for (const auto& plane : planes) pixels.push_back(float(plane[0] + plane[1] * p.x / 1024.0 + plane[2] * p.y / 1024.0));
-        const ddt::Image image = makeImage(w, h, 2, pixels);
-        const OutputSize out = ddt::scaledOutputSize(w, h, s);
-        const ddt::Image rendered = ddt::renderImage(mesh, image, out);
-        double worst = 0.0;
-        for (uint32_t y = 0; y < out.height; ++y)
-            for (uint32_t x = 0; x < out.width; ++x) {
-                const double u = snappedUnits(x, w, out.width) / 1024.0, v = snappedUnits(y, h, out.height) / 1024.0;
-                for (int k = 0; k < 2; ++k) {
-                    const double expected = planes[k][0] + planes[k][1] * u + planes[k][2] * v;
-                    worst = std::max(worst, std::abs(rendered.pixels[(size_t(y) * out.width + x) * 2 + k] - expected));
+            const ddt::Image image = makeImage(w, h, 3, pixels);
+            const OutputSize out = ddt::scaledOutputSize(w, h, s);
+            const ddt::Image rendered = ddt::renderImage(mesh, image, out);
+            auto at = [&](uint32_t i, uint32_t in, uint32_t size) {
+                return moved ? snappedUnits(i, in, size) / 1024.0 : double(sampleUnits(i, in, size)) / (2.0 * size);
+            };
+            double worst = 0.0;
+            for (uint32_t y = 0; y < out.height; ++y)
+                for (uint32_t x = 0; x < out.width; ++x) {
+                    const double u = at(x, w, out.width), v = at(y, h, out.height);
+                    for (int k = 0; k < 3; ++k) {
+                        const double expected = planes[k][0] + planes[k][1] * u + planes[k][2] * v;
+                        worst = std::max(worst, std::abs(rendered.pixels[(size_t(y) * out.width + x) * 3 + k] - expected));
+                    }
                 }
-            }
-        INFO(w << "x" << h << " s=" << s);
-        CHECK(worst < 1e-6);
+            INFO(w << "x" << h << " s=" << s << (moved ? ", moved" : ", scrambled"));
+            CHECK(worst < 1e-6);
+        }
     }
 }
 

@@ -16,35 +16,38 @@ constexpr double kStartWeight = 1e-3;
 constexpr double kResidualShare = 1e-6;
 constexpr int kMaxIterations = 64;
 
-// The pixel centres as samples of the mesh: each one's triangle and weights.
+// The pixel centres as samples of the mesh: triangle t's weights are hits[ends[t − 1], ends[t]).
 struct PixelSamples {
+    std::vector<Triangle> triangles;
+    std::vector<uint32_t> ends;
     std::vector<SampleHit> hits;
-    std::vector<Triangle> triangle_of;  // per hit
+
+    // Calls visit(triangle, hit) for every sample, triangle by triangle.
+    template <typename Visit>
+    void forEach(Visit visit) const {
+        for (size_t t = 0, i = 0; t < triangles.size(); ++t)
+            for (; i < ends[t]; ++i) visit(triangles[t], hits[i]);
+    }
 };
 
 PixelSamples pixelSamples(const Mesh& mesh, const Image& colours) {
     const MeshRenderer locator(mesh, colours);
-    const uint32_t count = uint32_t(locator.triangles().size());
-    PixelSamples samples;
-    std::vector<uint32_t> ends(count);
-    locator.locateSamples({colours.width, colours.height}, 0, count, samples.hits, ends.data());
-    samples.triangle_of.reserve(samples.hits.size());
-    for (uint32_t t = 0, i = 0; t < count; ++t)
-        for (; i < ends[t]; ++i) samples.triangle_of.push_back(locator.triangles()[t]);
+    PixelSamples samples{locator.triangles(), std::vector<uint32_t>(locator.triangles().size()), {}};
+    locator.locateSamples({colours.width, colours.height}, 0, uint32_t(samples.triangles.size()), samples.hits,
+                          samples.ends.data());
     return samples;
 }
 
 // y = (LᵀL + μI) x, L the matrix of the samples' weights.
 void applyNormal(const PixelSamples& samples, const std::vector<double>& x, std::vector<double>& y) {
     for (size_t v = 0; v < x.size(); ++v) y[v] = kStartWeight * x[v];
-    for (size_t i = 0; i < samples.hits.size(); ++i) {
-        const Triangle& t = samples.triangle_of[i];
-        const float* l = samples.hits[i].weights;
+    samples.forEach([&](const Triangle& t, const SampleHit& hit) {
+        const float* l = hit.weights;
         const double value = l[0] * x[t.v0] + l[1] * x[t.v1] + l[2] * x[t.v2];
         y[t.v0] += l[0] * value;
         y[t.v1] += l[1] * value;
         y[t.v2] += l[2] * value;
-    }
+    });
 }
 
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
@@ -62,14 +65,12 @@ void fitChannel(const PixelSamples& samples, const Image& picture, Image& colour
         x[v] = colours.pixels[v * c + k];
         rhs[v] = kStartWeight * x[v];
     }
-    for (size_t i = 0; i < samples.hits.size(); ++i) {
-        const Triangle& t = samples.triangle_of[i];
-        const float* l = samples.hits[i].weights;
-        const double pixel = picture.pixels[size_t(samples.hits[i].sample) * c + k];
-        rhs[t.v0] += l[0] * pixel;
-        rhs[t.v1] += l[1] * pixel;
-        rhs[t.v2] += l[2] * pixel;
-    }
+    samples.forEach([&](const Triangle& t, const SampleHit& hit) {
+        const double pixel = picture.pixels[size_t(hit.sample) * c + k];
+        rhs[t.v0] += hit.weights[0] * pixel;
+        rhs[t.v1] += hit.weights[1] * pixel;
+        rhs[t.v2] += hit.weights[2] * pixel;
+    });
     applyNormal(samples, x, product);
     for (size_t v = 0; v < vertices; ++v) residual[v] = direction[v] = rhs[v] - product[v];
     double norm = dot(residual, residual);

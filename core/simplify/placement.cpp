@@ -26,10 +26,6 @@ int64_t snapped(double coordinate, uint32_t side) {
     return int64_t(fixed);
 }
 
-}  // namespace
-
-namespace {
-
 // The merged vertex of e's collapse at the quadric's least point with the axes `free` (the
 // others from `to`'s point), snapped; moves = false where there is none, it is `to`'s place or
 // it is not legal. The cost is Q there with the best colour, which must exist.

@@ -213,12 +213,17 @@ bool minimiseFree(QuadricSum sum, inout double v[kMaxQuadricDimensions], uint fr
     return true;
 }
 
-// core's QuadricPoints: vertex v's colour with position p (pixels × kPositionWeight first).
-void pointAt(ivec2 p, uint v, out double point[kMaxQuadricDimensions]) {
-    for (uint k = 0u; k < kMaxQuadricDimensions; ++k) point[k] = 0.0lf;
+// core's QuadricPoints::at: a point's position coordinates for position p.
+void setPosition(ivec2 p, inout double point[kMaxQuadricDimensions]) {
     precise double x = kPositionWeight * double(p.x), y = kPositionWeight * double(p.y);
     point[0] = x / double(kPositionOne);
     point[1] = y / double(kPositionOne);
+}
+
+// core's QuadricPoints::of: vertex v's colour with position p.
+void pointAt(ivec2 p, uint v, out double point[kMaxQuadricDimensions]) {
+    for (uint k = 0u; k < kMaxQuadricDimensions; ++k) point[k] = 0.0lf;
+    setPosition(p, point);
     const vec4 value = imageLoad(values, int(v));
     for (uint k = 0u; k < push.channels; ++k) point[2u + k] = double(value[k]);
 }
@@ -263,9 +268,7 @@ Placed moveTo(QuadricSum sum, uint e, bool b_into_a, uint free) {
     if (x < 0 || y < 0) return none;
     const ivec2 target = ivec2(x, y);
     if (target == at_to || !directionLegal(e, b_into_a, true, target)) return none;
-    precise double px = kPositionWeight * double(target.x), py = kPositionWeight * double(target.y);
-    point[0] = px / double(kPositionOne);
-    point[1] = py / double(kPositionOne);
+    setPosition(target, point);
     if (!minimiseFree(sum, point, ((1u << n) - 1u) & ~3u, n)) return none;
     return Placed(true, target, quadricValue(sum.a, sum.b, sum.c, point, n));
 }
