@@ -18,12 +18,27 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 namespace ddt {
 
 // The stored sample type of a volume file, kept for the output unless --depth says otherwise.
-enum class SampleType { u8, i8, u16, i16, f32, f64 };
+enum class VoxelType { u8, i8, u16, i16, f32, f64 };
+
+// The largest volume read or written. 2^31 voxels are 8 GiB of float values before the
+// tetrahedral mesh (several times that) is built, and keep every voxel and vertex id, with
+// room to spare, in the uint32_t the mesh and the kernels index by. A side above 65 536
+// voxels with the others at least 2 would be a sliver, not a scan; NIfTI-1 holds at most
+// 32 767 (larger volumes are written as NIfTI-2).
+constexpr uint32_t kMaxVolumeSide = 65536;
+constexpr uint64_t kMaxVolumeVoxels = uint64_t(1) << 31;
+
+// "" if a volume of `size` voxels can be read or written, else the reason ("512 × 512 × 1
+// voxels: not a volume (every side needs at least 2 voxels)", or which limit it passes).
+// Every side needs 2 voxels: a single plane has no tetrahedra.
+std::string volumeSizeProblem(const std::array<uint32_t, 3>& size);
 
 // world = m · (x, y, z, 1): m[row][column], column 3 the world position of voxel (0, 0, 0).
 struct Affine {
@@ -31,12 +46,18 @@ struct Affine {
     bool operator==(const Affine&) const = default;
 };
 
+// What the input file carried beyond samples and the affine (its format, both NIfTI
+// affines, NRRD's space, kinds, units, key/value pairs…), for the writer to keep. Defined in
+// core/io/volume_file.h; opaque here, so that core needs no file I/O.
+struct VolumeMetadata;
+
 struct Volume {
     std::array<uint32_t, 3> size{};  // voxels along x, y, z
     // The physical values (a NIfTI file's scl_slope and scl_inter applied), x fastest.
     std::vector<float> values;
-    SampleType type = SampleType::f32;
+    VoxelType type = VoxelType::f32;
     Affine index_to_world;
+    std::shared_ptr<const VolumeMetadata> metadata;  // null for volumes made in memory
 
     size_t voxelCount() const { return size_t(size[0]) * size[1] * size[2]; }
     size_t indexOf(uint32_t x, uint32_t y, uint32_t z) const {
