@@ -12,6 +12,7 @@
 #include "image_formats.h"
 #include "mesh_file.h"
 #include "user_error.h"
+#include "volume_file.h"
 
 namespace ddt {
 
@@ -21,7 +22,7 @@ namespace fs = std::filesystem;
 
 bool isHidden(const fs::path& path) { return path.filename().string().starts_with("."); }
 
-// The images under `folder`, relative to it and sorted. Hidden files and folders (ddtup's own
+// The images and volumes under `folder`, relative to it and sorted. Hidden files and folders (ddtup's own
 // temporary files among them) are passed over, and so is `skip`, the output folder, when it
 // lies inside: its results must not become inputs.
 std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs::path& skip) {
@@ -39,7 +40,7 @@ std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs:
             if (folder_entry) it.disable_recursion_pending();
             continue;
         }
-        if (!folder_entry && formatOfExtension(path.extension().string()))
+        if (!folder_entry && (formatOfExtension(path.extension().string()) || isVolumePath(path.string())))
             images.push_back(fs::relative(path, folder));
     }
     std::sort(images.begin(), images.end());
@@ -59,7 +60,9 @@ void prepareOutputFolder(const fs::path& folder) {
 
 // out/<relative>, with the format's extension when one is asked for.
 std::string outputPathFor(const fs::path& output_folder, fs::path relative, const std::string& format) {
-    if (!format.empty())
+    if (!format.empty() && isVolumePath(relative.string()))
+        relative = withoutVolumeExtension(relative.string()) + "." + format;
+    else if (!format.empty())
         relative.replace_extension("." + format);
     else if (!relative.has_extension())
         relative += ".png";  // standard input, or a file without an extension
@@ -70,6 +73,7 @@ ImageTask readyTask(const std::string& input, const std::string& output) {
     ImageTask task;
     task.input = input;
     task.output = output;
+    task.volume = input != kStandardStream && isVolumePath(input);
     return task;
 }
 
@@ -79,11 +83,27 @@ const char* meshExtension(const std::string& name) {
     return format == MeshFormat::Ply ? ".ply" : format == MeshFormat::Obj ? ".obj" : ".svg";
 }
 
+// Refuses volumes the settings cannot magnify, and images the volume-only settings were given to.
+void refuseMismatchedKinds(std::vector<ImageTask>& tasks, const Settings& settings) {
+    for (ImageTask& task : tasks) {
+        const bool volume = task.volume;
+        if (volume) task.reason = volumeTaskProblem(task.input, settings);
+        if (volume && task.reason.empty() && task.output != kStandardStream && !isVolumePath(task.output))
+            task.reason = task.input + ": a volume's output must be a volume file (" + volumeExtensionNames() + "), not " +
+                          task.output;
+        if (!volume && settings.axis_scales[0] > 0.0)
+            task.reason = task.input + ": --scale with three factors applies to volumes only";
+        if (!volume && task.input != kStandardStream && isVolumePath(task.output))
+            task.reason = task.input + ": an image's output must be an image file, not " + task.output;
+        if (!task.reason.empty()) task.state = ImageTask::State::Refused;
+    }
+}
+
 // Refuses outputs that are an input, or that another input already writes; skips finished ones.
 void decideStates(std::vector<ImageTask>& tasks, bool skip_existing) {
     std::map<std::string, const ImageTask*> writers;  // canonical output -> first task writing it
     for (ImageTask& task : tasks) {
-        if (task.output == kStandardStream) continue;
+        if (task.output == kStandardStream || task.state != ImageTask::State::Ready) continue;
         std::error_code error;
         const std::string key = fs::weakly_canonical(task.output, error).string();
         if (task.input != kStandardStream && sameFile(task.input, task.output)) {
@@ -101,6 +121,15 @@ void decideStates(std::vector<ImageTask>& tasks, bool skip_existing) {
 }
 
 }  // namespace
+
+std::string volumeTaskProblem(const std::string& input, const Settings& settings) {
+    if (!settings.image_only_options.empty())
+        return input + ": " + settings.image_only_options.front() + " does not apply to volumes";
+    if (settings.backend == "vulkan" || settings.device >= 0)
+        return input + ": volumes run on the CPU backend only (their Vulkan kernels are not written yet); use "
+                       "--backend cpu or auto";
+    return "";
+}
 
 bool sameFile(const std::string& a, const std::string& b) {
     std::error_code error;
@@ -129,6 +158,7 @@ std::vector<ImageTask> planBatch(const Settings& settings) {
         for (ImageTask& task : tasks)
             task.mesh = settings.singleForm() ? settings.mesh
                                               : fs::path(task.output).replace_extension(meshExtension(settings.mesh)).string();
+    refuseMismatchedKinds(tasks, settings);
     decideStates(tasks, settings.skip_existing);
     return tasks;
 }

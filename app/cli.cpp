@@ -16,6 +16,7 @@
 #include "json_line.h"
 #include "mesh_file.h"
 #include "tiled_upscale.h"
+#include "volume_file.h"
 
 namespace ddt {
 
@@ -29,10 +30,14 @@ const char* const kDescription =
     "  ddtup IN... DIR/ [options]          the same, when DIR exists or ends in /\n"
     "  ddtup -i DIR -o DIR [-r] [options]  a folder of images (-r: and its sub-folders) into a folder\n"
     "\n"
+    "Volumes (.nrrd, .nhdr, .nii, .nii.gz: scalar 8/16-bit, float, double) are magnified by a data-dependent\n"
+    "tetrahedralization in any of these forms; -s FX,FY,FZ gives a factor per axis.\n"
+    "\n"
     "Examples:\n"
     "  ddtup photo.png -s 4 photo-x4.png\n"
     "  ddtup *.jpg -o big/ --width 3840 -f png\n"
     "  ddtup -i scans -o scans-x2 -r --skip-existing --progress=json\n"
+    "  ddtup ct.nii.gz -s 2,2,5 ct-fine.nii.gz --slices views/\n"
     "\n"
     "Exit codes: 0 all done, 1 some images failed, 2 bad usage, 3 no usable Vulkan device,\n"
     "4 internal error, 130/143 interrupted.";
@@ -67,11 +72,52 @@ std::string validateMesh(const CLI::App& app, const Settings& settings) {
     return "";
 }
 
+// A factor of -s: a finite number >= 1, the whole text.
+bool parseFactor(const std::string& text, double& factor) {
+    size_t used = 0;
+    try {
+        factor = std::stod(text, &used);
+    } catch (const std::exception&) {
+        return false;
+    }
+    return used == text.size() && std::isfinite(factor) && factor >= 1.0;
+}
+
+// Fills scale, or axis_scales for "FX,FY,FZ"; "" if the text is one of those, else the message.
+std::string parseScale(const std::string& text, Settings& settings) {
+    if (text.find(',') == std::string::npos) {
+        if (!parseFactor(text, settings.scale)) return "--scale must be a number >= 1 (got " + text + ")";
+        return "";
+    }
+    std::array<std::string, 3> parts;
+    size_t start = 0;
+    for (int a = 0; a < 3; ++a) {
+        const size_t comma = a < 2 ? text.find(',', start) : text.size();
+        if (comma == std::string::npos) break;
+        parts[a] = text.substr(start, comma - start);
+        start = comma + 1;
+    }
+    for (int a = 0; a < 3; ++a)
+        if (!parseFactor(parts[a], settings.axis_scales[a]) || text.find(',', start) != std::string::npos)
+            return "--scale " + text + ": give one factor, or three (x, y, z: volumes only), each a number >= 1";
+    return "";
+}
+
+bool perAxisScale(const Settings& settings) { return settings.axis_scales[0] > 0.0; }
+
+// Options given that mean nothing for volumes, as spelled on the command line.
+std::vector<std::string> imageOnlyOptions(const CLI::App& app, const Settings& settings) {
+    std::vector<std::string> given;
+    for (const char* name : {"--quality", "--mesh", "--mesh-height", "--simplify", "--max-error", "--reconstruct",
+                             "--width", "--height", "--tile", "--variant", "--no-active-set"})
+        if (app.count(name)) given.push_back(name);
+    if (settings.depth == "half") given.push_back("--depth half");
+    return given;
+}
+
 // "" if the parsed values make sense together, else the message.
 std::string validateSettings(const CLI::App& app, const Settings& settings) {
     const bool scale_given = app.count("--scale") > 0;
-    if (scale_given && !(settings.scale >= 1.0 && std::isfinite(settings.scale)))
-        return "--scale must be a number >= 1 (got " + app.get_option("--scale")->as<std::string>() + ")";
     if (scale_given && (settings.width || settings.height)) return "give either --scale or --width/--height, not both";
     if (app.count("--width") && settings.width == 0) return "--width must be at least 1";
     if (app.count("--height") && settings.height == 0) return "--height must be at least 1";
@@ -84,7 +130,28 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
         return "--depth " + settings.depth + ": use 8, 16, half or float";
     if (!settings.format.empty() && settings.format.find_first_of("./") != std::string::npos)
         return "--format " + settings.format + ": give an extension such as png, jpg, tif or exr";
+    if (!settings.cost.empty() && settings.cost != "variance" && settings.cost != "face-scf")
+        return "--cost " + settings.cost + ": use variance or face-scf";
     if (settings.list_devices) return "";
+    // Volumes named on the command line are checked here, before any work; those found by -i
+    // when the batch is planned (app/batch_plan.cpp).
+    bool any_volume = false;
+    for (const std::string& input : settings.inputs)
+        if (isVolumePath(input)) {
+            any_volume = true;
+            if (std::string problem = volumeTaskProblem(input, settings); !problem.empty()) return problem;
+        } else if (input != kStandardStream && settings.input_folder.empty() && settings.output_folder.empty() &&
+                   perAxisScale(settings)) {
+            return "--scale with three factors applies to volumes (" + volumeExtensionNames() + "), not to " + input;
+        }
+    if (!any_volume && settings.input_folder.empty()) {
+        if (!settings.cost.empty()) return "--cost applies to volumes (" + volumeExtensionNames() + ")";
+        if (!settings.slices.empty()) return "--slices applies to volumes (" + volumeExtensionNames() + ")";
+        if (perAxisScale(settings)) return "--scale with three factors applies to volumes (" + volumeExtensionNames() + ")";
+    }
+    if (settings.singleForm() && !settings.output.empty() && isVolumePath(settings.inputs.front()) != isVolumePath(settings.output))
+        return settings.output + ": a volume's output must be a volume file (" + volumeExtensionNames() +
+               ") and an image's an image file";
 
     const size_t paths = settings.inputs.size();
     if (!settings.input_folder.empty()) {
@@ -175,7 +242,10 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "With --mesh: z = luma × this, in output pixels (Rec. 709 weights on the stored values), a "
                    "2.5-D relief; 0 keeps the mesh flat")
         ->capture_default_str();
-    app.add_option("-s,--scale", settings.scale, "Magnification factor, a real number >= 1 (used when no --width/--height)")
+    std::string scale_text;
+    app.add_option("-s,--scale", scale_text,
+                   "Magnification factor, a real number >= 1 (used when no --width/--height); volumes also take one "
+                   "per axis, FX,FY,FZ (e.g. 1,1,2.5 for thick slices)")
         ->default_str("2");
     app.add_option("--width", settings.width,
                    "Output width in pixels; the height keeps the aspect unless --height is given (default: from --scale)");
@@ -208,6 +278,15 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_flag("--list-devices", settings.list_devices, "List the Vulkan devices and exit");
     app.add_flag("!--no-active-set", settings.active_set,
                  "Vulkan: re-test every edge in every iteration, not only those a flip may have changed (default: off)");
+    app.add_option("--cost", settings.cost,
+                   "Volumes: the weight of each tetrahedron's volume in the cost the flips lower (Toth et al.): "
+                   "variance (of its four values) or face-scf (the mean over its faces of Sederberg's cost between "
+                   "the two tetrahedra's gradients, 0 on the box's sides); values normalised by the volume's range")
+        ->default_str("variance");
+    app.add_option("--slices", settings.slices,
+                   "Volumes: also write PNG slices through the middle of each output (axial, coronal, sagittal), "
+                   "grey levels spanning the output's range, into this folder")
+        ->default_str("none");
     std::string progress = "auto";
     app.add_option("--progress", progress,
                    "auto (a progress line on a terminal, nothing otherwise), bar, json (one JSON event per line "
@@ -254,6 +333,9 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
             settings.inputs.pop_back();
         }
     }
+    if (app.count("--scale"))
+        if (std::string problem = parseScale(scale_text, settings); !problem.empty()) return usageError(problem);
+    settings.image_only_options = imageOnlyOptions(app, settings);
     if (std::string problem = validateSettings(app, settings); !problem.empty()) return usageError(problem);
     if (!app.count("--scale") && !settings.width && !settings.height) settings.scale = 2.0;
     return settings;

@@ -16,6 +16,7 @@
 #include "pipeline.h"
 #include "reporter.h"
 #include "temp_files.h"
+#include "volume/volume_job.h"
 
 namespace {
 
@@ -47,6 +48,30 @@ void printStats(const ddt::ImageJob& job, bool batch) {
                 report.times.final_s);
     std::printf("time-sum       %.3f s\n",
                 report.times.init_s + report.times.comp_s + report.times.reconstruct_s + report.times.final_s);
+    if (batch) std::printf("\n");
+    std::fflush(stdout);
+}
+
+void printVolumeStats(const ddt::ImageTask& task, const ddt::VolumeReport& report, bool batch) {
+    const ddt::TetLawsonStats& s = report.stats;
+    if (batch) std::printf("input          %s\n", task.input.c_str());
+    std::printf("volume         %u x %u x %u -> %u x %u x %u\n", report.in[0], report.in[1], report.in[2], report.out[0],
+                report.out[1], report.out[2]);
+    std::printf("tets           %llu -> %llu\n", static_cast<unsigned long long>(report.tets_before),
+                static_cast<unsigned long long>(report.tets_after));
+    std::printf("cost-init      %.9g\n", s.cost_before);
+    std::printf("cost-final     %.9g\n", s.cost_after);
+    std::printf("flips          %llu  (", static_cast<unsigned long long>(s.flipCount()));
+    for (uint32_t kind = 0; kind < ddt::kFlipKindCount; ++kind)
+        std::printf("%s%s %llu", kind ? ", " : "", ddt::flipKindName(ddt::FlipKind(kind)),
+                    static_cast<unsigned long long>(s.flips[kind]));
+    std::printf(")\n");
+    std::printf("iterations     %u%s\n", s.iterations, s.capped ? " (safety cap reached)" : "");
+    std::printf("time-init      %.3f s  (read the volume)\n", report.read_s);
+    std::printf("time-comp      %.3f s  (build the tetrahedral mesh, optimize: serial, CPU)\n", report.optimize_s);
+    std::printf("time-resample  %.3f s  (each output voxel in its tetrahedron)\n", report.resample_s);
+    std::printf("time-final     %.3f s  (write the volume%s)\n", report.write_s, "");
+    std::printf("time-sum       %.3f s\n", report.read_s + report.optimize_s + report.resample_s + report.write_s);
     if (batch) std::printf("\n");
     std::fflush(stdout);
 }
@@ -95,13 +120,13 @@ int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
         return reporter.finish();
     }
     reporter.start(tasks.size());
-    bool any_ready = false;
+    bool any_image = false, any_volume = false;
     for (size_t i = 0; i < tasks.size(); ++i) {
         if (tasks[i].state == ddt::ImageTask::State::Skipped) reporter.skipped(i, tasks[i]);
         if (tasks[i].state == ddt::ImageTask::State::Refused) reporter.failed(tasks[i].input, tasks[i].reason);
-        any_ready |= tasks[i].state == ddt::ImageTask::State::Ready;
+        const bool ready = tasks[i].state == ddt::ImageTask::State::Ready;
+        (tasks[i].volume ? any_volume : any_image) |= ready;
     }
-    if (!any_ready) return reporter.finish();
 
     ddt::ChosenBackend chosen;
     auto backend = [&]() -> ddt::Backend* {
@@ -116,11 +141,22 @@ int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
     };
     std::mutex stats_mutex;
     const bool batch = tasks.size() > 1;
-    ddt::runPipeline(tasks, settings, backend, reporter, [&](const ddt::ImageJob& job) {
-        if (!settings.stats) return;
-        std::lock_guard lock(stats_mutex);
-        printStats(job, batch);
-    });
+    if (any_image)
+        ddt::runPipeline(tasks, settings, backend, reporter, [&](const ddt::ImageJob& job) {
+            if (!settings.stats) return;
+            std::lock_guard lock(stats_mutex);
+            printStats(job, batch);
+        });
+    if (any_volume) {
+        ddt::BackendChoice cpu;
+        cpu.backend = "cpu";
+        cpu.threads = ddt::threadCount();
+        if (settings.backend == "auto") cpu.reason = "volumes run on the CPU: their Vulkan kernels are not written yet";
+        reporter.backend(cpu);
+        ddt::runVolumeTasks(tasks, settings, reporter, [&](const ddt::ImageTask& task, const ddt::VolumeReport& report) {
+            if (settings.stats) printVolumeStats(task, report, batch);
+        });
+    }
     return reporter.finish();
 }
 

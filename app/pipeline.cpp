@@ -44,7 +44,7 @@ void runPipeline(const std::vector<ImageTask>& tasks, const Settings& settings,
 
     std::thread reader([&] {
         for (size_t i = 0; i < tasks.size() && !stopped; ++i) {
-            if (tasks[i].state != ImageTask::State::Ready) continue;
+            if (tasks[i].state != ImageTask::State::Ready || tasks[i].volume) continue;
             auto job = std::make_unique<ImageJob>(i, tasks[i], settings, reporter);
             if (!runStage(*job, reporter, [&] { job->open(); })) continue;
             job->holdMemory(budget.acquire(job->hostMemory()));

@@ -23,7 +23,7 @@ namespace ddt {
 // 24 MiB it peaks at 260 MiB for 1.02 × the wall time (farm-bench, 7 pairs; 0.95–1.03).
 inline constexpr uint64_t kBandBudgetBytes = uint64_t(24) << 20;
 
-// Magnifies every Ready task; failures are reported and the batch goes on. `backend` is called
+// Magnifies every Ready image task (volumes go through app/volume/); failures are reported and the batch goes on. `backend` is called
 // when the first image has been read (so that a bad input is reported without starting a
 // device); when it returns null (no device, already reported) the run stops. `on_done` runs
 // after each image is written (on the writing thread).

@@ -35,14 +35,15 @@ public:
     }
 
     void done(const RunCounts& counts, size_t index, const ImageTask& task, OutputSize size, double seconds) override {
-        emit(JsonLine()
-                 .field("event", "done")
-                 .field("index", uint64_t(index))
-                 .field("input", task.input)
-                 .field("output", task.output)
-                 .field("width", uint64_t(size.width))
-                 .field("height", uint64_t(size.height))
-                 .field("seconds", seconds));
+        JsonLine event;
+        event.field("event", "done")
+            .field("index", uint64_t(index))
+            .field("input", task.input)
+            .field("output", task.output)
+            .field("width", uint64_t(size.width))
+            .field("height", uint64_t(size.height));
+        if (size.depth) event.field("depth", uint64_t(size.depth));  // volumes only
+        emit(event.field("seconds", seconds));
         progress(counts);
     }
 

@@ -79,7 +79,10 @@ public:
     void done(const RunCounts&, size_t, const ImageTask& task, OutputSize size, double seconds) override {
         if (verbosity_ != Verbosity::Verbose) return;
         char detail[96];
-        std::snprintf(detail, sizeof detail, " (%u×%u, %.2f s)", size.width, size.height, seconds);
+        if (size.depth)
+            std::snprintf(detail, sizeof detail, " (%u×%u×%u, %.2f s)", size.width, size.height, size.depth, seconds);
+        else
+            std::snprintf(detail, sizeof detail, " (%u×%u, %.2f s)", size.width, size.height, seconds);
         line(task.input + " -> " + task.output + detail);
     }
 

@@ -2,6 +2,7 @@
 // work starts.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -31,6 +32,13 @@ struct Settings {
     bool simplifies() const { return simplify > 0.0 || max_error > 0.0; }
 
     double scale = 0.0;       // 0: not given
+    // Volumes only (core/volume/): -s FX,FY,FZ, a factor per axis; all 0 when -s gave one factor.
+    std::array<double, 3> axis_scales{};
+    std::string cost;    // --cost: the volumes' tetrahedron weight; "" = variance (core/volume/tet_cost.h)
+    std::string slices;  // --slices DIR: PNG slices through the middle of each output volume; "" = none
+    // The options given that mean nothing for volumes, as the user spelled them (--mesh, ...):
+    // a volume input is refused with them.
+    std::vector<std::string> image_only_options;
     uint32_t width = 0;       // 0: not given
     uint32_t height = 0;      // 0: not given
     uint32_t tile = 0;        // tile side in input pixels; 0 = automatic

@@ -25,6 +25,7 @@ namespace ddt {
 struct OutputSize {
     uint32_t width = 0;
     uint32_t height = 0;
+    uint32_t depth = 0;  // a volume's slices (app/volume/); 0 for an image
 };
 
 OutputSize scaledOutputSize(uint32_t width, uint32_t height, double scale);

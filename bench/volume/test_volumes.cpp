@@ -163,7 +163,7 @@ std::string testVolumeName(TestVolumeKind kind) {
 }
 
 ddt::Volume makeTestVolume(TestVolumeKind kind, const std::array<uint32_t, 3>& size, double noise_sigma, uint64_t seed) {
-    for (uint32_t side : size) assert(side >= 2);
+    for ([[maybe_unused]] uint32_t side : size) assert(side >= 2);
     ddt::Volume volume = kind == TestVolumeKind::sphere        ? sphere(size)
                          : kind == TestVolumeKind::shepp_logan ? sheppLogan(size)
                                                                : slantedInterface(size);

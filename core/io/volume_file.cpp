@@ -56,8 +56,6 @@ std::string affineProblem(const Affine& affine) {
     return "";
 }
 
-const char* formatNames() { return ".nrrd, .nhdr, .nii or .nii.gz"; }
-
 // Calls f(T{}) with the C++ type of `type`.
 template <class F>
 decltype(auto) withSampleType(VoxelType type, F&& f) {
@@ -87,6 +85,15 @@ std::optional<VolumeFormat> volumeFormatOf(const std::string& path) {
     return std::nullopt;
 }
 
+std::string volumeExtensionNames() { return ".nrrd, .nhdr, .nii or .nii.gz"; }
+
+std::string withoutVolumeExtension(const std::string& path) {
+    const std::optional<VolumeFormat> format = volumeFormatOf(path);
+    if (!format) return path;
+    const bool gzipped = lowercase(path).ends_with(".gz");
+    return path.substr(0, path.size() - (gzipped ? 7 : *format == VolumeFormat::Nrrd ? 5 : 4));
+}
+
 const char* voxelTypeName(VoxelType type) {
     switch (type) {
         case VoxelType::u8: return "uint8";
@@ -102,14 +109,14 @@ const char* voxelTypeName(VoxelType type) {
 Volume readVolume(const std::string& path) {
     if (std::string problem = inputFileProblem(path); !problem.empty()) throw UserError(path + ": " + problem);
     const std::optional<VolumeFormat> format = volumeFormatOf(path);
-    if (!format) throw UserError(path + ": not a volume file (the extension must be " + formatNames() + ")");
+    if (!format) throw UserError(path + ": not a volume file (the extension must be " + volumeExtensionNames() + ")");
     Volume volume = *format == VolumeFormat::Nrrd ? readNrrd(path) : readNifti(path);
     if (std::string problem = affineProblem(volume.index_to_world); !problem.empty()) throw UserError(path + ": " + problem);
     return volume;
 }
 
 std::string volumeOutputProblem(const std::string& path, const std::array<uint32_t, 3>& size) {
-    if (!volumeFormatOf(path)) return std::string("not a volume file name (the extension must be ") + formatNames() + ")";
+    if (!volumeFormatOf(path)) return std::string("not a volume file name (the extension must be ") + volumeExtensionNames() + ")";
     if (std::string problem = volumeSizeProblem(size); !problem.empty()) return problem;
     try {
         checkOutputPath(path);
@@ -122,7 +129,7 @@ std::string volumeOutputProblem(const std::string& path, const std::array<uint32
 
 std::vector<std::string> writeVolume(const std::string& path, const Volume& volume, VoxelType type) {
     const std::optional<VolumeFormat> format = volumeFormatOf(path);
-    if (!format) throw UserError(path + ": not a volume file name (the extension must be " + formatNames() + ")");
+    if (!format) throw UserError(path + ": not a volume file name (the extension must be " + volumeExtensionNames() + ")");
     if (std::string problem = volumeSizeProblem(volume.size); !problem.empty()) throw UserError(path + ": " + problem);
     if (volume.values.size() != volume.voxelCount())
         throw std::invalid_argument("writeVolume: " + std::to_string(volume.values.size()) + " values for " +

@@ -87,6 +87,10 @@ struct VolumeMetadata {
 // The format a path's extension names, any case: .nrrd and .nhdr NRRD, .nii and .nii.gz NIfTI.
 std::optional<VolumeFormat> volumeFormatOf(const std::string& path);
 inline bool isVolumePath(const std::string& path) { return volumeFormatOf(path).has_value(); }
+// ".nrrd, .nhdr, .nii or .nii.gz", for messages.
+std::string volumeExtensionNames();
+// `path` without the volume extension it ends in (both parts of .nii.gz); unchanged without one.
+std::string withoutVolumeExtension(const std::string& path);
 
 // "uint8", "int8", "uint16", "int16", "float32", "float64", for messages.
 const char* voxelTypeName(VoxelType type);

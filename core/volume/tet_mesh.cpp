@@ -38,7 +38,7 @@ int64_t orientOf(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t c, uint32
 }
 
 TetMesh kuhnTetMesh(const std::array<uint32_t, 3>& size) {
-    for (uint32_t n : size) assert(n >= 2 && n <= kMaxTetMeshSide);
+    for ([[maybe_unused]] uint32_t n : size) assert(n >= 2 && n <= kMaxTetMeshSide);
     TetMesh mesh;
     mesh.size = size;
     const std::array<uint32_t, 3> cells = {size[0] - 1, size[1] - 1, size[2] - 1};

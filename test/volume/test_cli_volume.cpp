@@ -1,0 +1,169 @@
+// Volumes through the real executable: NRRD and NIfTI in and out with their geometry, per-axis
+// factors, --slices, --stats, and the options and inputs that are refused in one line.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "image_file.h"
+#include "run_ddtup.h"
+#include "temp_folder.h"
+#include "volume.h"
+#include "volume_file.h"
+
+namespace {
+
+// Writes an NRRD by hand (not by ddtup's writer): float samples, x fastest, with `geometry`
+// lines (space, directions, origin).
+void writeFloatNrrd(const std::string& path, std::array<uint32_t, 3> size, const std::vector<float>& values,
+                    const std::string& geometry) {
+    std::ofstream out(path, std::ios::binary);
+    out << "NRRD0004\ntype: float\ndimension: 3\nsizes: " << size[0] << " " << size[1] << " " << size[2]
+        << "\nendian: little\nencoding: raw\n"
+        << geometry << "\n";
+    out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
+}
+
+const std::string kLpsGeometry =
+    "space: left-posterior-superior\nspace directions: (0.5,0,0) (0,0.5,0) (0,0,2.5)\nspace origin: (10,20,30)\n";
+
+// v = x + 2y + 3z on a 6 × 5 × 4 grid: any tetrahedralization reproduces it exactly.
+std::vector<float> ramp(std::array<uint32_t, 3> size) {
+    std::vector<float> values;
+    for (uint32_t z = 0; z < size[2]; ++z)
+        for (uint32_t y = 0; y < size[1]; ++y)
+            for (uint32_t x = 0; x < size[0]; ++x) values.push_back(float(x + 2 * y + 3 * z));
+    return values;
+}
+
+// A ball of value 100 in a volume of 0: something for the flips to do.
+std::vector<float> ball(std::array<uint32_t, 3> size) {
+    std::vector<float> values;
+    for (uint32_t z = 0; z < size[2]; ++z)
+        for (uint32_t y = 0; y < size[1]; ++y)
+            for (uint32_t x = 0; x < size[0]; ++x) {
+                const double dx = x - 4.3, dy = y - 3.6, dz = z - 4.1;
+                values.push_back(dx * dx + dy * dy + dz * dz < 9.0 ? 100.0f : 0.0f);
+            }
+    return values;
+}
+
+// Where output voxel i lies in the input's index frame, clamped to the voxel centres' box.
+double clampedInputIndex(uint32_t i, uint32_t n, uint32_t m) {
+    return std::clamp((i + 0.5) * n / m - 0.5, 0.0, double(n - 1));
+}
+
+}  // namespace
+
+TEST_CASE("volume cli: an NRRD magnified x2 reproduces a linear field and moves its frame") {
+    TempFolder work;
+    const std::array<uint32_t, 3> size = {6, 5, 4};
+    writeFloatNrrd(work / "ramp.nrrd", size, ramp(size), kLpsGeometry);
+    const Run run = runDdtup({work / "ramp.nrrd", "-s", "2", work / "out.nrrd", "-q"});
+    REQUIRE(run.exit_code == 0);
+    CHECK(run.err.empty());
+    const ddt::Volume out = ddt::readVolume(work / "out.nrrd");
+    REQUIRE(out.size == std::array<uint32_t, 3>{12, 10, 8});
+    CHECK(out.type == ddt::VoxelType::f32);
+    // Spacing n·s/m = s/2; the origin moves by half a new voxel minus half an old one:
+    // 10 + 0.5 · (0.25 − 0.5), 20 + 0.5 · (−0.25), 30 + 2.5 · (−0.25).
+    const double expected[3][4] = {{0.25, 0, 0, 9.875}, {0, 0.25, 0, 19.875}, {0, 0, 1.25, 29.375}};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) CHECK(out.index_to_world.m[r][c] == Approx(expected[r][c]).margin(1e-12));
+    double worst = 0.0;
+    for (uint32_t z = 0; z < 8; ++z)
+        for (uint32_t y = 0; y < 10; ++y)
+            for (uint32_t x = 0; x < 12; ++x) {
+                const double want = clampedInputIndex(x, 6, 12) + 2 * clampedInputIndex(y, 5, 10) + 3 * clampedInputIndex(z, 4, 8);
+                worst = std::max(worst, std::abs(out.at(x, y, z) - want));
+            }
+    // Float samples of values up to 21: the interpolation's rounding in float, a few ulps.
+    CHECK(worst < 1e-4);
+}
+
+TEST_CASE("volume cli: per-axis factors, NIfTI output and --stats on a ball") {
+    TempFolder work;
+    const std::array<uint32_t, 3> size = {9, 8, 9};
+    writeFloatNrrd(work / "ball.nrrd", size, ball(size), kLpsGeometry);
+    const Run run = runDdtup({work / "ball.nrrd", "-s", "1,1.5,2.5", work / "ball.nii.gz", "--stats", "-q"});
+    REQUIRE(run.exit_code == 0);
+    CHECK(run.err.empty());
+    CHECK_THAT(run.out, Catch::Contains("volume         9 x 8 x 9 -> 9 x 12 x 23"));
+    // The ball's surface leaves flips to do (their count is the optimizer's business: tested
+    // in test_tet_lawson.cpp); --stats reports them, and the cost falls.
+    CHECK_THAT(run.out, Catch::Contains("flips"));
+    const size_t init = run.out.find("cost-init"), final = run.out.find("cost-final");
+    REQUIRE((init != std::string::npos && final != std::string::npos));
+    CHECK(std::stod(run.out.substr(final + 10)) < std::stod(run.out.substr(init + 9)));
+    const ddt::Volume out = ddt::readVolume(work / "ball.nii.gz");
+    CHECK(out.size == std::array<uint32_t, 3>{9, 12, 23});
+    // Interpolated values stay within the input's range.
+    for (float v : out.values) REQUIRE((v >= 0.0f && v <= 100.0f));
+}
+
+TEST_CASE("volume cli: --slices writes the output's three middle planes") {
+    TempFolder work;
+    const std::array<uint32_t, 3> size = {6, 5, 4};
+    writeFloatNrrd(work / "ramp.nrrd", size, ramp(size), kLpsGeometry);
+    const Run run = runDdtup({work / "ramp.nrrd", "-s", "2", work / "out.nii", "--slices", work / "views", "-q"});
+    REQUIRE(run.exit_code == 0);
+    const ddt::Image axial = ddt::readImage(work / "views/out-axial.png");
+    CHECK((axial.width == 12 && axial.height == 10));
+    const ddt::Image coronal = ddt::readImage(work / "views/out-coronal.png");
+    CHECK((coronal.width == 12 && coronal.height == 8));
+    const ddt::Image sagittal = ddt::readImage(work / "views/out-sagittal.png");
+    CHECK((sagittal.width == 10 && sagittal.height == 8));
+}
+
+TEST_CASE("volume cli: options that mean nothing for volumes are refused in one line") {
+    TempFolder work;
+    const std::array<uint32_t, 3> size = {6, 5, 4};
+    const std::string in = work / "ramp.nrrd";
+    writeFloatNrrd(in, size, ramp(size), kLpsGeometry);
+    for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+             {"--mesh", work / "m.ply"}, {"--quality", "80"}, {"--simplify", "0.5"}, {"--width", "20"},
+             {"--reconstruct", "plain"}, {"--depth", "half"}}) {
+        INFO(extra[0]);
+        std::vector<std::string> args = {in, work / "out.nrrd"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        requireOneLineError(runDdtup(args), 2, in, "does not apply to volumes");
+    }
+    requireOneLineError(runDdtup({in, work / "out.nrrd", "--backend", "vulkan"}), 2, in, "CPU backend only");
+    requireOneLineError(runDdtup({in, "-s", "2,2", work / "out.nrrd"}), 2, "--scale", "three");
+    requireOneLineError(runDdtup({in, "-s", "2,0.5,2", work / "out.nrrd"}), 2, "--scale", ">= 1");
+    requireOneLineError(runDdtup({in, work / "out.png"}), 2, "out.png", "volume file");
+    requireOneLineError(runDdtup({in, work / "out.nrrd", "--cost", "sederberg"}), 2, "--cost", "variance or face-scf");
+    REQUIRE(runDdtup({in, "-s", "1", work / "copy.nrrd", "-q"}).exit_code == 0);
+    CHECK(work.names() == std::set<std::string>{"copy.nrrd", "ramp.nrrd"});
+}
+
+TEST_CASE("volume cli: per-axis factors and --cost are refused for images") {
+    TempFolder work;
+    const std::string image = std::string(DDTUP_TEST_DATA) + "/crop32_astronaut.png";
+    requireOneLineError(runDdtup({image, "-s", "1,1,2", work / "out.png"}), 2, "--scale", "volumes");
+    requireOneLineError(runDdtup({image, work / "out.png", "--cost", "variance"}), 2, "--cost", "volumes");
+    requireOneLineError(runDdtup({image, work / "out.png", "--slices", work / "v"}), 2, "--slices", "volumes");
+    requireOneLineError(runDdtup({image, work / "out.nii"}), 2, "out.nii", "image file");
+    CHECK(work.names().empty());
+}
+
+TEST_CASE("volume cli: a batch goes past a bad volume and writes nothing for it") {
+    TempFolder work;
+    const std::array<uint32_t, 3> size = {6, 5, 4};
+    writeFloatNrrd(work / "good.nrrd", size, ramp(size), kLpsGeometry);
+    // The header promises 6 × 5 × 4 floats; the data stops after 10.
+    std::vector<float> short_data = ramp(size);
+    short_data.resize(10);
+    writeFloatNrrd(work / "short.nrrd", size, short_data, kLpsGeometry);
+    const Run run = runDdtup({work / "short.nrrd", work / "good.nrrd", "-o", work / "out", "-q"});
+    CHECK(run.exit_code == 1);
+    // The error, then the batch's summary (printed even with -q).
+    CHECK_THAT(run.err, Catch::StartsWith("ddtup: " + (work / "short.nrrd") + ": truncated"));
+    CHECK_THAT(run.err, Catch::Contains("1 done, 0 skipped, 1 failed"));
+    CHECK(ddt::readVolume(work / "out/good.nrrd").size == std::array<uint32_t, 3>{12, 10, 8});
+    std::set<std::string> written;
+    for (const auto& entry : std::filesystem::directory_iterator(work / "out")) written.insert(entry.path().filename().string());
+    CHECK(written == std::set<std::string>{"good.nrrd"});
+}
