@@ -109,7 +109,7 @@ bool perAxisScale(const Settings& settings) { return settings.axis_scales[0] > 0
 std::vector<std::string> imageOnlyOptions(const CLI::App& app, const Settings& settings) {
     std::vector<std::string> given;
     for (const char* name : {"--quality", "--mesh", "--mesh-height", "--simplify", "--max-error", "--reconstruct",
-                             "--width", "--height", "--tile", "--variant", "--no-active-set"})
+                             "--width", "--height", "--variant", "--no-active-set"})
         if (app.count(name)) given.push_back(name);
     if (settings.depth == "half") given.push_back("--depth half");
     return given;
@@ -258,7 +258,9 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         ->check(CLI::IsMember({"consistent", "plain"}))
         ->capture_default_str();
     app.add_option("--tile", settings.tile,
-                   "Tile side in input pixels for images too large for the device; 0 = automatic")
+                   "Tile side in input pixels for images too large for the device; for volumes the brick side in "
+                   "voxels (optimized one by one, with a margin of 8; automatic: bricks of 128 above 2^22 voxels); "
+                   "0 = automatic")
         ->capture_default_str();
     app.add_option("--backend", settings.backend,
                    "auto (Vulkan on a GPU; the CPU backend where the only Vulkan device runs on the CPU, such as "

@@ -53,12 +53,13 @@ void printStats(const ddt::ImageJob& job, bool batch) {
 }
 
 void printVolumeStats(const ddt::ImageTask& task, const ddt::VolumeReport& report, bool batch) {
-    const ddt::TetLawsonStats& s = report.stats;
+    const ddt::TetLawsonStats& s = report.stats.lawson;
     if (batch) std::printf("input          %s\n", task.input.c_str());
     std::printf("volume         %u x %u x %u -> %u x %u x %u\n", report.in[0], report.in[1], report.in[2], report.out[0],
                 report.out[1], report.out[2]);
-    std::printf("tets           %llu -> %llu\n", static_cast<unsigned long long>(report.tets_before),
-                static_cast<unsigned long long>(report.tets_after));
+    std::printf("bricks         %u\n", report.stats.bricks);
+    std::printf("tets           %llu -> %llu\n", static_cast<unsigned long long>(report.stats.tets_before),
+                static_cast<unsigned long long>(report.stats.tets_after));
     std::printf("cost-init      %.9g\n", s.cost_before);
     std::printf("cost-final     %.9g\n", s.cost_after);
     std::printf("flips          %llu  (", static_cast<unsigned long long>(s.flipCount()));
@@ -68,10 +69,10 @@ void printVolumeStats(const ddt::ImageTask& task, const ddt::VolumeReport& repor
     std::printf(")\n");
     std::printf("iterations     %u%s\n", s.iterations, s.capped ? " (safety cap reached)" : "");
     std::printf("time-init      %.3f s  (read the volume)\n", report.read_s);
-    std::printf("time-comp      %.3f s  (build the tetrahedral mesh, optimize: serial, CPU)\n", report.optimize_s);
-    std::printf("time-resample  %.3f s  (each output voxel in its tetrahedron)\n", report.resample_s);
+    std::printf("time-comp      %.3f s  (build the tetrahedral meshes, optimize: serial, CPU)\n", report.stats.optimize_s);
+    std::printf("time-resample  %.3f s  (each output voxel in its tetrahedron)\n", report.stats.resample_s);
     std::printf("time-final     %.3f s  (write the volume%s)\n", report.write_s, "");
-    std::printf("time-sum       %.3f s\n", report.read_s + report.optimize_s + report.resample_s + report.write_s);
+    std::printf("time-sum       %.3f s\n", report.read_s + report.stats.optimize_s + report.stats.resample_s + report.write_s);
     if (batch) std::printf("\n");
     std::fflush(stdout);
 }

@@ -5,9 +5,6 @@
 #include <new>
 
 #include "parallel.h"
-#include "tet_cost.h"
-#include "tet_mesh.h"
-#include "tet_resample.h"
 #include "user_error.h"
 #include "volume.h"
 #include "volume_file.h"
@@ -36,19 +33,11 @@ std::array<double, 3> factorsOf(const Settings& settings) {
     return {settings.scale, settings.scale, settings.scale};
 }
 
-// Throws UserError when the volume cannot be magnified as one mesh.
-void checkSizes(const std::string& input, const std::array<uint32_t, 3>& in, const std::array<uint32_t, 3>& out) {
-    const uint64_t voxels = uint64_t(in[0]) * in[1] * in[2];
-    for (uint32_t n : in)
-        if (n < 2)
-            throw UserError(input + ": " + std::to_string(in[0]) + "×" + std::to_string(in[1]) + "×" + std::to_string(in[2]) +
-                            " voxels; a volume needs at least 2 along each axis");
-    if (voxels > kMaxVoxelsInOneMesh)
-        throw UserError(input + ": " + std::to_string(voxels) + " voxels; volumes of up to " +
-                        std::to_string(kMaxVoxelsInOneMesh) + " (256³) are magnified so far");
-    if (uint64_t(out[0]) * out[1] * out[2] > kMaxOutputVoxels)
-        throw UserError(input + ": the output would have " + std::to_string(uint64_t(out[0]) * out[1] * out[2]) +
-                        " voxels, more than the limit of 2^31");
+// Throws UserError when the output would be too large.
+void checkOutputSize(const std::string& input, const std::array<uint32_t, 3>& out) {
+    const uint64_t voxels = uint64_t(out[0]) * out[1] * out[2];
+    if (voxels > kMaxOutputVoxels)
+        throw UserError(input + ": the output would have " + std::to_string(voxels) + " voxels, more than the limit of 2^31");
 }
 
 // --slices' folder, made before the long part so that a bad one fails first.
@@ -67,28 +56,19 @@ VolumeReport magnifyVolume(size_t index, const ImageTask& task, const Settings& 
     const Volume volume = readVolume(task.input);
     report.in = volume.size;
     report.out = resampledSize(volume.size, factorsOf(settings));
-    checkSizes(task.input, report.in, report.out);
+    checkOutputSize(task.input, report.out);
     report.read_s = secondsSince(start);
 
-    start = std::chrono::steady_clock::now();
     reporter.stage(index, task.input, Stage::Optimize);
-    TetMesh mesh = kuhnTetMesh(volume.size);
-    report.tets_before = mesh.tetCount();
-    TetLawsonOptions options;
+    VolumeMagnifyOptions options;
     options.weight = settings.cost == "face-scf" ? TetWeight::face_scf : TetWeight::variance;
-    report.stats = optimizeTetMeshSerial(mesh, tetCostFieldOf(volume), options);
-    report.tets_after = mesh.tetCount();
-    report.optimize_s = secondsSince(start);
-
-    start = std::chrono::steady_clock::now();
-    reporter.stage(index, task.input, Stage::Render);
+    options.brick_side = settings.tile;
     Volume output;
     output.size = report.out;
     output.type = outputType(volume.type, settings.depth);
     output.metadata = volume.metadata;
     output.index_to_world = resampledAffine(volume.index_to_world, volume.size, output.size);
-    output.values = resampleTets(mesh, volume.values, output.size);
-    report.resample_s = secondsSince(start);
+    output.values = magnifyVolumeValues(volume, output.size, options, report.stats);
 
     start = std::chrono::steady_clock::now();
     reporter.stage(index, task.input, Stage::Write);

@@ -1,6 +1,6 @@
-// One volume's way through a run: read, tetrahedralize (core/volume/tet_mesh.h), optimize by
-// bistellar flips (the serial generalized Lawson), resample onto the magnified grid, write,
-// and the middle slices when asked. Volumes run one after another, on the CPU: their Vulkan
+// One volume's way through a run: read, magnify (core/volume/volume_magnify.h: tetrahedralize,
+// optimize by bistellar flips, resample; in bricks when large or --tile asks), write, and the
+// middle slices when asked. Volumes run one after another, on the CPU: their Vulkan
 // kernels are not written yet, and --backend auto says so.
 #pragma once
 
@@ -11,7 +11,7 @@
 #include "batch_plan.h"
 #include "reporter.h"
 #include "settings.h"
-#include "tet_lawson.h"
+#include "volume_magnify.h"
 
 namespace ddt {
 
@@ -19,17 +19,11 @@ namespace ddt {
 struct VolumeReport {
     std::array<uint32_t, 3> in{};
     std::array<uint32_t, 3> out{};
-    uint64_t tets_before = 0, tets_after = 0;
-    TetLawsonStats stats;
-    double read_s = 0.0;      // read and check the file
-    double optimize_s = 0.0;  // build the tetrahedral mesh and optimize it
-    double resample_s = 0.0;  // every output voxel in its tetrahedron
-    double write_s = 0.0;     // the output file and the slices
+    VolumeMagnifyStats stats;
+    double read_s = 0.0;   // read and check the file
+    double write_s = 0.0;  // the output file and the slices
 };
 
-// The volumes' largest input, in voxels, while a volume is optimized as one mesh: about 300
-// bytes per voxel (6 tets of vertices, neighbours and cached costs), 5 GB at 256³.
-inline constexpr uint64_t kMaxVoxelsInOneMesh = uint64_t(1) << 24;
 // The largest output, in voxels: the output is held whole, as floats (8 GiB at the limit).
 inline constexpr uint64_t kMaxOutputVoxels = uint64_t(1) << 31;
 

@@ -17,11 +17,10 @@
 #include "grid_filters.h"
 #include "image.h"
 #include "image_file.h"
-#include "tet_cost.h"
-#include "tet_lawson.h"
 #include "tet_mesh.h"
 #include "tet_resample.h"
 #include "test_volumes.h"
+#include "volume_magnify.h"
 #include "volume_metrics.h"
 
 namespace {
@@ -53,24 +52,33 @@ Method magnifyByGrid(const std::string& name, const ddt::Volume& small, const st
     return method;
 }
 
-// weight empty: the initial Kuhn mesh, no flips.
-Method magnifyByTets(const std::string& name, const ddt::Volume& small, const std::array<uint32_t, 3>& size,
-                     std::optional<ddt::TetWeight> weight) {
+// The linear interpolation on the initial Kuhn mesh: what the flips start from.
+Method magnifyByKuhnMesh(const ddt::Volume& small, const std::array<uint32_t, 3>& size) {
     Method method;
-    method.name = name;
+    method.name = "Kuhn mesh, no flips";
     auto start = Clock::now();
-    ddt::TetMesh mesh = ddt::kuhnTetMesh(small.size);
-    if (weight) {
-        ddt::TetLawsonOptions options;
-        options.weight = *weight;
-        method.flips = ddt::optimizeTetMeshSerial(mesh, ddt::tetCostFieldOf(small), options).flipCount();
-    }
+    const ddt::TetMesh mesh = ddt::kuhnTetMesh(small.size);
     method.optimize_s = secondsSince(start);
     start = Clock::now();
     method.result.size = size;
-    method.result.index_to_world = ddt::resampledAffine(small.index_to_world, small.size, size);
     method.result.values = ddt::resampleTets(mesh, small.values, size);
     method.resample_s = secondsSince(start);
+    return method;
+}
+
+// ddtup's way (core/volume/volume_magnify.h), serial flips.
+Method magnifyByDdt(const std::string& name, const ddt::Volume& small, const std::array<uint32_t, 3>& size,
+                    ddt::TetWeight weight) {
+    Method method;
+    method.name = name;
+    ddt::VolumeMagnifyOptions options;
+    options.weight = weight;
+    ddt::VolumeMagnifyStats stats;
+    method.result.size = size;
+    method.result.values = ddt::magnifyVolumeValues(small, size, options, stats);
+    method.flips = stats.lawson.flipCount();
+    method.optimize_s = stats.optimize_s;
+    method.resample_s = stats.resample_s;
     return method;
 }
 
@@ -142,9 +150,9 @@ int main(int argc, char** argv) {
                     std::vector<Method> methods;
                     methods.push_back(magnifyByGrid("trilinear", small, size, bench::GridFilter::trilinear));
                     methods.push_back(magnifyByGrid("tricubic (Catmull–Rom)", small, size, bench::GridFilter::catmull_rom));
-                    methods.push_back(magnifyByTets("Kuhn mesh, no flips", small, size, std::nullopt));
-                    methods.push_back(magnifyByTets("DDT, variance", small, size, ddt::TetWeight::variance));
-                    methods.push_back(magnifyByTets("DDT, face-SCF", small, size, ddt::TetWeight::face_scf));
+                    methods.push_back(magnifyByKuhnMesh(small, size));
+                    methods.push_back(magnifyByDdt("DDT, variance", small, size, ddt::TetWeight::variance));
+                    methods.push_back(magnifyByDdt("DDT, face-SCF", small, size, ddt::TetWeight::face_scf));
                     for (const Method& m : methods) {
                         const double psnr = bench::volumePsnr(clean, m.result, range);
                         const double distance = bench::isosurfaceDistance(clean, m.result, surfaceLevel(kind) * range);

@@ -75,16 +75,20 @@ void gather(const TetMesh& mesh, const TetCostField& field, const TetVertices& t
 }
 
 template <typename Value>
-std::vector<double> normalize(const std::vector<Value>& values) {
+std::vector<double> normalize(const std::vector<Value>& values, double lo, double hi) {
     std::vector<double> normalized(values.size(), 0.0);
-    if (values.empty()) return normalized;
-    const auto [lo_it, hi_it] = std::minmax_element(values.begin(), values.end());
-    const double lo = double(*lo_it), hi = double(*hi_it);
     assert(std::isfinite(lo) && std::isfinite(hi));
     if (!(hi > lo)) return normalized;
     const double range = hi - lo;
     for (size_t i = 0; i < values.size(); ++i) normalized[i] = (double(values[i]) - lo) / range;
     return normalized;
+}
+
+template <typename Value>
+std::vector<double> normalize(const std::vector<Value>& values) {
+    if (values.empty()) return {};
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    return normalize(values, double(*lo), double(*hi));
 }
 
 }  // namespace
@@ -93,6 +97,9 @@ const char* tetWeightName(TetWeight weight) { return weight == TetWeight::varian
 
 std::vector<double> normalizedValues(const std::vector<float>& values) { return normalize(values); }
 std::vector<double> normalizedValues(const std::vector<double>& values) { return normalize(values); }
+std::vector<double> normalizedValues(const std::vector<float>& values, double lo, double hi) {
+    return normalize(values, lo, hi);
+}
 
 TetCostField tetCostFieldOf(const Volume& volume) {
     TetCostField field;

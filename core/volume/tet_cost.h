@@ -49,6 +49,8 @@ struct TetCostField {
 // values, at most 1.1e-16 with double).
 std::vector<double> normalizedValues(const std::vector<float>& values);
 std::vector<double> normalizedValues(const std::vector<double>& values);
+// The same with a given range (a brick of a volume normalized by the whole volume's range).
+std::vector<double> normalizedValues(const std::vector<float>& values, double lo, double hi);
 
 // The field of a volume: its size, spacingOf(index_to_world) and its normalized values.
 TetCostField tetCostFieldOf(const Volume& volume);

@@ -143,12 +143,16 @@ void scanTet(const SampleGrid& grid, const std::array<Point, 4>& v, const std::a
 // Tets per parallelFor chunk: a Kuhn tet magnified ×2 tests about 8 samples.
 constexpr size_t kTetsPerChunk = 2048;
 
+TetResampleWindow wholeWindow(const TetMesh& mesh, const std::array<uint32_t, 3>& new_size) {
+    return {mesh.size, new_size, {0, 0, 0}, {0, 0, 0}, new_size};
+}
+
 // Calls sample(t, index, f, total) (f: std::array<Wide, 4>, int64_t or __int128) for every
-// output sample and the tet t that owns it, on the threads of core/parallel.h.
+// output sample of the window and the tet t that owns it, on the threads of core/parallel.h.
 template <typename Sample>
-void visitOwners(const TetMesh& mesh, const std::array<uint32_t, 3>& new_size, TetArithmetic arithmetic, Sample sample) {
-    assert(checkTetResampleSize(mesh.size, new_size).empty());
-    const SampleGrid grid = sampleGridOf(mesh.size, new_size);
+void visitOwners(const TetMesh& mesh, const TetResampleWindow& window, TetArithmetic arithmetic, Sample sample) {
+    assert(checkTetResampleSize(window.size, window.new_size).empty());
+    const SampleGrid grid = sampleGridOf(window.size, window.new_size);
     const uint32_t slice = mesh.size[0] * mesh.size[1];
     const DivideBy by_x(mesh.size[0]), by_xy(slice);
     parallelFor(mesh.slotCount(), kTetsPerChunk, [&](size_t begin, size_t end) {
@@ -160,7 +164,8 @@ void visitOwners(const TetMesh& mesh, const std::array<uint32_t, 3>& new_size, T
             for (int k = 0; k < 4; ++k) {
                 const uint32_t id = mesh.vertices[t][k], z = by_xy.quotient(id), rest = id - z * slice;
                 const uint32_t y = by_x.quotient(rest);
-                index[k] = {rest - y * mesh.size[0], y, z};
+                index[k] = {rest - y * mesh.size[0] + window.vertex_offset[0], y + window.vertex_offset[1],
+                            z + window.vertex_offset[2]};
                 for (int a = 0; a < 3; ++a) {
                     lo[a] = k ? std::min(lo[a], index[k][a]) : index[k][a];
                     hi[a] = k ? std::max(hi[a], index[k][a]) : index[k][a];
@@ -168,8 +173,8 @@ void visitOwners(const TetMesh& mesh, const std::array<uint32_t, 3>& new_size, T
             }
             bool empty = false;
             for (int a = 0; a < 3; ++a) {
-                first[a] = grid.first[a][lo[a]];
-                last[a] = grid.end[a][hi[a]];
+                first[a] = std::max(grid.first[a][lo[a]], window.out_begin[a]);
+                last[a] = std::min(grid.end[a][hi[a]], window.out_end[a]);
                 empty |= first[a] >= last[a];
             }
             if (empty) continue;
@@ -208,20 +213,26 @@ std::vector<float> resampleTets(const TetMesh& mesh, const std::vector<float>& v
     assert(values.size() == mesh.vertexCount());
     // NaN marks a voxel no tet owned; there is none in a valid mesh.
     std::vector<float> out(size_t(new_size[0]) * new_size[1] * new_size[2], std::numeric_limits<float>::quiet_NaN());
-    visitOwners(mesh, new_size, arithmetic, [&](uint32_t t, size_t index, const auto& f, const auto& total) {
+    resampleTetsInto(mesh, values, wholeWindow(mesh, new_size), out.data(), arithmetic);
+    return out;
+}
+
+void resampleTetsInto(const TetMesh& mesh, const std::vector<float>& values, const TetResampleWindow& window,
+                      float* out, TetArithmetic arithmetic) {
+    assert(values.size() == mesh.vertexCount());
+    visitOwners(mesh, window, arithmetic, [&](uint32_t t, size_t index, const auto& f, const auto& total) {
         const TetVertices& ids = mesh.vertices[t];
         // Divided, not multiplied by 1 / total: a weight f_i = total is then exactly 1.
         double sum = 0.0;
         for (int i = 0; i < 4; ++i) sum += double(f[i]) / double(total) * double(values[ids[i]]);
         out[index] = float(sum);
     });
-    return out;
 }
 
 std::vector<uint32_t> tetSampleOwners(const TetMesh& mesh, const std::array<uint32_t, 3>& new_size,
                                       TetArithmetic arithmetic) {
     std::vector<uint32_t> owners(size_t(new_size[0]) * new_size[1] * new_size[2], kNoTet);
-    visitOwners(mesh, new_size, arithmetic, [&](uint32_t t, size_t index, const auto&, const auto&) {
+    visitOwners(mesh, wholeWindow(mesh, new_size), arithmetic, [&](uint32_t t, size_t index, const auto&, const auto&) {
         std::atomic_ref<uint32_t> owner(owners[index]);
         uint32_t expected = kNoTet;
         if (!owner.compare_exchange_strong(expected, t)) owner.store(kManyTets);

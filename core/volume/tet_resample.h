@@ -80,6 +80,23 @@ std::vector<float> resampleTets(const TetMesh& mesh, const std::vector<float>& v
                                 const std::array<uint32_t, 3>& new_size,
                                 TetArithmetic arithmetic = TetArithmetic::narrowest);
 
+// Part of a larger resampling, for a mesh of one brick of a volume (core/volume/volume_magnify.h):
+// the whole grid's sizes fix every sample's position and the exact units, the brick's mesh
+// sits at `vertex_offset` in the whole input, and only the output voxels of [out_begin,
+// out_end) per axis are resampled. The brick's vertices' box must hold those samples, and an
+// inner side of the box must not be where a sample lies (its push would leave the brick):
+// bricks with a margin of at least one voxel past the samples they resample.
+struct TetResampleWindow {
+    std::array<uint32_t, 3> size{};      // the whole input's voxels (n per axis)
+    std::array<uint32_t, 3> new_size{};  // the whole output's voxels (m per axis)
+    std::array<uint32_t, 3> vertex_offset{};
+    std::array<uint32_t, 3> out_begin{}, out_end{};
+};
+
+// Resamples the window's output voxels into `out` (the whole output, new_size voxels, x fastest).
+void resampleTetsInto(const TetMesh& mesh, const std::vector<float>& values, const TetResampleWindow& window,
+                      float* out, TetArithmetic arithmetic = TetArithmetic::narrowest);
+
 // The owner of every output sample as resampleTets decides it (tests): the owning tet's slot,
 // kNoTet where no tet claims the sample, kManyTets where more than one does.
 constexpr uint32_t kManyTets = 0xfffffffeu;
