@@ -158,6 +158,8 @@ std::vector<ImageTask> planBatch(const Settings& settings) {
         for (ImageTask& task : tasks)
             task.mesh = settings.singleForm() ? settings.mesh
                                               : fs::path(task.output).replace_extension(meshExtension(settings.mesh)).string();
+    if (settings.stack)
+        for (ImageTask& task : tasks) task.volume = true;
     refuseMismatchedKinds(tasks, settings);
     decideStates(tasks, settings.skip_existing);
     return tasks;

@@ -135,9 +135,11 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (settings.list_devices) return "";
     // Volumes named on the command line are checked here, before any work; those found by -i
     // when the batch is planned (app/batch_plan.cpp).
+    if (settings.stack && (!settings.singleForm() || settings.inputs.size() != 1))
+        return "--stack reads one folder of slices or one multi-page TIFF: `ddtup --stack IN OUT.nrrd`";
     bool any_volume = false;
     for (const std::string& input : settings.inputs)
-        if (isVolumePath(input)) {
+        if (settings.stack || isVolumePath(input)) {
             any_volume = true;
             if (std::string problem = volumeTaskProblem(input, settings); !problem.empty()) return problem;
         } else if (input != kStandardStream && settings.input_folder.empty() && settings.output_folder.empty() &&
@@ -149,7 +151,8 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
         if (!settings.slices.empty()) return "--slices applies to volumes (" + volumeExtensionNames() + ")";
         if (perAxisScale(settings)) return "--scale with three factors applies to volumes (" + volumeExtensionNames() + ")";
     }
-    if (settings.singleForm() && !settings.output.empty() && isVolumePath(settings.inputs.front()) != isVolumePath(settings.output))
+    if (settings.singleForm() && !settings.output.empty() &&
+        (settings.stack || isVolumePath(settings.inputs.front())) != isVolumePath(settings.output))
         return settings.output + ": a volume's output must be a volume file (" + volumeExtensionNames() +
                ") and an image's an image file";
 
@@ -289,6 +292,9 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "Volumes: also write PNG slices through the middle of each output (axial, coronal, sagittal), "
                    "grey levels spanning the output's range, into this folder")
         ->default_str("none");
+    app.add_flag("--stack", settings.stack,
+                 "Read the input as a volume of 2-D slices: a folder of grey images (in name order) or a multi-page "
+                 "TIFF (in page order), unit spacing; one input, and the output a volume file (default: off)");
     std::string progress = "auto";
     app.add_option("--progress", progress,
                    "auto (a progress line on a terminal, nothing otherwise), bar, json (one JSON event per line "

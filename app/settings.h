@@ -36,6 +36,7 @@ struct Settings {
     std::array<double, 3> axis_scales{};
     std::string cost;    // --cost: the volumes' tetrahedron weight; "" = variance (core/volume/tet_cost.h)
     std::string slices;  // --slices DIR: PNG slices through the middle of each output volume; "" = none
+    bool stack = false;  // --stack: the input is a volume of 2-D slices (core/io/volume_stack.h)
     // The options given that mean nothing for volumes, as the user spelled them (--mesh, ...):
     // a volume input is refused with them.
     std::vector<std::string> image_only_options;

@@ -9,6 +9,7 @@
 #include "volume.h"
 #include "volume_file.h"
 #include "volume_slices.h"
+#include "volume_stack.h"
 
 namespace ddt {
 
@@ -53,7 +54,7 @@ VolumeReport magnifyVolume(size_t index, const ImageTask& task, const Settings& 
     auto start = std::chrono::steady_clock::now();
     if (!settings.slices.empty()) makeSlicesFolder(settings.slices);
     reporter.stage(index, task.input, Stage::Read);
-    const Volume volume = readVolume(task.input);
+    const Volume volume = settings.stack ? readImageStack(task.input) : readVolume(task.input);
     report.in = volume.size;
     report.out = resampledSize(volume.size, factorsOf(settings));
     checkOutputSize(task.input, report.out);

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <OpenImageIO/imageio.h>
+
 #include "image_file.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
@@ -186,4 +188,75 @@ TEST_CASE("volume cli: --tile cuts a volume into bricks, seamlessly for a linear
             }
     // Values up to 81 stored as float: a few ulps (2^-17 at 64–128).
     CHECK(worst < 1e-4);
+}
+
+namespace {
+
+// A grey image whose pixel (x, y) holds level (x + width·y + offset) / scale.
+ddt::Image greyImage(uint32_t width, uint32_t height, uint32_t channels, int offset, ddt::SampleType type) {
+    ddt::Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.sample_type = type;
+    const float scale = type == ddt::SampleType::UInt8 ? 255.0f : 65535.0f;
+    for (uint32_t i = 0; i < width * height * channels; ++i) image.pixels.push_back(float(i / channels + offset) / scale);
+    return image;
+}
+
+}  // namespace
+
+TEST_CASE("volume cli: --stack reads a folder of slices and a multi-page TIFF") {
+    TempFolder work;
+    std::filesystem::create_directory(work / "slices");
+    for (int k = 0; k < 3; ++k)
+        ddt::writeImage(work / ("slices/s" + std::to_string(k) + ".png"), greyImage(4, 3, 1, 20 * k, ddt::SampleType::UInt8));
+    Run run = runDdtup({"--stack", work / "slices", "-s", "1", work / "v.nrrd", "-q"});
+    REQUIRE(run.exit_code == 0);
+    ddt::Volume volume = ddt::readVolume(work / "v.nrrd");
+    REQUIRE(volume.size == std::array<uint32_t, 3>{4, 3, 3});
+    CHECK(volume.type == ddt::VoxelType::u8);
+    // x1 gives the input back: slice k's voxel (x, y) is level x + 4y + 20k.
+    for (uint32_t z = 0; z < 3; ++z)
+        for (uint32_t y = 0; y < 3; ++y)
+            for (uint32_t x = 0; x < 4; ++x) REQUIRE(volume.at(x, y, z) == float(x + 4 * y + 20 * z));
+
+    // Two 16-bit pages in one TIFF, written by OpenImageIO.
+    {
+        auto out = OIIO::ImageOutput::create(work / "pages.tif");
+        REQUIRE(out);
+        OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(5, 2, 1, OIIO::TypeDesc::UINT16), OIIO::ImageSpec(5, 2, 1, OIIO::TypeDesc::UINT16)};
+        REQUIRE(out->open(work / "pages.tif", 2, specs));
+        for (int page = 0; page < 2; ++page) {
+            if (page) REQUIRE(out->open(work / "pages.tif", specs[page], OIIO::ImageOutput::AppendSubimage));
+            std::vector<uint16_t> levels;
+            for (int i = 0; i < 10; ++i) levels.push_back(uint16_t(1000 * page + 7 * i));
+            REQUIRE(out->write_image(OIIO::TypeDesc::UINT16, levels.data()));
+        }
+        REQUIRE(out->close());
+    }
+    run = runDdtup({"--stack", work / "pages.tif", "-s", "1", work / "p.nii", "-q"});
+    REQUIRE(run.exit_code == 0);
+    volume = ddt::readVolume(work / "p.nii");
+    REQUIRE(volume.size == std::array<uint32_t, 3>{5, 2, 2});
+    CHECK(volume.type == ddt::VoxelType::u16);
+    CHECK(volume.at(3, 1, 1) == float(1000 + 7 * 8));
+}
+
+TEST_CASE("volume cli: --stack refuses what is not a stack of grey slices") {
+    TempFolder work;
+    std::filesystem::create_directory(work / "colour");
+    ddt::writeImage(work / "colour/a.png", greyImage(4, 3, 1, 0, ddt::SampleType::UInt8));
+    ddt::writeImage(work / "colour/b.png", greyImage(4, 3, 3, 0, ddt::SampleType::UInt8));
+    requireOneLineError(runDdtup({"--stack", work / "colour", work / "v.nrrd", "-q"}), 1, "b.png", "must be grey");
+    std::filesystem::create_directory(work / "sizes");
+    ddt::writeImage(work / "sizes/a.png", greyImage(4, 3, 1, 0, ddt::SampleType::UInt8));
+    ddt::writeImage(work / "sizes/b.png", greyImage(3, 4, 1, 0, ddt::SampleType::UInt8));
+    requireOneLineError(runDdtup({"--stack", work / "sizes", work / "v.nrrd", "-q"}), 1, "b.png", "the first slice 4×3");
+    std::filesystem::create_directory(work / "one");
+    ddt::writeImage(work / "one/a.png", greyImage(4, 3, 1, 0, ddt::SampleType::UInt8));
+    requireOneLineError(runDdtup({"--stack", work / "one", work / "v.nrrd", "-q"}), 1, "one", "at least 2");
+    requireOneLineError(runDdtup({"--stack", work / "one", work / "v.png"}), 2, "v.png", "volume file");
+    requireOneLineError(runDdtup({"--stack", work / "one", work / "sizes", "-o", work / "out"}), 2, "--stack", "one folder");
+    CHECK(!std::filesystem::exists(work / "v.nrrd"));
 }
