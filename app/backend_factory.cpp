@@ -33,14 +33,22 @@ bool mayHaveGpu() {
     return false;
 }
 
-ChosenBackend cpuBackend(std::string reason) {
-    return {makeCpuBackend(), {"cpu", "", "", threadCount(), std::move(reason)}};
+// --cost for images: Sederberg's unless named.
+CostFunction costOf(const Settings& settings) {
+    return settings.cost.empty() ? CostFunction::sederberg : *parseCostFunction(settings.cost);
+}
+
+ChosenBackend cpuBackend(const Settings& settings, std::string reason) {
+    LawsonOptions options;
+    options.cost = costOf(settings);
+    return {makeCpuBackend(options), {"cpu", "", "", threadCount(), std::move(reason)}};
 }
 
 ChosenBackend vulkanBackend(const Settings& settings, int device_index, std::string reason) {
     VulkanOptions options;
     if (!settings.variant.empty()) options.rule = settings.variant;
     options.active_set = settings.active_set;
+    options.cost = costOf(settings);
     options.device_index = device_index;
     auto backend = std::make_unique<VulkanBackend>(options);
     const DeviceInfo& device = backend->device();
@@ -50,18 +58,18 @@ ChosenBackend vulkanBackend(const Settings& settings, int device_index, std::str
 
 // --backend auto without --device: Vulkan on the device Vulkan would choose, when that is a GPU.
 ChosenBackend automaticBackend(const Settings& settings) {
-    if (!mayHaveGpu()) return cpuBackend("this machine has no GPU device (/dev/dri/renderD*, /dev/nvidiactl)");
+    if (!mayHaveGpu()) return cpuBackend(settings, "this machine has no GPU device (/dev/dri/renderD*, /dev/nvidiactl)");
     std::vector<DeviceInfo> devices;
     uint32_t best = 0;
     try {
         devices = listDevices();
         best = chooseDevice(devices, -1);
     } catch (const UserError&) {
-        return cpuBackend("no usable Vulkan device (a GPU driver would give one)");
+        return cpuBackend(settings, "no usable Vulkan device (a GPU driver would give one)");
     }
     const DeviceInfo& device = devices[best];
     if (device.isCpu())
-        return cpuBackend("the only Vulkan device, " + device.name +
+        return cpuBackend(settings, "the only Vulkan device, " + device.name +
                           ", runs on the CPU, where the CPU backend is faster (--backend vulkan uses it anyway)");
     return vulkanBackend(settings, int(best), "");
 }
@@ -69,7 +77,7 @@ ChosenBackend automaticBackend(const Settings& settings) {
 }  // namespace
 
 ChosenBackend makeBackend(const Settings& settings) {
-    if (settings.backend == "cpu") return cpuBackend("");
+    if (settings.backend == "cpu") return cpuBackend(settings, "");
     if (settings.backend == "vulkan" || settings.device >= 0) return vulkanBackend(settings, settings.device, "");
     return automaticBackend(settings);
 }

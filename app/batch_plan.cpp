@@ -125,6 +125,8 @@ void decideStates(std::vector<ImageTask>& tasks, bool skip_existing) {
 std::string volumeTaskProblem(const std::string& input, const Settings& settings) {
     if (!settings.image_only_options.empty())
         return input + ": " + settings.image_only_options.front() + " does not apply to volumes";
+    if (settings.cost == "sederberg")
+        return input + ": --cost sederberg is an edge cost of images; volumes take variance or face-scf";
     if (settings.backend == "vulkan" || settings.device >= 0)
         return input + ": volumes run on the CPU backend only (their Vulkan kernels are not written yet); use "
                        "--backend cpu or auto";

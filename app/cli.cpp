@@ -10,6 +10,7 @@
 
 #include "batch_plan.h"
 #include "exit_codes.h"
+#include "cost.h"
 #include "flip_rule.h"
 #include "image.h"
 #include "image_formats.h"
@@ -130,8 +131,8 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
         return "--depth " + settings.depth + ": use 8, 16, half or float";
     if (!settings.format.empty() && settings.format.find_first_of("./") != std::string::npos)
         return "--format " + settings.format + ": give an extension such as png, jpg, tif or exr";
-    if (!settings.cost.empty() && settings.cost != "variance" && settings.cost != "face-scf")
-        return "--cost " + settings.cost + ": use variance or face-scf";
+    if (!settings.cost.empty() && !parseCostFunction(settings.cost))
+        return "--cost " + settings.cost + ": use sederberg, variance or face-scf";
     if (settings.list_devices) return "";
     // Volumes named on the command line are checked here, before any work; those found by -i
     // when the batch is planned (app/batch_plan.cpp).
@@ -147,7 +148,6 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
             return "--scale with three factors applies to volumes (" + volumeExtensionNames() + "), not to " + input;
         }
     if (!any_volume && settings.input_folder.empty()) {
-        if (!settings.cost.empty()) return "--cost applies to volumes (" + volumeExtensionNames() + ")";
         if (!settings.slices.empty()) return "--slices applies to volumes (" + volumeExtensionNames() + ")";
         if (perAxisScale(settings)) return "--scale with three factors applies to volumes (" + volumeExtensionNames() + ")";
     }
@@ -284,10 +284,11 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_flag("!--no-active-set", settings.active_set,
                  "Vulkan: re-test every edge in every iteration, not only those a flip may have changed (default: off)");
     app.add_option("--cost", settings.cost,
-                   "Volumes: the weight of each tetrahedron's volume in the cost the flips lower (Toth et al.): "
-                   "variance (of its four values) or face-scf (the mean over its faces of Sederberg's cost between "
-                   "the two tetrahedra's gradients, 0 on the box's sides); values normalised by the volume's range")
-        ->default_str("variance");
+                   "The cost the flips lower. Images: sederberg (Yu et al.'s edge cost), or Toth et al.'s content-"
+                   "weighted costs, each triangle's area times a weight: variance (of its three values) or face-scf "
+                   "(the mean over its edges of Sederberg's cost). Volumes: the same weights of each tetrahedron's "
+                   "volume, variance or face-scf (0 on the box's sides), values normalised by the volume's range")
+        ->default_str("sederberg for images, variance for volumes");
     app.add_option("--slices", settings.slices,
                    "Volumes: also write PNG slices through the middle of each output (axial, coronal, sagittal), "
                    "grey levels spanning the output's range, into this folder")

@@ -34,7 +34,7 @@ struct Settings {
     double scale = 0.0;       // 0: not given
     // Volumes only (core/volume/): -s FX,FY,FZ, a factor per axis; all 0 when -s gave one factor.
     std::array<double, 3> axis_scales{};
-    std::string cost;    // --cost: the volumes' tetrahedron weight; "" = variance (core/volume/tet_cost.h)
+    std::string cost;    // --cost: core/cost.h's names; "" = sederberg for images, variance for volumes (core/volume/tet_cost.h)
     std::string slices;  // --slices DIR: PNG slices through the middle of each output volume; "" = none
     bool stack = false;  // --stack: the input is a volume of 2-D slices (core/io/volume_stack.h)
     // The options given that mean nothing for volumes, as the user spelled them (--mesh, ...):

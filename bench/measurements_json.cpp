@@ -48,6 +48,7 @@ void writeDdtMethod(JsonWriter& json, const DdtMethod& m) {
     json.key("label").value(m.label);
     json.key("backend").value(m.backend);
     json.key("variant").value(m.variant);
+    json.key("cost").value(std::string(ddt::costFunctionName(m.cost)));
     json.key("device").value(m.device);
     json.key("available").value(m.unavailable.empty());
     json.key("unavailable_reason").value(m.unavailable);

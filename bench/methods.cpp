@@ -2,8 +2,10 @@
 
 #include <cassert>
 
-#include "context.h"
 #include "backend_factory.h"
+#include "context.h"
+#include "flip_rule.h"
+#include "vulkan_backend.h"
 
 namespace bench {
 
@@ -28,18 +30,39 @@ const GpuVariant kGpuVariants[] = {
     {"exproi-localmax", "GPU ExpROI LocalMax"},
 };
 
-DdtMethod cpuMethod() { return {"cpu", "CPU DDT", "cpu", "", "", ""}; }
+// The label's suffix for a content-weighted cost: " variance", " face-SCF"; "" for Sederberg's.
+std::string costSuffix(ddt::CostFunction cost) {
+    if (cost == ddt::CostFunction::variance) return " variance";
+    if (cost == ddt::CostFunction::face_scf) return " face-SCF";
+    return "";
+}
 
-DdtMethod gpuMethod(const std::string& variant, const std::string& label, const BenchDevice* device) {
+DdtMethod cpuMethod(ddt::CostFunction cost = ddt::CostFunction::sederberg) {
+    DdtMethod method;
+    method.key = cpuKeyFor(cost);
+    method.label = "CPU DDT" + costSuffix(cost);
+    method.backend = "cpu";
+    method.cost = cost;
+    return method;
+}
+
+DdtMethod gpuMethod(const std::string& variant, const std::string& label, const BenchDevice* device,
+                    ddt::CostFunction cost = ddt::CostFunction::sederberg) {
     DdtMethod method;
     method.backend = "vulkan";
     method.variant = variant;
-    method.label = label;
+    method.label = label + costSuffix(cost);
     method.device = device ? device->id : "";
-    method.key = "vulkan/" + (variant.empty() ? std::string("default") : variant) + "/" + method.device;
+    method.cost = cost;
+    // Sederberg's keys are those of the earlier measurements; other costs add theirs.
+    const std::string name = (variant.empty() ? std::string("default") : variant) +
+                             (cost == ddt::CostFunction::sederberg ? "" : std::string("+") + ddt::costFunctionName(cost));
+    method.key = "vulkan/" + name + "/" + method.device;
     method.unavailable = device ? "" : "no usable Vulkan device";
     return method;
 }
+
+const ddt::CostFunction kContentCosts[] = {ddt::CostFunction::variance, ddt::CostFunction::face_scf};
 
 }  // namespace
 
@@ -66,9 +89,17 @@ std::vector<BenchDevice> benchDevices(const std::string& selection) {
     return devices;
 }
 
+std::string cpuKeyFor(ddt::CostFunction cost) {
+    return cost == ddt::CostFunction::sederberg ? "cpu" : std::string("cpu/") + ddt::costFunctionName(cost);
+}
+
 std::vector<DdtMethod> ddtMethods(const BenchDevice* device) {
     std::vector<DdtMethod> methods = {cpuMethod()};
     for (const GpuVariant& variant : kGpuVariants) methods.push_back(gpuMethod(variant.name, variant.label, device));
+    for (ddt::CostFunction cost : kContentCosts) {
+        methods.push_back(cpuMethod(cost));
+        methods.push_back(gpuMethod(ddt::kDefaultFlipRule, "GPU default variant", device, cost));
+    }
     return methods;
 }
 
@@ -79,6 +110,19 @@ std::vector<DdtMethod> scalingMethods(const BenchDevice* device) {
 
 std::unique_ptr<ddt::Backend> makeMethodBackend(const DdtMethod& method) {
     assert(method.unavailable.empty());
+    // The content-weighted costs are built here until app's Settings carries the cost.
+    if (method.cost != ddt::CostFunction::sederberg) {
+        if (method.backend == "cpu") {
+            ddt::LawsonOptions options;
+            options.cost = method.cost;
+            return ddt::makeCpuBackend(options);
+        }
+        ddt::VulkanOptions options;
+        if (!method.variant.empty()) options.rule = method.variant;
+        options.cost = method.cost;
+        options.device_index = method.device.empty() ? -1 : std::stoi(method.device);
+        return ddt::makeVulkanBackend(options);
+    }
     ddt::Settings settings;
     settings.backend = method.backend;
     settings.variant = method.variant;

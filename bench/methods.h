@@ -33,17 +33,24 @@ struct BenchDevice {
 std::vector<BenchDevice> benchDevices(const std::string& selection);
 
 struct DdtMethod {
-    std::string key;          // unique id in the raw measurements: "cpu", "vulkan/maxgain/0"
+    std::string key;          // unique id in the raw measurements: "cpu", "vulkan/maxgain/0", "cpu/variance"
     std::string label;        // column heading, as the paper names it: "GPU MaxGain"
     std::string backend;      // "cpu" or "vulkan"
     std::string variant;      // Vulkan variant ("basic", "exproi-maxgain", …); "" = default
     std::string device;       // BenchDevice::id; "" for the CPU
     std::string unavailable;  // "" if it runs here, else why it is reported as n/a
+    ddt::CostFunction cost = ddt::CostFunction::sederberg;  // the cost the flips lower
 };
 
 // The DDT methods on `device` (null: no Vulkan device): the CPU reference, then every GPU
-// variant of the paper's Tables 1–3 and the later ones, in the paper's column order.
+// variant of the paper's Tables 1–3 and the later ones, in the paper's column order, all with
+// Sederberg's cost; then, for Tóth et al.'s content-weighted costs (variance, face-SCF), the
+// CPU reference and the Vulkan backend's default variant.
 std::vector<DdtMethod> ddtMethods(const BenchDevice* device);
+
+// The CPU reference's key for `cost` ("cpu" for Sederberg's): the method a column's costs are
+// compared with, since costs of different functions do not compare.
+std::string cpuKeyFor(ddt::CostFunction cost);
 
 // Fig. 13's methods: the CPU reference, the Vulkan backend's default variant and ExpROI
 // MaxGain (the paper's choice).

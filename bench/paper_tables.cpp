@@ -96,11 +96,12 @@ Table costAndTimeTable(const BenchResults& results) {
                                                                            : std::nullopt);
             }
             // The mean over images of each image's cost-final relative to CPU DDT's: the paper's
-            // observation (GPU variants end above serial Lawson) as a measured number.
+            // observation (GPU variants end above serial Lawson) as a measured number. A column
+            // with another cost than Sederberg's is compared with CPU DDT of its own cost.
             TableRow ratio{keys, section, "Cost-final / CPU DDT", {}, 4};
             for (const DdtMethod& method : results.columns)
                 ratio.values.push_back(meanOf(images, [&](const ImageResult& image) -> std::optional<double> {
-                    auto variant = image.ddt.find(method.key), serial = image.ddt.find("cpu");
+                    auto variant = image.ddt.find(method.key), serial = image.ddt.find(cpuKeyFor(method.cost));
                     if (variant == image.ddt.end() || serial == image.ddt.end()) return std::nullopt;
                     return statsOf(variant->second).cost_final / statsOf(serial->second).cost_final;
                 }));
@@ -122,12 +123,12 @@ Table deviceTimeTable(const BenchResults& results) {
     table.corner = "Average time-sum (s) on";
     table.key_names = {"factor", "set"};
     table.label_name = "device";
-    // One column per GPU variant, in Table 1's order.
-    std::vector<std::string> variants;
+    // One column per GPU variant and cost, in Table 1's order.
+    std::vector<const DdtMethod*> variants;
     for (const DdtMethod& method : results.columns)
         if (method.backend == "vulkan") {
             table.columns.push_back(method.label);
-            variants.push_back(method.variant);
+            variants.push_back(&method);
         }
     for (uint32_t factor : results.factors)
         for (const std::string& set : results.set_names) {
@@ -141,10 +142,11 @@ Table deviceTimeTable(const BenchResults& results) {
             }
             for (const BenchDevice& device : results.devices) {
                 TableRow row{keys, section, device.name + " [" + device.id + "]", {}, 4};
-                for (const std::string& variant : variants) {
+                for (const DdtMethod* variant : variants) {
                     std::optional<double> value;
                     for (const DdtMethod& method : results.device_methods)
-                        if (method.device == device.id && method.variant == variant)
+                        if (method.device == device.id && method.variant == variant->variant &&
+                            method.cost == variant->cost)
                             value = meanDdt(images, method.key, [](const DdtMeasurement& m) { return m.medianSum(); });
                     row.values.push_back(value);
                 }

@@ -62,10 +62,11 @@ namespace {
 
 template <size_t N>
 VkPipeline createKernel(VulkanContext& context, VkPipelineLayout layout, const uint32_t (&spirv)[N],
-                        const SelectRule& rule) {
-    const VkSpecializationMapEntry entries[] = {{0, offsetof(SelectRule, key_by_gain), sizeof(uint32_t)},
-                                                {1, offsetof(SelectRule, single_round), sizeof(uint32_t)}};
-    const VkSpecializationInfo specialization{2, entries, sizeof(rule), &rule};
+                        const KernelVariant& variant) {
+    const VkSpecializationMapEntry entries[] = {{0, offsetof(KernelVariant, key_by_gain), sizeof(uint32_t)},
+                                                {1, offsetof(KernelVariant, single_round), sizeof(uint32_t)},
+                                                {2, offsetof(KernelVariant, cost), sizeof(uint32_t)}};
+    const VkSpecializationInfo specialization{3, entries, sizeof(variant), &variant};
     return createComputePipeline(context, layout, spirv, sizeof(spirv), &specialization);
 }
 
@@ -76,7 +77,7 @@ VkDescriptorType bindingType(uint32_t binding) {
                                                                  : VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
 }
 
-Kernels createKernels(VulkanContext& context, const SelectRule& rule) {
+Kernels createKernels(VulkanContext& context, const KernelVariant& variant) {
     Kernels k;
     VkDescriptorSetLayoutBinding bindings[kBindingCount];
     for (uint32_t i = 0; i < kBindingCount; ++i)
@@ -94,26 +95,26 @@ Kernels createKernels(VulkanContext& context, const SelectRule& rule) {
     layout.pPushConstantRanges = &range;
     VK_CHECK(vkCreatePipelineLayout(context.device, &layout, nullptr, &k.layout));
     try {
-        k.plan = createKernel(context, k.layout, kSpirvPlan, rule);
-        k.candidates = createKernel(context, k.layout, kSpirvCandidates, rule);
-        k.select = createKernel(context, k.layout, kSpirvSelect, rule);
-        k.flip = createKernel(context, k.layout, kSpirvFlip, rule);
-        k.edge_cost = createKernel(context, k.layout, kSpirvEdgeCost, rule);
-        k.row_spans = createKernel(context, k.layout, kSpirvRowSpans, rule);
-        k.render = createKernel(context, k.layout, kSpirvRender, rule);
+        k.plan = createKernel(context, k.layout, kSpirvPlan, variant);
+        k.candidates = createKernel(context, k.layout, kSpirvCandidates, variant);
+        k.select = createKernel(context, k.layout, kSpirvSelect, variant);
+        k.flip = createKernel(context, k.layout, kSpirvFlip, variant);
+        k.edge_cost = createKernel(context, k.layout, kSpirvEdgeCost, variant);
+        k.row_spans = createKernel(context, k.layout, kSpirvRowSpans, variant);
+        k.render = createKernel(context, k.layout, kSpirvRender, variant);
         ReconstructionKernels& r = k.reconstruction;
-        r.star_starts = createKernel(context, k.layout, kSpirvStarStarts, rule);
-        r.value_bounds = createKernel(context, k.layout, kSpirvValueBounds, rule);
-        r.initial_bubbles = createKernel(context, k.layout, kSpirvInitialBubbles, rule);
-        r.locate_samples = createKernel(context, k.layout, kSpirvLocateSamples, rule);
-        r.evaluate_surface = createKernel(context, k.layout, kSpirvEvaluateSurface, rule);
-        r.degrade_y = createKernel(context, k.layout, kSpirvDegradeY, rule);
-        r.degrade_x = createKernel(context, k.layout, kSpirvDegradeX, rule);
-        r.transpose_x = createKernel(context, k.layout, kSpirvTransposeX, rule);
-        r.transpose_y = createKernel(context, k.layout, kSpirvTransposeY, rule);
-        r.project_triangles = createKernel(context, k.layout, kSpirvProjectTriangles, rule);
-        r.update_values = createKernel(context, k.layout, kSpirvUpdateValues, rule);
-        r.update_bubbles = createKernel(context, k.layout, kSpirvUpdateBubbles, rule);
+        r.star_starts = createKernel(context, k.layout, kSpirvStarStarts, variant);
+        r.value_bounds = createKernel(context, k.layout, kSpirvValueBounds, variant);
+        r.initial_bubbles = createKernel(context, k.layout, kSpirvInitialBubbles, variant);
+        r.locate_samples = createKernel(context, k.layout, kSpirvLocateSamples, variant);
+        r.evaluate_surface = createKernel(context, k.layout, kSpirvEvaluateSurface, variant);
+        r.degrade_y = createKernel(context, k.layout, kSpirvDegradeY, variant);
+        r.degrade_x = createKernel(context, k.layout, kSpirvDegradeX, variant);
+        r.transpose_x = createKernel(context, k.layout, kSpirvTransposeX, variant);
+        r.transpose_y = createKernel(context, k.layout, kSpirvTransposeY, variant);
+        r.project_triangles = createKernel(context, k.layout, kSpirvProjectTriangles, variant);
+        r.update_values = createKernel(context, k.layout, kSpirvUpdateValues, variant);
+        r.update_bubbles = createKernel(context, k.layout, kSpirvUpdateBubbles, variant);
     } catch (...) {
         destroyKernels(context, k);
         throw;

@@ -12,10 +12,12 @@
 
 namespace ddt {
 
-// Specialization constants of the accept/reject kernels (see glsl/select.comp).
-struct SelectRule {
+// Specialization constants of the optimisation's kernels: the accept/reject rule (see
+// glsl/select.comp) and the cost (glsl/common.glsl's kCost).
+struct KernelVariant {
     uint32_t key_by_gain = 0;   // MaxGain: higher gain wins; else lower id
     uint32_t single_round = 0;  // local-max: one round per iteration
+    uint32_t cost = 0;          // kCostSederberg, kCostVariance or kCostFaceScf (glsl/content_cost.h)
 };
 
 // The consistent reconstruction's kernels (glsl/reconstruct/, driven by compute/reconstruct/).
@@ -47,7 +49,7 @@ struct Kernels {
     ReconstructionKernels reconstruction;
 };
 
-Kernels createKernels(VulkanContext& context, const SelectRule& rule);
+Kernels createKernels(VulkanContext& context, const KernelVariant& variant);
 
 // A write of one descriptor of `type` at `binding` of `set`; the caller points it at its buffer.
 VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, uint32_t binding, VkDescriptorType type);

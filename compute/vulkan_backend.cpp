@@ -140,7 +140,8 @@ VulkanBackend::VulkanBackend(const VulkanOptions& options) : state_(std::make_un
     if (!rule) throw UserError("--variant " + options.rule + ": unknown flip rule");
     s.rule = *rule;
     s.context = createContext({options.device_index, options.validation});
-    s.kernels = createKernels(*s.context, {s.rule.key_by_gain ? 1u : 0u, s.rule.single_round ? 1u : 0u});
+    s.kernels = createKernels(*s.context,
+                              {s.rule.key_by_gain ? 1u : 0u, s.rule.single_round ? 1u : 0u, uint32_t(options.cost)});
     if (s.context->timestamps) {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         info.queryType = VK_QUERY_TYPE_TIMESTAMP;

@@ -16,6 +16,7 @@ namespace ddt {
 
 struct VulkanOptions {
     std::string rule = kDefaultFlipRule;
+    CostFunction cost = CostFunction::sederberg;  // the cost the flips lower (core/cost.h)
     bool active_set = true;  // after the first iteration, test only edges a flip may have changed
     int device_index = -1;   // -1: choose
     bool validation = false;

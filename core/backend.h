@@ -78,6 +78,7 @@ public:
     }
 };
 
-std::unique_ptr<Backend> makeCpuBackend();
+// The serial reference; `options` choose the cost (LawsonOptions::cost) and the sweep cap.
+std::unique_ptr<Backend> makeCpuBackend(const LawsonOptions& options = {});
 
 }  // namespace ddt

@@ -20,13 +20,40 @@ StencilValues stencilValues(const std::vector<float>& channel, const FlipStencil
             valueAt(channel, s.far_ar), valueAt(channel, s.far_rb)};
 }
 
-double channelEdgeCost(const std::vector<float>& z, const EdgeVertices& v, uint32_t width) {
+// Sederberg's or face-SCF's share of an interior edge, for one channel.
+double channelEdgeCost(const std::vector<float>& z, const EdgeVertices& v, uint32_t width, bool face_weighted) {
     Gradient left = planeGradient(v.a, v.b, v.l, z[v.a], z[v.b], z[v.l], width);
     Gradient right = planeGradient(v.b, v.a, v.r, z[v.b], z[v.a], z[v.r], width);
-    return sederbergCost(left, right);
+    return pairCost(left, right, face_weighted);
+}
+
+// Variance's share of e, for one channel: the cost of the triangles it reports, left then right.
+double channelVarianceShare(const std::vector<float>& z, const EdgeVertices& v, bool left, bool right,
+                            uint32_t width) {
+    double share = 0.0;
+    if (left) share += varianceCost(v.a, v.b, v.l, z[v.a], z[v.b], z[v.l], width);
+    if (right) share += varianceCost(v.b, v.a, v.r, z[v.b], z[v.a], z[v.r], width);
+    return share;
 }
 
 }  // namespace
+
+const char* costFunctionName(CostFunction cost) {
+    switch (cost) {
+        case CostFunction::sederberg: return "sederberg";
+        case CostFunction::variance: return "variance";
+        case CostFunction::face_scf: return "face-scf";
+    }
+    return "?";
+}
+
+std::optional<CostFunction> parseCostFunction(const std::string& name) {
+    for (CostFunction cost : {CostFunction::sederberg, CostFunction::variance, CostFunction::face_scf})
+        if (name == costFunctionName(cost)) return cost;
+    return std::nullopt;
+}
+
+int roiDegree(CostFunction cost) { return cost == CostFunction::variance ? 1 : 2; }
 
 CostField costFieldOf(const Image& image) {
     CostField field;
@@ -44,25 +71,35 @@ CostField costFieldOf(const Image& image) {
     return field;
 }
 
-double edgeCost(const Mesh& mesh, const CostField& field, uint32_t e) {
+double edgeCost(const Mesh& mesh, const CostField& field, uint32_t e, CostFunction cost) {
     const EdgeVertices& v = mesh.vertices[e];
+    if (cost == CostFunction::variance) {
+        // The triangles e reports, as forEachTriangle: those of whose edges e has the lowest id.
+        const EdgeNeighbours& n = mesh.neighbours[e];
+        const bool left = v.l != kNone && e < n.bl && e < n.la, right = v.r != kNone && e < n.ar && e < n.rb;
+        double share = channelVarianceShare(field.luma, v, left, right, mesh.width);
+        if (!field.alpha.empty()) share += channelVarianceShare(field.alpha, v, left, right, mesh.width);
+        return share;
+    }
     if (v.l == kNone || v.r == kNone) return 0.0;
-    double cost = channelEdgeCost(field.luma, v, mesh.width);
-    if (!field.alpha.empty()) cost += channelEdgeCost(field.alpha, v, mesh.width);
-    return cost;
+    const bool face_weighted = cost == CostFunction::face_scf;
+    double share = channelEdgeCost(field.luma, v, mesh.width, face_weighted);
+    if (!field.alpha.empty()) share += channelEdgeCost(field.alpha, v, mesh.width, face_weighted);
+    return share;
 }
 
-double meshCost(const Mesh& mesh, const CostField& field) {
+double meshCost(const Mesh& mesh, const CostField& field, CostFunction cost) {
     double total = 0.0;
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) total += edgeCost(mesh, field, e);
+    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) total += edgeCost(mesh, field, e, cost);
     return total;
 }
 
-double flipGainOf(const Mesh& mesh, const CostField& field, uint32_t e) {
+double flipGainOf(const Mesh& mesh, const CostField& field, uint32_t e, CostFunction cost) {
     const FlipStencil s = flipStencil(mesh, e);
     if (!flipIsConvex(s, mesh.width)) return -std::numeric_limits<double>::infinity();
-    double gain = flipGain(s, stencilValues(field.luma, s), mesh.width);
-    if (!field.alpha.empty()) gain += flipGain(s, stencilValues(field.alpha, s), mesh.width);
+    const uint32_t id = uint32_t(cost);
+    double gain = costFlipGain(id, s, stencilValues(field.luma, s), mesh.width);
+    if (!field.alpha.empty()) gain += costFlipGain(id, s, stencilValues(field.alpha, s), mesh.width);
     return gain;
 }
 

@@ -39,6 +39,8 @@ private:
 
 class CpuBackend final : public Backend {
 public:
+    explicit CpuBackend(const LawsonOptions& options) : options_(options) {}
+
     void prepare(const Image& image) override {
         image_ = &image;
         renderer_.reset();
@@ -52,7 +54,7 @@ public:
         requireMesh();
         renderer_.reset();
         surface_.reset();
-        return optimizeSerial(mesh_, field_);
+        return optimizeSerial(mesh_, field_, options_);
     }
 
     void reconstruct(const DegradationModel& model) override {
@@ -95,7 +97,7 @@ public:
         static_cast<SimplifyStats&>(stats) = simplifySerial(mesh, values, target, max_error);
         return stats;
     }
-    std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(); }
+    std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(options_); }
     const Image& preparedImage() const override { return *image_; }
 
     // A rough count of the host arrays at their peak, per vertex. Optimizing: the mesh's two
@@ -135,6 +137,7 @@ private:
         return *renderer_;
     }
 
+    LawsonOptions options_;
     const Image* image_ = nullptr;
     CostField field_;
     Mesh mesh_;
@@ -145,6 +148,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Backend> makeCpuBackend() { return std::make_unique<CpuBackend>(); }
+std::unique_ptr<Backend> makeCpuBackend(const LawsonOptions& options) { return std::make_unique<CpuBackend>(options); }
 
 }  // namespace ddt

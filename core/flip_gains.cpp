@@ -45,11 +45,22 @@ inline Gradient gradientOf(const TriangleShape& s, float z0, float z1, float z2)
     return {dz1 * s.dy2 - dz2 * s.dy1, dz2 * s.dx1 - dz1 * s.dx2, s.scale};
 }
 
+// varianceShare of the triangle (p0, p1, p2) with values z0..z2, turned as varianceCost turns it.
+inline double varianceOf(const TriangleShape& s, float z0, float z1, float z2) {
+    const float first = s.first == 0 ? z0 : s.first == 1 ? z1 : z2;
+    const float second = s.first == 0 ? z1 : s.first == 1 ? z2 : z0;
+    const float third = s.first == 0 ? z2 : s.first == 1 ? z0 : z1;
+    return varianceShare(s.scale, first, second, third);
+}
+
 }  // namespace
 
-FlipGains::FlipGains(const Mesh& mesh, const CostField& field) : mesh_(mesh), by_width_(mesh.width) {
+FlipGains::FlipGains(const Mesh& mesh, const CostField& field, CostFunction cost)
+    : mesh_(mesh), field_(field), cost_(cost), by_width_(mesh.width) {
     channels_.push_back({field.luma, {}, {}});
     if (!field.alpha.empty()) channels_.push_back({field.alpha, {}, {}});
+    if (cost_ == CostFunction::variance) return;  // nothing to keep
+    const bool face_weighted = cost_ == CostFunction::face_scf;
     for (Channel& channel : channels_) channel.costs.resize(mesh.edgeCount());
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
         const EdgeVertices& v = mesh.vertices[e];
@@ -57,19 +68,21 @@ FlipGains::FlipGains(const Mesh& mesh, const CostField& field) : mesh_(mesh), by
             for (Channel& channel : channels_) channel.costs[e] = 0.0;
             continue;
         }
-        // edgeCost's: the SCF of the left triangle (a, b, l) and the right one (b, a, r).
+        // edgeCost's: the pairCost of the left triangle (a, b, l) and the right one (b, a, r).
         const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
         const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
         const TriangleShape left = shapeOf(a, b, l), right = shapeOf(b, a, r);
         for (Channel& channel : channels_) {
             const std::vector<float>& z = channel.values;
-            channel.costs[e] =
-                sederbergCost(gradientOf(left, z[v.a], z[v.b], z[v.l]), gradientOf(right, z[v.b], z[v.a], z[v.r]));
+            channel.costs[e] = pairCost(gradientOf(left, z[v.a], z[v.b], z[v.l]),
+                                        gradientOf(right, z[v.b], z[v.a], z[v.r]), face_weighted);
         }
     }
 }
 
 double FlipGains::total() const {
+    // Variance keeps no shares: its total from scratch, once per optimisation at each end.
+    if (cost_ == CostFunction::variance) return meshCost(mesh_, field_, cost_);
     // meshCost's sum: edge by edge in id order, each edge's channels first.
     double total = 0.0;
     for (uint32_t e = 0; e < mesh_.edgeCount(); ++e) {
@@ -84,6 +97,8 @@ double FlipGains::gainOf(uint32_t e) {
     changed_[0] = kNone;
     const EdgeVertices& v = mesh_.vertices[e];
     if (v.l == kNone || v.r == kNone) return -std::numeric_limits<double>::infinity();
+    if (cost_ == CostFunction::variance) return varianceGainOf(e);
+    const bool face_weighted = cost_ == CostFunction::face_scf;
     const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
     const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
     // flipIsConvex: both new triangles positive (orientation's exact integer arithmetic).
@@ -125,15 +140,16 @@ double FlipGains::gainOf(uint32_t e) {
             for (double& cost : channel.after) cost = 0.0;
         } else {
             const Gradient inner[2] = {gradientOf(rbl, zr, zb, zl), gradientOf(lar, zl, za, zr)};
-            channel.after[0] = sederbergCost(inner[0], inner[1]);
+            channel.after[0] = pairCost(inner[0], inner[1], face_weighted);
             for (int k = 0; k < 4; ++k) {
                 const float z0 = k == 0 ? zl : k == 1 ? za : k == 2 ? zr : zb;
                 const float z1 = k == 0 ? zb : k == 1 ? zl : k == 2 ? za : zr;
-                channel.after[k + 1] = far_ids[k] == kNone
-                                           ? 0.0
-                                           : sederbergCost(inner[new_side[k]], gradientOf(outer[k], z0, z1, zfar[k]));
+                channel.after[k + 1] =
+                    far_ids[k] == kNone
+                        ? 0.0
+                        : pairCost(inner[new_side[k]], gradientOf(outer[k], z0, z1, zfar[k]), face_weighted);
             }
-            // flipGain's sums, term by term: the costs now, then after the flip.
+            // scfFlipGain's sums, term by term: the costs now, then after the flip.
             const double before =
                 costs[e] + costs[neighbours[0]] + costs[neighbours[1]] + costs[neighbours[2]] + costs[neighbours[3]];
             const double after =
@@ -145,7 +161,29 @@ double FlipGains::gainOf(uint32_t e) {
     return gain;
 }
 
+// varianceGain's sums over e's two triangles, now and after the flip, channel by channel as
+// flipGainOf adds them; -infinity for a quadrilateral that is not strictly convex.
+double FlipGains::varianceGainOf(uint32_t e) const {
+    const EdgeVertices& v = mesh_.vertices[e];
+    const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
+    const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
+    const TriangleShape rbl = shapeOf(r, b, l), lar = shapeOf(l, a, r);
+    if (!(rbl.scale > 0.0 && lar.scale > 0.0)) return -std::numeric_limits<double>::infinity();
+    const TriangleShape abl = shapeOf(a, b, l), bar = shapeOf(b, a, r);
+    double gain = 0.0;
+    for (size_t ch = 0; ch < channels_.size(); ++ch) {
+        const std::vector<float>& z = channels_[ch].values;
+        const float za = z[v.a], zb = z[v.b], zl = z[v.l], zr = z[v.r];
+        const double before = varianceOf(abl, za, zb, zl) + varianceOf(bar, zb, za, zr);
+        const double after = varianceOf(rbl, zr, zb, zl) + varianceOf(lar, zl, za, zr);
+        const double channel_gain = before - after;
+        gain = ch == 0 ? channel_gain : gain + channel_gain;
+    }
+    return gain;
+}
+
 void FlipGains::flipped(uint32_t e) {
+    if (cost_ == CostFunction::variance) return;  // nothing kept
     assert(changed_[0] == e);
     (void)e;
     for (Channel& channel : channels_)

@@ -1,8 +1,10 @@
 // The gains Lawson's sweeps test (core/lawson.h), computed with what successive tests share
-// kept: each edge's cost per channel (a gain's "before" half is the cost of the edge and its
-// four neighbours) and the vertices' coordinates (no division by the width). The formulas are
-// glsl/sederberg.h's with the same operands in the same order, so every gain equals
-// flipGainOf's bit for bit, and so do the flips.
+// kept: for Sederberg's cost and face-SCF each edge's share per channel (a gain's "before"
+// half is the share of the edge and its four neighbours), and for every cost the vertices'
+// coordinates (no division by the width). Variance's gain reads only e's two triangles and
+// keeps nothing. The formulas are glsl/sederberg.h's and glsl/content_cost.h's with the same
+// operands in the same order, so every gain equals flipGainOf's bit for bit, and so do the
+// flips.
 #pragma once
 
 #include <cstdint>
@@ -17,11 +19,11 @@ namespace ddt {
 class FlipGains {
 public:
     // The costs of every edge of `mesh` as it is now.
-    FlipGains(const Mesh& mesh, const CostField& field);
+    FlipGains(const Mesh& mesh, const CostField& field, CostFunction cost = CostFunction::sederberg);
 
-    // meshCost(mesh, field) for the mesh as it is now.
+    // meshCost(mesh, field, cost) for the mesh as it is now.
     double total() const;
-    // flipGainOf(mesh, field, e) for the mesh as it is now.
+    // flipGainOf(mesh, field, e, cost) for the mesh as it is now.
     double gainOf(uint32_t e);
     // After flipEdge(mesh, e) right after gainOf(e): the five edges whose triangles changed
     // take the costs that gain computed.
@@ -30,11 +32,15 @@ public:
 private:
     struct Channel {
         const std::vector<float>& values;
-        std::vector<double> costs;  // per edge; 0 on the hull
+        std::vector<double> costs;  // per edge (empty for variance); 0 on the hull
         double after[5];            // the last gain's new costs of its edges `changed_`
     };
 
+    double varianceGainOf(uint32_t e) const;
+
     const Mesh& mesh_;
+    const CostField& field_;
+    CostFunction cost_;
     DivideBy by_width_;
     std::vector<Channel> channels_;  // luma, then alpha if any
     uint32_t changed_[5] = {kNone};  // the last gain's edge e and its neighbours bl, la, ar, rb

@@ -6,6 +6,8 @@
 //   maxgain          highest gain wins (ties: lowest id)
 //   localmax         one round: flip exactly the candidates whose gain is the largest among
 //                    the candidates of their 2-region; the rest wait for the next iteration
+// The regions are the same for every cost (core/cost.h): see glsl/select.comp for why variance,
+// whose gain has the 1-region as ROI, keeps the 2-region.
 #pragma once
 
 #include <cstdint>

@@ -9,17 +9,19 @@ namespace ddt {
 
 namespace {
 
-// Marks every edge whose gain a flip of g may have changed. The gain of e reads e's record and
-// those of its four neighbours (their far vertices); the flip writes g's record and its four
-// neighbours'. So e must be looked at again iff e is one of those written records or has one
-// as a neighbour: the closed 2-region of g (symmetric neighbourhood, read after the flip).
-void markAround(const Mesh& mesh, uint32_t g, std::vector<uint8_t>& stale) {
+// Marks every edge whose gain a flip of g may have changed. The flip writes g's record and its
+// four neighbours'. Sederberg's and face-SCF's gain of e reads e's record and those of its four
+// neighbours (their far vertices), so e must be looked at again iff e is one of those written
+// records or has one as a neighbour: the closed 2-region of g (symmetric neighbourhood, read
+// after the flip). Variance's gain reads e's record alone: the closed 1-region of g (degree 1).
+void markAround(const Mesh& mesh, uint32_t g, int degree, std::vector<uint8_t>& stale) {
     stale[g] = 1;
     const EdgeNeighbours& n = mesh.neighbours[g];
     for (int i = 0; i < 4; ++i) {
         const uint32_t w = neighbourAt(n, i);
         if (w == kNone) continue;
         stale[w] = 1;
+        if (degree < 2) continue;
         const EdgeNeighbours& m = mesh.neighbours[w];
         for (int k = 0; k < 4; ++k)
             if (uint32_t f = neighbourAt(m, k); f != kNone) stale[f] = 1;
@@ -30,7 +32,8 @@ void markAround(const Mesh& mesh, uint32_t g, std::vector<uint8_t>& stale) {
 
 OptimizeStats optimizeSerial(Mesh& mesh, const CostField& field, const LawsonOptions& options) {
     OptimizeStats stats;
-    FlipGains gains(mesh, field);
+    FlipGains gains(mesh, field, options.cost);
+    const int degree = roiDegree(options.cost);
     stats.cost_init = gains.total();
     // An edge that is not stale was tested after the last write to its record or its
     // neighbours' records, and its gain was at most the threshold then; it would be again (the
@@ -50,7 +53,7 @@ OptimizeStats optimizeSerial(Mesh& mesh, const CostField& field, const LawsonOpt
             if (gains.gainOf(e) > kFlipGainThreshold) {
                 flipEdge(mesh, e);
                 gains.flipped(e);
-                markAround(mesh, e, stale);
+                markAround(mesh, e, degree, stale);
                 ++stats.flips;
                 flipped = true;
             }
@@ -59,7 +62,7 @@ OptimizeStats optimizeSerial(Mesh& mesh, const CostField& field, const LawsonOpt
         if (options.after_sweep) options.after_sweep(stats.iterations, mesh);
     }
     stats.cost_final = gains.total();
-    assert(stats.cost_final == meshCost(mesh, field));  // the cached costs are the mesh's, bit for bit
+    assert(stats.cost_final == meshCost(mesh, field, options.cost));  // the cached costs are the mesh's, bit for bit
     return stats;
 }
 

@@ -27,6 +27,8 @@ struct OptimizeStats {
 };
 
 struct LawsonOptions {
+    // The cost the flips lower (core/cost.h; `--cost` on the command line).
+    CostFunction cost = CostFunction::sederberg;
     // Safety cap on sweeps. Real images need a few dozen; reaching it is reported.
     uint32_t max_sweeps = 100000;
     // Called after every sweep, for tests that watch the cost.

@@ -15,8 +15,12 @@
 // - neighbour edges: the other edges of those triangles, kept in the order
 //   bl (b–l), la (l–a), ar (a–r), rb (r–b); kNone on the missing side.
 // - 1-region of e: its neighbour edges. n-region: the (n−1)-region plus the neighbours of its
-//   edges. ROI (region of influence): the edges whose flip can change e's gain — the
-//   2-region, 12 edges, e itself excluded. closed n-region: the n-region plus e.
+//   edges. ROI (region of influence): the edges whose flip can change e's gain — for
+//   Sederberg's cost and face-SCF the 2-region, 12 edges, e itself excluded (the gain reads
+//   the records of e and its neighbours); for variance the 1-region (the gain reads e's record
+//   only; core/cost.h roiDegree). closed n-region: the n-region plus e. The parallel rules'
+//   conflict region is the 2-region (ExpROI: the 3-region) for every cost: besides the ROI, it
+//   keeps accepted flips from writing one record (glsl/select.comp).
 // - far vertex of a neighbour edge: its adjacent vertex on the side away from e.
 // - flip of e: the quadrilateral a, r, b, l gets its other diagonal. Stored as a rotation of
 //   the record: (a, b, l, r) -> (r, l, a, b), neighbours (bl, la, ar, rb) -> (la, ar, rb, bl).

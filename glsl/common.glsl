@@ -2,10 +2,15 @@
 // edge arrays in the words of core/mesh.h (a, b, l, r; neighbours bl, la, ar, rb).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
+#include "content_cost.h"
 #include "layout.h"
 #include "sederberg.h"
 
 layout(local_size_x = kGroupSize) in;
+
+// The cost the optimisation lowers: kCostSederberg, kCostVariance or kCostFaceScf
+// (glsl/content_cost.h; compute/kernels.h sets it from VulkanOptions::cost).
+layout(constant_id = 2) const uint kCost = kCostSederberg;
 
 layout(push_constant) uniform Push {
     PushConstants push;
@@ -59,18 +64,26 @@ uint farVertex(uint n, uint near) {
     return v.z == near ? v.w : v.z;
 }
 
+// The stencil of e's flip. Variance's gain reads only a, b, l, r: its far vertices are left
+// kNone, which saves reading the four neighbours' records.
 FlipStencil flipStencilOf(uint e) {
     uvec4 v = verticesOf(e);
-    uvec4 n = neighboursOf(e);
     FlipStencil s;
     s.a = v.x;
     s.b = v.y;
     s.l = v.z;
     s.r = v.w;
-    s.far_bl = farVertex(n.x, v.x);
-    s.far_la = farVertex(n.y, v.y);
-    s.far_ar = farVertex(n.z, v.y);
-    s.far_rb = farVertex(n.w, v.x);
+    s.far_bl = kNone;
+    s.far_la = kNone;
+    s.far_ar = kNone;
+    s.far_rb = kNone;
+    if (kCost != kCostVariance) {
+        uvec4 n = neighboursOf(e);
+        s.far_bl = farVertex(n.x, v.x);
+        s.far_la = farVertex(n.y, v.y);
+        s.far_ar = farVertex(n.z, v.y);
+        s.far_rb = farVertex(n.w, v.x);
+    }
     return s;
 }
 
@@ -92,27 +105,46 @@ StencilValues stencilValues(bool alpha_channel, FlipStencil s) {
     return z;
 }
 
-// Gain of flipping e, as core's flipGainOf; a non-convex quadrilateral returns -1, which is
-// below any threshold (core returns -infinity, which GLSL cannot spell).
+// Gain of flipping e under kCost, as core's flipGainOf; a non-convex quadrilateral returns -1,
+// which is below any threshold (core returns -infinity, which GLSL cannot spell).
 double flipGainOf(uint e) {
     FlipStencil s = flipStencilOf(e);
     if (!flipIsConvex(s, push.width)) return -1.0lf;
-    precise double gain = flipGain(s, stencilValues(false, s), push.width);
-    if (push.has_alpha != 0) gain += flipGain(s, stencilValues(true, s), push.width);
+    precise double gain = costFlipGain(kCost, s, stencilValues(false, s), push.width);
+    if (push.has_alpha != 0) gain += costFlipGain(kCost, s, stencilValues(true, s), push.width);
     return gain;
 }
 
+// Sederberg's or face-SCF's share of an interior edge, for one channel.
 double channelEdgeCost(bool alpha_channel, uvec4 v) {
     Gradient left = planeGradient(v.x, v.y, v.z, valueAt(alpha_channel, v.x), valueAt(alpha_channel, v.y),
                                   valueAt(alpha_channel, v.z), push.width);
     Gradient right = planeGradient(v.y, v.x, v.w, valueAt(alpha_channel, v.y), valueAt(alpha_channel, v.x),
                                    valueAt(alpha_channel, v.w), push.width);
-    return sederbergCost(left, right);
+    return pairCost(left, right, kCost == kCostFaceScf);
 }
 
-// Cost of edge e, as core's edgeCost (0 for a boundary edge).
+// Variance's share of an edge, for one channel: the triangles it reports, left then right.
+double channelVarianceShare(bool alpha_channel, uvec4 v, bool left, bool right) {
+    const float za = valueAt(alpha_channel, v.x), zb = valueAt(alpha_channel, v.y);
+    precise double share = 0.0lf;
+    if (left) share += varianceCost(v.x, v.y, v.z, za, zb, valueAt(alpha_channel, v.z), push.width);
+    if (right) share += varianceCost(v.y, v.x, v.w, zb, za, valueAt(alpha_channel, v.w), push.width);
+    return share;
+}
+
+// Edge e's share of the mesh cost under kCost, as core's edgeCost: Sederberg's and face-SCF's
+// are 0 for a boundary edge; variance's is the cost of the triangles of whose edges e has the
+// lowest id (core's forEachTriangle), so that every triangle counts once.
 double edgeCostOf(uint e) {
     uvec4 v = verticesOf(e);
+    if (kCost == kCostVariance) {
+        const uvec4 n = neighboursOf(e);
+        const bool left = v.z != kNone && e < n.x && e < n.y, right = v.w != kNone && e < n.z && e < n.w;
+        precise double share = channelVarianceShare(false, v, left, right);
+        if (push.has_alpha != 0) share += channelVarianceShare(true, v, left, right);
+        return share;
+    }
     if (v.z == kNone || v.w == kNone) return 0.0lf;
     precise double cost = channelEdgeCost(false, v);
     if (push.has_alpha != 0) cost += channelEdgeCost(true, v);

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The mesh cost (cost-init, cost-final): every workgroup sums the Sederberg cost of a fixed,
-// strided set of edges and reduces it in shared memory; the host adds the partial sums.
+// The mesh cost (cost-init, cost-final): every workgroup sums the edge shares of the cost
+// (kCost, see edgeCostOf) of a fixed, strided set of edges and reduces them in shared memory;
+// the host adds the partial sums.
 // Fixed assignment and reduction order make the result deterministic. With push.step = 1 it
 // also stores every edge's cost in the gain array (tests compare them with core's).
 #include "common.glsl"

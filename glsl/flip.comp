@@ -3,17 +3,19 @@
 // Step 3 (paper Sec. 3.3): flip every accepted candidate and patch its neighbours' records.
 //
 // Why one thread per accepted edge may write its neighbours without locks: the selection
-// guarantees that no accepted edge lies in the ROI (2-region) of another. A flip of g
+// guarantees that no accepted edge lies in the 2-region of another. A flip of g
 // writes only g's closed 1-region (g and its four neighbours). If the closed 1-regions of
 // two accepted edges g and h met, h would be a neighbour of g or a neighbour of one of
 // g's neighbours, i.e. h would lie in g's 2-region. So the written sets are disjoint, and
 // every record a thread reads here is one only that thread writes. The same argument shows
-// each accepted gain is exact: a gain reads only the records of the closed 1-region.
+// each accepted gain is exact: a gain reads only the records of the closed 1-region (for
+// variance, of e alone).
 //
 // With the active set on, the thread then lists the edges whose gain its flip may have
-// changed — its closed 2-region in the new mesh (a gain reads the records of an edge and
-// its neighbours) — and every candidate that was not flipped, for the next iteration.
-// Statuses are reset to none for the next iteration.
+// changed — for Sederberg's cost and face-SCF its closed 2-region in the new mesh (their gain
+// reads the records of an edge and its neighbours), for variance its closed 1-region (the
+// gain reads the edge's own record) — and every candidate that was not flipped, for the next
+// iteration. Statuses are reset to none for the next iteration.
 #include "common.glsl"
 
 // After e's flip, neighbour n (whose triangle with e had third vertex old_near) lies in a
@@ -58,12 +60,14 @@ void activate(uint e, uint iteration) {
     }
 }
 
-void activateClosed2Region(uint e, uint iteration) {
+// The closed ROI of e: its closed 2-region, or for variance its closed 1-region.
+void activateClosedRoi(uint e, uint iteration) {
     activate(e, iteration);
     const uvec4 level1 = neighboursOf(e);
     for (int i = 0; i < 4; ++i) {
         if (level1[i] == kNone) continue;
         activate(level1[i], iteration);
+        if (kCost == kCostVariance) continue;
         const uvec4 level2 = neighboursOf(level1[i]);
         for (int j = 0; j < 4; ++j)
             if (level2[j] != kNone) activate(level2[j], iteration);
@@ -83,7 +87,7 @@ void main() {
         if (status == kStatusAccepted) {
             flipEdge(e);
             atomicAdd(control.flips_in_iteration, 1);
-            if (push.active_set != 0) activateClosed2Region(e, next_iteration);
+            if (push.active_set != 0) activateClosedRoi(e, next_iteration);
         } else if (push.active_set != 0) {
             activate(e, next_iteration);
         }

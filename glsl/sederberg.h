@@ -1,7 +1,10 @@
-// Sederberg's cost function (SCF) and the gain of an edge flip, written once in the
-// common subset of C++ and GLSL: core/cost.cpp and the kernels include this file, so the
-// serial reference and the Vulkan backend evaluate numerically the same formula.
-// Paper: Červeňanský et al., "Parallel GPU-based data-dependent triangulations", Sec. 2.1.
+// Sederberg's cost function (SCF), its face-weighted form (face-SCF) and the gain of an edge
+// flip, written once in the common subset of C++ and GLSL: core/cost.cpp and the kernels
+// include this file, so the serial reference and the Vulkan backend evaluate numerically the
+// same formula. The variance weight and the choice among the costs: glsl/content_cost.h.
+// Paper: Červeňanský et al., "Parallel GPU-based data-dependent triangulations", Sec. 2.1;
+// face-SCF: Tóth et al., "N-dimensional data-dependent reconstruction using topological
+// changes", Sect. 3.
 //
 // Vertices are pixel centres on the integer grid, identified by id = y * width + x.
 // A triangle is passed in positive orientation (see core/mesh.h for the convention).
@@ -28,7 +31,11 @@ const uint kNone = 0xFFFFFFFFu;
 
 // An edge is flipped only when its gain exceeds this. With a bare "gain > 0" rule, rounding
 // noise of ~1e-16 makes an edge flip back and forth forever; a flip's gain is a sum of five
-// edge costs of at most ~8 each, so its rounding error stays below ~1e-14.
+// edge costs of at most ~8 each, so its rounding error stays below ~1e-14. The content-weighted
+// costs read the same luma in [0, 1] and their terms are smaller still (every triangle of the
+// grid's triangulations has area 1/2, see glsl/content_cost.h): face-SCF's a third of SCF's,
+// variance's at most 1/2 · 2/9. Their rounding noise stays below ~1e-14 as well, so the
+// threshold keeps its meaning for them unscaled.
 #ifdef __cplusplus
 const double kFlipGainThreshold = 1e-12;
 #else
@@ -77,6 +84,23 @@ DDT_FN double sederbergCost(Gradient g1, Gradient g2) {
     return (norms - dot) / (g1.scale * g2.scale);
 }
 
+// Face-SCF's share of an edge (Tóth et al., "N-dimensional data-dependent reconstruction
+// using topological changes", Sect. 3): a triangle T weighs area(T) · w(T), w(T) the mean
+// of the SCF over its three edges (a boundary edge 0), so an edge's SCF counts a third for
+// each of its two triangles:  scf · (area1 + area2) / 3 = scf · (d1 + d2) / 6.
+// d1 + d2 is an exact integer sum, so the share is symmetric bit for bit too.
+DDT_FN double faceScfCost(Gradient g1, Gradient g2) {
+    DDT_PRECISE double twice_areas = g1.scale + g2.scale;
+    DDT_PRECISE double share = sederbergCost(g1, g2) * twice_areas;
+    return share / 6.0;
+}
+
+// The cost an edge between two triangles adds to the mesh: its SCF (Sederberg's cost), or
+// with `face_weighted` its face-SCF share.
+DDT_FN double pairCost(Gradient g1, Gradient g2, bool face_weighted) {
+    return face_weighted ? faceScfCost(g1, g2) : sederbergCost(g1, g2);
+}
+
 // Twice the signed area of (i0, i1, i2); positive for positive orientation. Coordinates are
 // integers below 2^17, so every product is exact in double.
 DDT_FN double orientation(uint i0, uint i1, uint i2, uint width) {
@@ -107,11 +131,12 @@ DDT_FN bool flipIsConvex(FlipStencil s, uint width) {
            orientation(s.r, s.b, s.l, width) > 0.0 && orientation(s.l, s.a, s.r, width) > 0.0;
 }
 
-// SCF of a neighbour edge between an inner triangle (gradient g) and its outer triangle
+// pairCost of a neighbour edge between an inner triangle (gradient g) and its outer triangle
 // (i0, i1, far); a boundary neighbour (far == kNone) costs 0.
-DDT_FN double neighbourCost(Gradient g, uint i0, uint i1, uint far, float z0, float z1, float zfar, uint width) {
+DDT_FN double neighbourCost(Gradient g, uint i0, uint i1, uint far, float z0, float z1, float zfar, uint width,
+                            bool face_weighted) {
     if (far == kNone) return 0.0;
-    return sederbergCost(g, planeGradient(i0, i1, far, z0, z1, zfar, width));
+    return pairCost(g, planeGradient(i0, i1, far, z0, z1, zfar, width), face_weighted);
 }
 
 // Whether every value the gain reads is the same: then every plane is flat and the gain is
@@ -124,27 +149,35 @@ DDT_FN bool stencilIsFlat(FlipStencil s, StencilValues z) {
 }
 
 // Cost decrease over the five edges a flip changes (the edge and its four neighbours) for
-// one channel. The caller checks flipIsConvex first.
+// one channel: of Sederberg's cost, or with `face_weighted` of face-SCF. Face-SCF changes on
+// the same five edges: the flip replaces the two triangles of e, which changes the SCF and
+// the areas beside e and its four neighbours and nothing else; the four outer triangles' other
+// edges keep both their triangles. So both gains read the same stencil (the records of e and
+// its neighbours) and have the same ROI, the 2-region. The caller checks flipIsConvex first.
 //   before: triangles (a, b, l) and (b, a, r)   after: (r, b, l) and (l, a, r)
-DDT_FN double flipGain(FlipStencil s, StencilValues z, uint width) {
+DDT_FN double scfFlipGain(FlipStencil s, StencilValues z, uint width, bool face_weighted) {
     if (stencilIsFlat(s, z)) return 0.0;
     Gradient left = planeGradient(s.a, s.b, s.l, z.a, z.b, z.l, width);
     Gradient right = planeGradient(s.b, s.a, s.r, z.b, z.a, z.r, width);
     Gradient new_rbl = planeGradient(s.r, s.b, s.l, z.r, z.b, z.l, width);
     Gradient new_lar = planeGradient(s.l, s.a, s.r, z.l, z.a, z.r, width);
+    bool w = face_weighted;
     // Each outer triangle lies across one neighbour edge, listed in positive orientation.
-    DDT_PRECISE double before = sederbergCost(left, right) +
-                                neighbourCost(left, s.l, s.b, s.far_bl, z.l, z.b, z.far_bl, width) +
-                                neighbourCost(left, s.a, s.l, s.far_la, z.a, z.l, z.far_la, width) +
-                                neighbourCost(right, s.r, s.a, s.far_ar, z.r, z.a, z.far_ar, width) +
-                                neighbourCost(right, s.b, s.r, s.far_rb, z.b, z.r, z.far_rb, width);
-    DDT_PRECISE double after = sederbergCost(new_rbl, new_lar) +
-                               neighbourCost(new_rbl, s.l, s.b, s.far_bl, z.l, z.b, z.far_bl, width) +
-                               neighbourCost(new_lar, s.a, s.l, s.far_la, z.a, z.l, z.far_la, width) +
-                               neighbourCost(new_lar, s.r, s.a, s.far_ar, z.r, z.a, z.far_ar, width) +
-                               neighbourCost(new_rbl, s.b, s.r, s.far_rb, z.b, z.r, z.far_rb, width);
+    DDT_PRECISE double before = pairCost(left, right, w) +
+                                neighbourCost(left, s.l, s.b, s.far_bl, z.l, z.b, z.far_bl, width, w) +
+                                neighbourCost(left, s.a, s.l, s.far_la, z.a, z.l, z.far_la, width, w) +
+                                neighbourCost(right, s.r, s.a, s.far_ar, z.r, z.a, z.far_ar, width, w) +
+                                neighbourCost(right, s.b, s.r, s.far_rb, z.b, z.r, z.far_rb, width, w);
+    DDT_PRECISE double after = pairCost(new_rbl, new_lar, w) +
+                               neighbourCost(new_rbl, s.l, s.b, s.far_bl, z.l, z.b, z.far_bl, width, w) +
+                               neighbourCost(new_lar, s.a, s.l, s.far_la, z.a, z.l, z.far_la, width, w) +
+                               neighbourCost(new_lar, s.r, s.a, s.far_ar, z.r, z.a, z.far_ar, width, w) +
+                               neighbourCost(new_rbl, s.b, s.r, s.far_rb, z.b, z.r, z.far_rb, width, w);
     return before - after;
 }
+
+// Sederberg's flip gain (scfFlipGain without weights).
+DDT_FN double flipGain(FlipStencil s, StencilValues z, uint width) { return scfFlipGain(s, z, width, false); }
 
 #ifdef __cplusplus
 }  // namespace ddt

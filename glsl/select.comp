@@ -3,6 +3,13 @@
 // Step 2 (paper Sec. 3.2), one accept/reject round over the undecided candidates:
 // a candidate with an accepted edge in its ROI is rejected; one that beats every undecided
 // candidate in its ROI is accepted; any other stays undecided for the next round.
+//
+// The region is the 2-region (ExpROI: the 3-region) for every cost (kCost). Sederberg's and
+// face-SCF's gains have exactly this ROI. Variance's gain reads e's record only, so its ROI is
+// the 1-region; but glsl/flip.comp patches an accepted edge's four neighbours without locks,
+// which needs the closed 1-regions of accepted edges disjoint: no accepted edge in another's
+// 2-region. Two edges on opposite sides of one neighbour would otherwise both rewrite its
+// record. So variance keeps the 2-region too, for the flips' sake.
 // Rounds are synchronous: round r reads status[r & 1] and writes status[(r + 1) & 1] (bindings status0/status1), so
 // the outcome does not depend on thread timing. An edge decided in round r is listed once
 // more, as a copy entry, to carry its decision into the other status array.

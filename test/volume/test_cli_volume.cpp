@@ -143,16 +143,16 @@ TEST_CASE("volume cli: options that mean nothing for volumes are refused in one 
     requireOneLineError(runDdtup({in, "-s", "2,2", work / "out.nrrd"}), 2, "--scale", "three");
     requireOneLineError(runDdtup({in, "-s", "2,0.5,2", work / "out.nrrd"}), 2, "--scale", ">= 1");
     requireOneLineError(runDdtup({in, work / "out.png"}), 2, "out.png", "volume file");
-    requireOneLineError(runDdtup({in, work / "out.nrrd", "--cost", "sederberg"}), 2, "--cost", "variance or face-scf");
+    requireOneLineError(runDdtup({in, work / "out.nrrd", "--cost", "sederberg"}), 2, "--cost sederberg", "variance or face-scf");
+    requireOneLineError(runDdtup({in, work / "out.nrrd", "--cost", "area"}), 2, "--cost area", "sederberg, variance or face-scf");
     REQUIRE(runDdtup({in, "-s", "1", work / "copy.nrrd", "-q"}).exit_code == 0);
     CHECK(work.names() == std::set<std::string>{"copy.nrrd", "ramp.nrrd"});
 }
 
-TEST_CASE("volume cli: per-axis factors and --cost are refused for images") {
+TEST_CASE("volume cli: per-axis factors and --slices are refused for images") {
     TempFolder work;
     const std::string image = std::string(DDTUP_TEST_DATA) + "/crop32_astronaut.png";
     requireOneLineError(runDdtup({image, "-s", "1,1,2", work / "out.png"}), 2, "--scale", "volumes");
-    requireOneLineError(runDdtup({image, work / "out.png", "--cost", "variance"}), 2, "--cost", "volumes");
     requireOneLineError(runDdtup({image, work / "out.png", "--slices", work / "v"}), 2, "--slices", "volumes");
     requireOneLineError(runDdtup({image, work / "out.nii"}), 2, "out.nii", "image file");
     CHECK(work.names().empty());
