@@ -113,7 +113,8 @@ std::vector<float> magnifyVolumeValues(const Volume& volume, const std::array<ui
         field.spacing = spacingOf(volume.index_to_world);
         field.values = normalizedValues(values, double(*lo), double(*hi));
         stats.tets_before += mesh.tetCount();
-        addStats(stats, optimizeTetMeshSerial(mesh, field, lawson));
+        addStats(stats, options.optimize ? options.optimize(mesh, field, options.weight)
+                                         : optimizeTetMeshSerial(mesh, field, lawson));
         stats.tets_after += mesh.tetCount();
         ++stats.bricks;
         stats.optimize_s += secondsSince(start);

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "tet_cost.h"
@@ -34,8 +35,13 @@ constexpr uint64_t kMaxVoxelsInOneMesh = uint64_t(1) << 22;
 constexpr uint32_t kDefaultBrickSide = 128;
 constexpr uint32_t kBrickMargin = 8;
 
+// Flips one mesh to a local optimum of the field's cost with the weight. core/ has the serial
+// generalized Lawson; the app passes a Vulkan device's parallel rule (core/ links no Vulkan).
+using TetOptimizer = std::function<TetLawsonStats(TetMesh&, const TetCostField&, TetWeight)>;
+
 struct VolumeMagnifyOptions {
     TetWeight weight = TetWeight::variance;
+    TetOptimizer optimize;  // empty: optimizeTetMeshSerial
     // The brick side in input voxels; 0: one mesh up to kMaxVoxelsInOneMesh, else bricks of
     // kDefaultBrickSide.
     uint32_t brick_side = 0;

@@ -1,0 +1,363 @@
+#include "tet_device.h"
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "buffer.h"
+#include "commands.h"
+#include "tet_kernels.h"
+#include "vulkan_error.h"
+
+namespace ddt {
+
+namespace {
+
+// The arrays whose size follows the slot capacity, and what each holds per slot (bytes).
+struct SlotArray {
+    uint32_t binding;
+    VkFormat format;
+};
+constexpr SlotArray kSlotArrays[] = {
+    {kTetBindingVertices, VK_FORMAT_R32G32B32A32_UINT}, {kTetBindingNeighbours, VK_FORMAT_R32G32B32A32_UINT},
+    {kTetBindingContent, VK_FORMAT_R32G32_UINT},        {kTetBindingCost, VK_FORMAT_R32G32_UINT},
+    {kTetBindingGradient, VK_FORMAT_R32G32_UINT},       {kTetBindingState, VK_FORMAT_R32_UINT},
+    {kTetBindingClaimHigh, VK_FORMAT_R32_UINT},         {kTetBindingClaimLow, VK_FORMAT_R32_UINT},
+    {kTetBindingFreeSlots, VK_FORMAT_R32_UINT},         {kTetBindingFreed, VK_FORMAT_R32_UINT},
+    {kTetBindingActive, VK_FORMAT_R32_UINT},            {kTetBindingEvaluate, VK_FORMAT_R32_UINT},
+    {kTetBindingCandidates, VK_FORMAT_R32G32_UINT},     {kTetBindingCarried, VK_FORMAT_R32G32_UINT},
+    {kTetBindingMasks, VK_FORMAT_R32_UINT},
+    {kTetBindingWordPrefix, VK_FORMAT_R32G32_UINT},     {kTetBindingBlocks, VK_FORMAT_R32G32B32A32_UINT},
+};
+
+uint32_t blocksFor(uint64_t capacity) { return uint32_t((capacity + 32 * kTetScanWords - 1) / (32 * kTetScanWords)); }
+
+// Bytes of a capacity-sized array. The freed slots of one round: a 3–2 replaces three tets of
+// its own by two, so a round frees at most a third of the tets.
+VkDeviceSize slotArrayBytes(uint32_t binding, uint64_t capacity, TetWeight weight) {
+    const uint64_t words = uint64_t(blocksFor(capacity)) * kTetScanWords;
+    switch (binding) {
+        case kTetBindingVertices:
+        case kTetBindingNeighbours: return capacity * 16;
+        case kTetBindingContent:
+        case kTetBindingCost:
+        case kTetBindingCandidates:
+        case kTetBindingCarried: return capacity * 8;
+        case kTetBindingGradient: return weight == TetWeight::face_scf ? capacity * 24 : 8;
+        case kTetBindingFreed: return (capacity / 3 + 1) * 4;
+        case kTetBindingMasks:
+        case kTetBindingWordPrefix: return words * 8;
+        case kTetBindingBlocks: return uint64_t(blocksFor(capacity)) * 16;
+        default: return capacity * 4;
+    }
+}
+
+// TetCosts::total's sum: compensated (Neumaier), in slot order.
+double compensatedTotal(const std::vector<double>& costs) {
+    double sum = 0.0, compensation = 0.0;
+    for (double c : costs) {
+        const double next = sum + c;
+        compensation += std::abs(sum) >= std::abs(c) ? (sum - next) + c : (c - next) + sum;
+        sum = next;
+    }
+    return sum + compensation;
+}
+
+uint32_t uintOf(uint64_t value, const char* what) {
+    if (value > kTetMaxSlots) throw std::invalid_argument(std::string("device tet optimizer: too many ") + what);
+    return uint32_t(value);
+}
+
+class DeviceTetOptimizer {
+public:
+    DeviceTetOptimizer(VulkanContext& context, const TetMesh& mesh, const TetCostField& field,
+                       const TetParallelOptions& options, const TetDeviceOptions& device);
+    ~DeviceTetOptimizer() {
+        for (Buffer& buffer : buffers_) destroyBuffer(context_, buffer);
+    }
+    DeviceTetOptimizer(const DeviceTetOptimizer&) = delete;
+    DeviceTetOptimizer& operator=(const DeviceTetOptimizer&) = delete;
+
+    // Rounds until a round accepts nothing (or the cap); the statistics but the costs.
+    TetParallelStats run(TetDeviceReport& report);
+    // The mesh and the cost cache back from the device.
+    void download(TetMesh& mesh, std::vector<double>& costs) const;
+    std::vector<double> costs() const;
+    uint64_t bytes() const;
+    uint32_t capacity() const { return capacity_; }
+    double initMs() const { return init_ms_; }  // wall time of the first cache's submit
+
+private:
+    TetControl readControl() const;
+    void writeControl(const TetControl& control);
+    void allocate(uint32_t capacity);
+    void grow(uint32_t need);
+    TetPush pushFor(uint32_t step) const;
+
+    VulkanContext& context_;
+    TetKernels kernels_;
+    TetWeight weight_;
+    TetPush push_{};
+    uint32_t capacity_ = 0;
+    uint32_t rounds_per_submit_;
+    bool profile_;
+    double init_ms_ = 0.0;
+    Buffer buffers_[kTetBindingCount];
+};
+
+DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, const TetMesh& mesh, const TetCostField& field,
+                                       const TetParallelOptions& options, const TetDeviceOptions& device)
+    : context_(context), kernels_(context), weight_(options.weight), rounds_per_submit_(std::max(device.rounds_per_submit, 1u)),
+      profile_(device.profile && context.timestamps) {
+    if (options.evaluate_all || options.after_round)
+        throw std::invalid_argument("device tet optimizer: evaluate_all and after_round are CPU-only");
+    if (field.size != mesh.size || field.values.size() != mesh.vertexCount())
+        throw std::invalid_argument("device tet optimizer: the field does not fit the mesh");
+    const uint32_t slots = mesh.slotCount();
+    if (const std::string problem = tetDeviceProblem(context, slots, mesh.vertexCount(), weight_); !problem.empty())
+        throw std::invalid_argument("device tet optimizer: " + problem);
+    const uint32_t capacity = uintOf(std::max<uint64_t>(uint64_t(std::ceil(slots * (1.0 + device.slack))), slots + 1), "slots");
+    push_.size_x = mesh.size[0];
+    push_.size_y = mesh.size[1];
+    push_.size_z = mesh.size[2];
+    push_.face_scf = weight_ == TetWeight::face_scf;
+    push_.max_rounds = options.max_rounds;
+    for (uint32_t a = 0; a < 3; ++a) {
+        const uint64_t bits = std::bit_cast<uint64_t>(field.spacing[a]);
+        push_.spacing_bits[2 * a] = uint32_t(bits);
+        push_.spacing_bits[2 * a + 1] = uint32_t(bits >> 32);
+    }
+    // tet_cost.cpp's contentScaleOf, the same operations.
+    const uint64_t scale = std::bit_cast<uint64_t>(field.spacing[0] * field.spacing[1] * field.spacing[2] / 6.0);
+    push_.content_scale_bits[0] = uint32_t(scale);
+    push_.content_scale_bits[1] = uint32_t(scale >> 32);
+
+    try {
+        buffers_[kTetBindingValues] = createBuffer(context, std::max<VkDeviceSize>(field.values.size() * 8, 16),
+                                                   Placement::Device, VK_FORMAT_R32G32_UINT);
+        uploadToBuffer(context, buffers_[kTetBindingValues], field.values.data(), field.values.size() * 8);
+        std::vector<int32_t> positions(size_t(mesh.vertexCount()) * 4, 0);
+        for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
+            const VertexCoordinates c = coordinatesOf(mesh, v);
+            positions[4 * size_t(v)] = c.x;
+            positions[4 * size_t(v) + 1] = c.y;
+            positions[4 * size_t(v) + 2] = c.z;
+        }
+        buffers_[kTetBindingPositions] = createBuffer(context, std::max<VkDeviceSize>(positions.size() * 4, 16),
+                                                      Placement::Device, VK_FORMAT_R32G32B32A32_SINT);
+        uploadToBuffer(context, buffers_[kTetBindingPositions], positions.data(), positions.size() * 4);
+        buffers_[kTetBindingControl] = createBuffer(context, sizeof(TetControl), Placement::Readback);
+        buffers_[kTetBindingArgs] = createBuffer(context, kTetStepCount * 16, Placement::Device);
+        allocate(capacity);
+        uploadToBuffer(context, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(slots) * 16);
+        uploadToBuffer(context, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(slots) * 16);
+        if (!mesh.free_slots.empty())
+            uploadToBuffer(context, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), mesh.free_slots.size() * 4);
+        // The first round's active tets are listed by the first cache (tet_refresh.comp).
+        TetControl control{};
+        control.phase = kTetPhaseRunning;
+        control.next_step = kTetStepMark;
+        control.slot_count = slots;
+        control.free_count = uint32_t(mesh.free_slots.size());
+        writeControl(control);
+    } catch (...) {
+        for (Buffer& buffer : buffers_) destroyBuffer(context, buffer);
+        throw;
+    }
+    kernels_.bind(buffers_);
+    CommandBatch init(context);
+    kernels_.recordInit(init.buffer(), pushFor(kTetStepInit), slots);
+    const auto start = std::chrono::steady_clock::now();
+    init.submitAndWait();
+    init_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+TetPush DeviceTetOptimizer::pushFor(uint32_t step) const {
+    TetPush push = push_;
+    push.step = step;
+    push.capacity = capacity_;
+    push.blocks = blocksFor(capacity_);
+    return push;
+}
+
+TetControl DeviceTetOptimizer::readControl() const {
+    TetControl control;
+    downloadFromBuffer(context_, buffers_[kTetBindingControl], &control, sizeof(control));
+    return control;
+}
+
+void DeviceTetOptimizer::writeControl(const TetControl& control) {
+    uploadToBuffer(context_, buffers_[kTetBindingControl], &control, sizeof(control));
+}
+
+// Every capacity-sized array, zeroed: the state bits, claims and masks must start at 0.
+void DeviceTetOptimizer::allocate(uint32_t capacity) {
+    capacity_ = capacity;
+    CommandBatch batch(context_);
+    for (const SlotArray& array : kSlotArrays) {
+        Buffer& buffer = buffers_[array.binding];
+        buffer = createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
+        vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, 0);
+    }
+    batch.submitAndWait();
+}
+
+// Larger arrays, each zeroed and then holding the old one's contents: the round that stopped
+// for want of slots goes on where it stopped (kTetStepApply), with the same lists, claims,
+// masks and prefix sums (the blocks added beyond the old ones are empty).
+void DeviceTetOptimizer::grow(uint32_t need) {
+    const uint64_t wanted = std::max<uint64_t>(uint64_t(need) + need / 4, uint64_t(capacity_) + capacity_ / 2);
+    const uint32_t capacity = uintOf(wanted, "slots for the flips");
+    if (const std::string problem = tetDeviceProblem(context_, capacity, push_.size_x * push_.size_y * push_.size_z, weight_);
+        !problem.empty())
+        throw std::invalid_argument("device tet optimizer: cannot grow: " + problem);
+    Buffer old[kTetBindingCount];
+    CommandBatch batch(context_);
+    for (const SlotArray& array : kSlotArrays) {
+        Buffer& buffer = buffers_[array.binding];
+        old[array.binding] = buffer;
+        buffer = createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
+        vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, 0);
+    }
+    computeBarrier(batch.buffer());
+    for (const SlotArray& array : kSlotArrays) {
+        const VkBufferCopy region{0, 0, old[array.binding].size};
+        vkCmdCopyBuffer(batch.buffer(), old[array.binding].buffer, buffers_[array.binding].buffer, 1, &region);
+    }
+    batch.submitAndWait();
+    for (const SlotArray& array : kSlotArrays) destroyBuffer(context_, old[array.binding]);
+    capacity_ = capacity;
+    kernels_.bind(buffers_);
+}
+
+TetParallelStats DeviceTetOptimizer::run(TetDeviceReport& report) {
+    // Profiling: a timestamp before the first step and after each.
+    VkQueryPool timestamps = VK_NULL_HANDLE;
+    const uint32_t queries = rounds_per_submit_ * kTetStepCount + 1;
+    if (profile_) {
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = queries;
+        VK_CHECK(vkCreateQueryPool(context_.device, &info, nullptr, &timestamps));
+    }
+    TetControl control = readControl();
+    try {
+        while (control.phase != kTetPhaseDone) {
+            // Recorded anew after a growth: the pushes carry the capacity, the set the new arrays.
+            CommandBatch batch(context_);
+            if (timestamps) {
+                vkCmdResetQueryPool(batch.buffer(), timestamps, 0, queries);
+                vkCmdWriteTimestamp(batch.buffer(), VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, 0);
+            }
+            for (uint32_t round = 0; round < rounds_per_submit_; ++round)
+                for (uint32_t step = 0; step < kTetStepCount; ++step)
+                    kernels_.recordStep(batch.buffer(), pushFor(step), buffers_[kTetBindingArgs], timestamps,
+                                        round * kTetStepCount + step + 1);
+            batch.finishRecording();
+            for (;;) {
+                batch.submitAndWait();
+                ++report.submits;
+                if (timestamps) {
+                    std::vector<uint64_t> ticks(queries);
+                    VK_CHECK(vkGetQueryPoolResults(context_.device, timestamps, 0, queries, queries * 8, ticks.data(), 8,
+                                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+                    for (uint32_t q = 1; q < queries; ++q)
+                        report.step_ms[(q - 1) % kTetStepCount] +=
+                            double(ticks[q] - ticks[q - 1]) * context_.properties.limits.timestampPeriod * 1e-6;
+                }
+                control = readControl();
+                if (control.phase != kTetPhaseRunning) break;
+            }
+            if (control.phase == kTetPhaseGrow) {
+                grow(control.need);
+                ++report.grows;
+                control.phase = kTetPhaseRunning;
+                writeControl(control);
+            }
+        }
+    } catch (...) {
+        if (timestamps) vkDestroyQueryPool(context_.device, timestamps, nullptr);
+        throw;
+    }
+    if (timestamps) vkDestroyQueryPool(context_.device, timestamps, nullptr);
+    TetParallelStats stats;
+    for (uint32_t k = 0; k < kFlipKindCount; ++k) stats.flips[k] = control.flips[k];
+    stats.rounds = control.rounds;
+    stats.capped = control.capped != 0;
+    stats.evaluated = control.evaluated;
+    stats.candidates = control.candidates;
+    return stats;
+}
+
+std::vector<double> DeviceTetOptimizer::costs() const {
+    const TetControl control = readControl();
+    std::vector<double> costs(control.slot_count);
+    if (!costs.empty()) downloadFromBuffer(context_, buffers_[kTetBindingCost], costs.data(), costs.size() * 8);
+    return costs;
+}
+
+void DeviceTetOptimizer::download(TetMesh& mesh, std::vector<double>& costs) const {
+    const TetControl control = readControl();
+    mesh.vertices.resize(control.slot_count);
+    mesh.neighbours.resize(control.slot_count);
+    mesh.free_slots.resize(control.free_count);
+    if (control.slot_count) {
+        downloadFromBuffer(context_, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(control.slot_count) * 16);
+        downloadFromBuffer(context_, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(control.slot_count) * 16);
+    }
+    if (control.free_count)
+        downloadFromBuffer(context_, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), VkDeviceSize(control.free_count) * 4);
+    costs = this->costs();
+}
+
+uint64_t DeviceTetOptimizer::bytes() const {
+    uint64_t total = 0;
+    for (const Buffer& buffer : buffers_) total += buffer.size;
+    return total;
+}
+
+}  // namespace
+
+uint64_t tetDeviceBytes(uint64_t capacity, uint64_t vertices, TetWeight weight) {
+    uint64_t total = vertices * (8 + 16) + sizeof(TetControl) + kTetStepCount * 16;
+    for (const SlotArray& array : kSlotArrays) total += slotArrayBytes(array.binding, capacity, weight);
+    return total;
+}
+
+std::string tetDeviceProblem(const VulkanContext& context, uint64_t slots, uint64_t vertices, TetWeight weight) {
+    if (slots >= kTetMaxSlots) return std::to_string(slots) + " slots, more than the kernels can name (2^28)";
+    const uint64_t limit = context.properties.limits.maxTexelBufferElements;
+    const uint64_t elements = std::max(weight == TetWeight::face_scf ? 3 * slots : slots, vertices);
+    if (elements > limit)
+        return std::to_string(elements) + " texels in one array, more than the device's " + std::to_string(limit);
+    const uint64_t largest = slots * (weight == TetWeight::face_scf ? 24 : 16);
+    VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &maintenance;
+    vkGetPhysicalDeviceProperties2(context.physical, &properties);
+    if (largest > maintenance.maxMemoryAllocationSize)
+        return "an array of " + std::to_string(largest >> 20) + " MiB, more than the largest allocation of " +
+               std::to_string(maintenance.maxMemoryAllocationSize >> 20) + " MiB";
+    return "";
+}
+
+TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
+                                       const TetParallelOptions& options, const TetDeviceOptions& device,
+                                       TetDeviceReport* report) {
+    TetDeviceReport local;
+    TetDeviceReport& out = report ? *report : local;
+    DeviceTetOptimizer optimizer(context, mesh, field, options, device);
+    const double cost_before = compensatedTotal(optimizer.costs());
+    TetParallelStats stats = optimizer.run(out);
+    optimizer.download(mesh, out.costs);
+    stats.cost_before = cost_before;
+    stats.cost_after = compensatedTotal(out.costs);
+    out.capacity = optimizer.capacity();
+    out.init_ms = optimizer.initMs();
+    out.device_bytes = optimizer.bytes();
+    return stats;
+}
+
+}  // namespace ddt

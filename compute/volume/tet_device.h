@@ -1,0 +1,63 @@
+// The parallel flip rule for tetrahedral meshes (core/volume/tet_parallel.h) on a Vulkan device,
+// in kernels of its own (glsl/volume/), equal to core's rule bit for bit: the same rounds, the
+// same flips in the same slots, the same free-slot stack, the same cached costs and statistics.
+// What makes them equal: the plans, gains and costs are core's formulas operation for operation
+// in fp64 without fused multiply-add (glsl/volume/tet_common.glsl, tet_plan.glsl) and exact
+// integer orientation (tet_orient.h); every step whose result could depend on the order of the
+// invocations is order-independent (atomic maxima for the claims, state bits that list a slot
+// once, sets rather than sequences for the lists); the slot allocation is a prefix sum over the
+// accepted flips in owner order (tet_scan.comp), not an atomic counter.
+//
+// On the device: the mesh records, the cost cache (contents, gradients, costs, flatness), the
+// lists (active, evaluation, candidates), the claims and the free slots; a state machine
+// (tet_plan.comp) plans each step's indirect dispatch, so a command buffer holds several rounds
+// and the host reads the control block once per submit.
+//
+// Capacity: the slot arrays hold the initial slots plus `slack` (25 %) for 2–3 flips, each of
+// which adds a tet. When a round's flips need more (the device stops before the flips), the
+// arrays grow to 1.25 times the need, or 1.5 times their size if more, between submits, and the
+// round goes on: the same result, a few copies later.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "context.h"
+#include "tet_cost.h"
+#include "tet_mesh.h"
+#include "tet_parallel.h"
+#include "volume/tet_layout.h"
+
+namespace ddt {
+
+struct TetDeviceOptions {
+    uint32_t rounds_per_submit = 16;  // rounds recorded in one command buffer
+    double slack = 0.25;              // spare slots at the start, as a share of the initial slots
+    bool profile = false;             // time each step on the device (TetDeviceReport::step_ms)
+};
+
+// How the device run went, beyond the rule's statistics.
+struct TetDeviceReport {
+    uint32_t submits = 0;
+    uint32_t grows = 0;      // times the slot arrays grew
+    uint32_t capacity = 0;   // slots the arrays held at the end
+    uint64_t device_bytes = 0;  // bytes of device memory at the end
+    std::vector<double> costs;  // the device's cost cache per slot at the end (TetCosts::cost)
+    double init_ms = 0.0;       // wall time of the first cache's submit (kTetStepInit)
+    std::array<double, kTetStepCount> step_ms{};  // device time per step (plan and kernel), when profiling
+};
+
+// Bytes the device arrays take for `capacity` slots and `vertices` vertices with `weight`.
+uint64_t tetDeviceBytes(uint64_t capacity, uint64_t vertices, TetWeight weight);
+// Why the device cannot optimize a mesh of `slots` slots and `vertices` vertices ("" if it can).
+std::string tetDeviceProblem(const VulkanContext& context, uint64_t slots, uint64_t vertices, TetWeight weight);
+
+// optimizeTetMeshParallel's rounds with steps (a) to (d) on the device; the same mesh, cost and
+// statistics. options.evaluate_all and options.after_round are not supported (invalid_argument).
+TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
+                                       const TetParallelOptions& options = {}, const TetDeviceOptions& device = {},
+                                       TetDeviceReport* report = nullptr);
+
+}  // namespace ddt

@@ -1,0 +1,187 @@
+// The parallel flip rule's kernels (glsl/volume/, compute/volume/tet_device.h) against core's
+// rule (core/volume/tet_parallel.h), bit for bit: every slot's vertices and neighbours, the free
+// slots in order, the statistics, every cached cost and the totals. The validation layer and
+// synchronization validation are on; each test requires zero messages.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "context.h"
+#include "tet_cost.h"
+#include "tet_mesh.h"
+#include "tet_parallel.h"
+#include "volume/tet_device.h"
+
+using ddt::TetWeight;
+
+namespace {
+
+using Size = std::array<uint32_t, 3>;
+
+ddt::TetCostField fieldOf(const Size& size, const std::function<double(uint32_t, uint32_t, uint32_t)>& value,
+                          std::array<double, 3> spacing = {1.0, 1.0, 1.0}) {
+    std::vector<double> raw;
+    for (uint32_t z = 0; z < size[2]; ++z)
+        for (uint32_t y = 0; y < size[1]; ++y)
+            for (uint32_t x = 0; x < size[0]; ++x) raw.push_back(value(x, y, z));
+    ddt::TetCostField field;
+    field.size = size;
+    field.spacing = spacing;
+    field.values = ddt::normalizedValues(raw);
+    return field;
+}
+
+ddt::TetCostField sphereField(uint32_t n, double radius) {
+    const double c = (n - 1) / 2.0;
+    return fieldOf({n, n, n}, [&](uint32_t x, uint32_t y, uint32_t z) {
+        return (x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c) <= radius * radius ? 1.0 : 0.0;
+    });
+}
+
+ddt::TetCostField slantedPlaneField(uint32_t n, std::array<double, 3> spacing) {
+    return fieldOf({n, n, n}, [n](uint32_t x, uint32_t y, uint32_t z) { return x + 2 * y + 3 * z >= 2.5 * n ? 1.0 : 0.0; },
+                   spacing);
+}
+
+// Independent values drawn from `seed`, `levels` levels: many 2–3 and 3–2 flips.
+ddt::TetCostField randomField(const Size& size, uint32_t seed, uint32_t levels) {
+    std::mt19937 rng(seed);
+    return fieldOf(size, [&](uint32_t, uint32_t, uint32_t) { return double(rng() % levels); }, {1.0, 0.7, 1.3});
+}
+
+// Bitwise equality of doubles (0.0 and −0.0 differ, as a bit-for-bit claim should).
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+std::unique_ptr<ddt::VulkanContext> validatedContext() { return ddt::createContext({-1, true}); }
+
+// The same tets without free slots: in-use records renumbered in slot order.
+ddt::TetMesh compacted(const ddt::TetMesh& mesh) {
+    std::vector<uint32_t> renumbered(mesh.slotCount(), ddt::kNoTet);
+    ddt::TetMesh out;
+    out.size = mesh.size;
+    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
+        if (mesh.inUse(t)) {
+            renumbered[t] = out.slotCount();
+            out.vertices.push_back(mesh.vertices[t]);
+        }
+    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
+        if (mesh.inUse(t)) {
+            ddt::TetNeighbours n = mesh.neighbours[t];
+            for (uint32_t& across : n)
+                if (across != ddt::kNoTet) across = renumbered[across];
+            out.neighbours.push_back(n);
+        }
+    return out;
+}
+
+// Runs core's rule and the device's on `start` (the Kuhn mesh of `field` by default) and
+// compares everything; the device's report.
+ddt::TetDeviceReport compareWithCore(ddt::VulkanContext& context, const ddt::TetCostField& field, TetWeight weight,
+                                     uint32_t max_rounds = 100000, ddt::TetDeviceOptions device = {},
+                                     const ddt::TetMesh* start = nullptr) {
+    INFO(ddt::tetWeightName(weight) << ", at most " << max_rounds << " rounds, " << device.rounds_per_submit
+                                    << " rounds a submit, slack " << device.slack);
+    ddt::TetParallelOptions options;
+    options.weight = weight;
+    options.max_rounds = max_rounds;
+    ddt::TetMesh cpu = start ? *start : ddt::kuhnTetMesh(field.size), gpu = cpu;
+    const ddt::TetParallelStats expected = ddt::optimizeTetMeshParallel(cpu, field, options);
+    ddt::TetDeviceReport report;
+    const ddt::TetParallelStats got = ddt::optimizeTetMeshVulkan(context, gpu, field, options, device, &report);
+    CHECK(ddt::checkTetMesh(gpu) == "");
+    CHECK(gpu.slotCount() == cpu.slotCount());
+    CHECK(gpu.vertices == cpu.vertices);
+    CHECK(gpu.neighbours == cpu.neighbours);
+    CHECK(gpu.free_slots == cpu.free_slots);
+    CHECK(got.flips == expected.flips);
+    CHECK(got.rounds == expected.rounds);
+    CHECK(got.capped == expected.capped);
+    CHECK(got.evaluated == expected.evaluated);
+    CHECK(got.candidates == expected.candidates);
+    CHECK(sameBits(got.cost_before, expected.cost_before));
+    CHECK(sameBits(got.cost_after, expected.cost_after));
+    // Every slot's cached cost, against core's cache of the same mesh.
+    const ddt::TetCosts costs(cpu, field, weight);
+    REQUIRE(report.costs.size() == cpu.slotCount());
+    uint32_t different = 0;
+    for (uint32_t t = 0; t < cpu.slotCount(); ++t) different += !sameBits(report.costs[t], costs.cost(t));
+    CHECK(different == 0);
+    CHECK(report.capacity >= gpu.slotCount());
+    return report;
+}
+
+}  // namespace
+
+TEST_CASE("tet vulkan: a sphere and a slanted plane equal core's parallel rule bit for bit", "[tet-vulkan]") {
+    std::unique_ptr<ddt::VulkanContext> context = validatedContext();
+    for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
+        compareWithCore(*context, sphereField(9, 3.0), weight);
+        compareWithCore(*context, slantedPlaneField(8, {0.8, 0.8, 2.0}), weight);
+    }
+    CHECK(context->validation_messages == 0);
+}
+
+TEST_CASE("tet vulkan: random values, round by round: many 2-3 and 3-2 flips take and free slots alike", "[tet-vulkan]") {
+    std::unique_ptr<ddt::VulkanContext> context = validatedContext();
+    const ddt::TetCostField field = randomField({7, 6, 5}, 11, 1000);
+    for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
+        for (uint32_t rounds : {1u, 2u, 3u, 5u}) compareWithCore(*context, field, weight, rounds);
+        compareWithCore(*context, field, weight);
+        compareWithCore(*context, field, weight, 100000, {1, 0.25});  // one round a submit
+    }
+    // Few levels: many equal gains, decided by the tie words.
+    const ddt::TetCostField ties = randomField({6, 6, 6}, 5, 3);
+    for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) compareWithCore(*context, ties, weight);
+    CHECK(context->validation_messages == 0);
+}
+
+TEST_CASE("tet vulkan: slots appended beyond the arrays: they grow mid-round to the same result", "[tet-vulkan]") {
+    // The mesh of one random field, compacted (no free slots), optimized for another: its first
+    // rounds append slots. With no slack the arrays must grow, in the middle of a round.
+    std::unique_ptr<ddt::VulkanContext> context = validatedContext();
+    const ddt::TetCostField first = randomField({7, 6, 5}, 1, 1000), second = randomField({7, 6, 5}, 2, 1000);
+    ddt::TetParallelOptions options;
+    options.weight = TetWeight::variance;
+    ddt::TetMesh mesh = ddt::kuhnTetMesh(first.size);
+    ddt::optimizeTetMeshParallel(mesh, first, options);
+    mesh = compacted(mesh);
+    for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
+        const ddt::TetDeviceReport tight = compareWithCore(*context, second, weight, 100000, {4, 0.0}, &mesh);
+        if (weight == TetWeight::variance) CHECK(tight.grows > 0);
+        const ddt::TetDeviceReport roomy = compareWithCore(*context, second, weight, 100000, {}, &mesh);
+        CHECK(roomy.grows == 0);
+    }
+    CHECK(context->validation_messages == 0);
+}
+
+TEST_CASE("tet vulkan: a flat volume and a mesh with free slots", "[tet-vulkan]") {
+    std::unique_ptr<ddt::VulkanContext> context = validatedContext();
+    const ddt::TetCostField flat = fieldOf({4, 3, 5}, [](uint32_t, uint32_t, uint32_t) { return 7.0; });
+    for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) compareWithCore(*context, flat, weight);
+
+    // A mesh that already has free slots (after core's rule on other values) goes on from there.
+    const ddt::TetCostField first = randomField({6, 5, 5}, 21, 100), second = randomField({6, 5, 5}, 22, 100);
+    for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
+        ddt::TetParallelOptions options;
+        options.weight = weight;
+        ddt::TetMesh cpu = ddt::kuhnTetMesh(first.size);
+        ddt::optimizeTetMeshParallel(cpu, first, options);
+        REQUIRE_FALSE(cpu.free_slots.empty());
+        ddt::TetMesh gpu = cpu;
+        const ddt::TetParallelStats expected = ddt::optimizeTetMeshParallel(cpu, second, options);
+        const ddt::TetParallelStats got = ddt::optimizeTetMeshVulkan(*context, gpu, second, options);
+        CHECK(gpu.vertices == cpu.vertices);
+        CHECK(gpu.neighbours == cpu.neighbours);
+        CHECK(gpu.free_slots == cpu.free_slots);
+        CHECK(got.flips == expected.flips);
+        CHECK(sameBits(got.cost_after, expected.cost_after));
+    }
+    CHECK(context->validation_messages == 0);
+}
