@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "parallel.h"
+#include "volume/tet_device.h"
 #include "vulkan_backend.h"
 
 namespace ddt {
@@ -56,30 +57,65 @@ ChosenBackend vulkanBackend(const Settings& settings, int device_index, std::str
     return {std::move(backend), std::move(choice)};
 }
 
-// --backend auto without --device: Vulkan on the device Vulkan would choose, when that is a GPU.
-ChosenBackend automaticBackend(const Settings& settings) {
-    if (!mayHaveGpu()) return cpuBackend(settings, "this machine has no GPU device (/dev/dri/renderD*, /dev/nvidiactl)");
+}  // namespace
+
+AutomaticDevice automaticDevice() {
+    if (!mayHaveGpu()) return {-1, "this machine has no GPU device (/dev/dri/renderD*, /dev/nvidiactl)"};
     std::vector<DeviceInfo> devices;
     uint32_t best = 0;
     try {
         devices = listDevices();
         best = chooseDevice(devices, -1);
     } catch (const UserError&) {
-        return cpuBackend(settings, "no usable Vulkan device (a GPU driver would give one)");
+        return {-1, "no usable Vulkan device (a GPU driver would give one)"};
     }
     const DeviceInfo& device = devices[best];
     if (device.isCpu())
-        return cpuBackend(settings, "the only Vulkan device, " + device.name +
-                          ", runs on the CPU, where the CPU backend is faster (--backend vulkan uses it anyway)");
-    return vulkanBackend(settings, int(best), "");
+        return {-1, "the only Vulkan device, " + device.name +
+                        ", runs on the CPU, where the CPU backend is faster (--backend vulkan uses it anyway)"};
+    return {int(best), ""};
 }
-
-}  // namespace
 
 ChosenBackend makeBackend(const Settings& settings) {
     if (settings.backend == "cpu") return cpuBackend(settings, "");
     if (settings.backend == "vulkan" || settings.device >= 0) return vulkanBackend(settings, settings.device, "");
-    return automaticBackend(settings);
+    const AutomaticDevice device = automaticDevice();
+    if (device.index < 0) return cpuBackend(settings, device.cpu_reason);
+    return vulkanBackend(settings, device.index, "");
+}
+
+VolumeEngine makeVolumeEngine(const Settings& settings) {
+    VolumeEngine engine;
+    engine.choice = {"cpu", "", "", threadCount(), ""};
+    int device_index = settings.device;
+    if (settings.backend == "auto" && settings.device < 0) {
+        const AutomaticDevice device = automaticDevice();
+        if (device.index < 0) {
+            engine.choice.reason = device.cpu_reason;
+            return engine;
+        }
+        device_index = device.index;
+    } else if (settings.backend == "cpu") {
+        return engine;
+    }
+    std::shared_ptr<VulkanContext> context = createContext({device_index, false});
+    engine.choice = {"vulkan", context->info.name, deviceKind(context->info.type), 0, ""};
+    engine.context = context;
+    engine.optimize = [context](TetMesh& mesh, const TetCostField& field, TetWeight weight) {
+        const std::string problem = tetDeviceProblem(*context, mesh.slotCount(), mesh.vertexCount(), weight);
+        if (!problem.empty()) throw UserError(problem + " (a smaller --tile makes smaller bricks)");
+        TetParallelOptions options;
+        options.weight = weight;
+        const TetParallelStats rule = optimizeTetMeshVulkan(*context, mesh, field, options);
+        TetLawsonStats stats;
+        stats.cost_before = rule.cost_before;
+        stats.cost_after = rule.cost_after;
+        stats.flips = rule.flips;
+        stats.iterations = rule.rounds;
+        stats.capped = rule.capped;
+        return stats;
+    };
+    return engine;
 }
 
 }  // namespace ddt

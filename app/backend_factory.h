@@ -13,6 +13,8 @@
 #include <string>
 
 #include "backend.h"
+#include "context.h"
+#include "volume_magnify.h"
 #include "reporter.h"
 #include "settings.h"
 
@@ -26,5 +28,23 @@ struct ChosenBackend {
 // Throws UserError when Vulkan was asked for and no usable device exists (the message says
 // how to get one).
 ChosenBackend makeBackend(const Settings& settings);
+
+// What --backend auto does without --device: the index of the GPU to use, or -1 and why the
+// CPU serves instead (no GPU device node, no usable device, or only CPU implementations).
+struct AutomaticDevice {
+    int index = -1;
+    std::string cpu_reason;
+};
+AutomaticDevice automaticDevice();
+
+// What flips the volumes of a run (app/volume/): the serial generalized Lawson on the CPU, or
+// the parallel rule on a Vulkan device (compute/volume/tet_device.h), chosen by --backend as
+// for images. Throws UserError when Vulkan was asked for and no usable device exists.
+struct VolumeEngine {
+    BackendChoice choice;
+    std::shared_ptr<VulkanContext> context;  // the device's, held by `optimize` too
+    TetOptimizer optimize;                   // empty: the serial generalized Lawson
+};
+VolumeEngine makeVolumeEngine(const Settings& settings);
 
 }  // namespace ddt

@@ -127,9 +127,6 @@ std::string volumeTaskProblem(const std::string& input, const Settings& settings
         return input + ": " + settings.image_only_options.front() + " does not apply to volumes";
     if (settings.cost == "sederberg")
         return input + ": --cost sederberg is an edge cost of images; volumes take variance or face-scf";
-    if (settings.backend == "vulkan" || settings.device >= 0)
-        return input + ": volumes run on the CPU backend only (their Vulkan kernels are not written yet); use "
-                       "--backend cpu or auto";
     return "";
 }
 

@@ -23,7 +23,7 @@ struct ImageTask {
 bool sameFile(const std::string& a, const std::string& b);
 
 // "" if the settings can magnify the volume `input`, else the message, naming it: options that
-// mean nothing for volumes, a backend that has no volume kernels.
+// mean nothing for volumes.
 std::string volumeTaskProblem(const std::string& input, const Settings& settings);
 
 // Throws UserError when the input folder cannot be listed or the output folder cannot be

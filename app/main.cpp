@@ -67,9 +67,11 @@ void printVolumeStats(const ddt::ImageTask& task, const ddt::VolumeReport& repor
         std::printf("%s%s %llu", kind ? ", " : "", ddt::flipKindName(ddt::FlipKind(kind)),
                     static_cast<unsigned long long>(s.flips[kind]));
     std::printf(")\n");
-    std::printf("iterations     %u%s\n", s.iterations, s.capped ? " (safety cap reached)" : "");
+    std::printf("%s     %u%s\n", report.on_device ? "rounds    " : "iterations", s.iterations,
+                s.capped ? " (safety cap reached)" : "");
     std::printf("time-init      %.3f s  (read the volume)\n", report.read_s);
-    std::printf("time-comp      %.3f s  (build the tetrahedral meshes, optimize: serial, CPU)\n", report.stats.optimize_s);
+    std::printf("time-comp      %.3f s  (build the tetrahedral meshes, optimize: %s)\n", report.stats.optimize_s,
+                report.on_device ? "the parallel rule on the Vulkan device" : "the serial generalized Lawson, CPU");
     std::printf("time-resample  %.3f s  (each output voxel in its tetrahedron)\n", report.stats.resample_s);
     std::printf("time-final     %.3f s  (write the volume%s)\n", report.write_s, "");
     std::printf("time-sum       %.3f s\n", report.read_s + report.stats.optimize_s + report.stats.resample_s + report.write_s);
@@ -148,16 +150,10 @@ int run(const ddt::Settings& settings, ddt::Reporter& reporter) {
             std::lock_guard lock(stats_mutex);
             printStats(job, batch);
         });
-    if (any_volume) {
-        ddt::BackendChoice cpu;
-        cpu.backend = "cpu";
-        cpu.threads = ddt::threadCount();
-        if (settings.backend == "auto") cpu.reason = "volumes run on the CPU: their Vulkan kernels are not written yet";
-        reporter.backend(cpu);
+    if (any_volume)
         ddt::runVolumeTasks(tasks, settings, reporter, [&](const ddt::ImageTask& task, const ddt::VolumeReport& report) {
             if (settings.stats) printVolumeStats(task, report, batch);
         });
-    }
     return reporter.finish();
 }
 

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <new>
 
+#include "backend_factory.h"
+#include "exit_codes.h"
 #include "parallel.h"
 #include "user_error.h"
 #include "volume.h"
@@ -49,7 +51,8 @@ void makeSlicesFolder(const std::string& folder) {
         throw UserError(folder + ": cannot make the folder for --slices" + (error ? ": " + error.message() : ""));
 }
 
-VolumeReport magnifyVolume(size_t index, const ImageTask& task, const Settings& settings, Reporter& reporter) {
+VolumeReport magnifyVolume(size_t index, const ImageTask& task, const Settings& settings, const VolumeEngine& engine,
+                           Reporter& reporter) {
     VolumeReport report;
     auto start = std::chrono::steady_clock::now();
     if (!settings.slices.empty()) makeSlicesFolder(settings.slices);
@@ -64,6 +67,8 @@ VolumeReport magnifyVolume(size_t index, const ImageTask& task, const Settings& 
     VolumeMagnifyOptions options;
     options.weight = settings.cost == "face-scf" ? TetWeight::face_scf : TetWeight::variance;
     options.brick_side = settings.tile;
+    options.optimize = engine.optimize;
+    report.on_device = bool(engine.optimize);
     Volume output;
     output.size = report.out;
     output.type = outputType(volume.type, settings.depth);
@@ -84,14 +89,22 @@ VolumeReport magnifyVolume(size_t index, const ImageTask& task, const Settings& 
 
 }  // namespace
 
-void runVolumeTasks(const std::vector<ImageTask>& tasks, const Settings& settings, Reporter& reporter,
+bool runVolumeTasks(const std::vector<ImageTask>& tasks, const Settings& settings, Reporter& reporter,
                     const std::function<void(const ImageTask&, const VolumeReport&)>& on_done) {
+    VolumeEngine engine;
+    try {
+        engine = makeVolumeEngine(settings);
+    } catch (const UserError& error) {
+        reporter.fatal(error.what(), kExitNoDevice);
+        return false;
+    }
+    reporter.backend(engine.choice);
     for (size_t i = 0; i < tasks.size(); ++i) {
         const ImageTask& task = tasks[i];
         if (task.state != ImageTask::State::Ready || !task.volume) continue;
         const auto start = std::chrono::steady_clock::now();
         try {
-            const VolumeReport report = magnifyVolume(i, task, settings, reporter);
+            const VolumeReport report = magnifyVolume(i, task, settings, engine, reporter);
             reporter.done(i, task, OutputSize{report.out[0], report.out[1], report.out[2]}, secondsSince(start));
             if (on_done) on_done(task, report);
         } catch (const UserError& error) {
@@ -102,6 +115,7 @@ void runVolumeTasks(const std::vector<ImageTask>& tasks, const Settings& setting
             reporter.failed(task.input, task.input + ": internal error: " + error.what(), true);
         }
     }
+    return true;
 }
 
 }  // namespace ddt

@@ -1,7 +1,7 @@
 // One volume's way through a run: read, magnify (core/volume/volume_magnify.h: tetrahedralize,
 // optimize by bistellar flips, resample; in bricks when large or --tile asks), write, and the
-// middle slices when asked. Volumes run one after another, on the CPU: their Vulkan
-// kernels are not written yet, and --backend auto says so.
+// middle slices when asked. Volumes run one after another; the flips on the engine --backend
+// chooses (app/backend_factory.h: the serial CPU optimizer or a Vulkan device), the rest on the CPU.
 #pragma once
 
 #include <array>
@@ -20,6 +20,7 @@ struct VolumeReport {
     std::array<uint32_t, 3> in{};
     std::array<uint32_t, 3> out{};
     VolumeMagnifyStats stats;
+    bool on_device = false;  // the flips ran the parallel rule on a Vulkan device
     double read_s = 0.0;   // read and check the file
     double write_s = 0.0;  // the output file and the slices
 };
@@ -29,7 +30,8 @@ inline constexpr uint64_t kMaxOutputVoxels = uint64_t(1) << 31;
 
 // Magnifies every Ready volume task of `tasks`, reporting each; failures are reported and the
 // batch goes on. `on_done` runs after each volume is written.
-void runVolumeTasks(const std::vector<ImageTask>& tasks, const Settings& settings, Reporter& reporter,
+// Returns false when the engine could not be made (no device; reported as fatal).
+bool runVolumeTasks(const std::vector<ImageTask>& tasks, const Settings& settings, Reporter& reporter,
                     const std::function<void(const ImageTask&, const VolumeReport&)>& on_done);
 
 }  // namespace ddt

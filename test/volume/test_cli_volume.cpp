@@ -139,7 +139,6 @@ TEST_CASE("volume cli: options that mean nothing for volumes are refused in one 
         args.insert(args.end(), extra.begin(), extra.end());
         requireOneLineError(runDdtup(args), 2, in, "does not apply to volumes");
     }
-    requireOneLineError(runDdtup({in, work / "out.nrrd", "--backend", "vulkan"}), 2, in, "CPU backend only");
     requireOneLineError(runDdtup({in, "-s", "2,2", work / "out.nrrd"}), 2, "--scale", "three");
     requireOneLineError(runDdtup({in, "-s", "2,0.5,2", work / "out.nrrd"}), 2, "--scale", ">= 1");
     requireOneLineError(runDdtup({in, work / "out.png"}), 2, "out.png", "volume file");
@@ -259,4 +258,28 @@ TEST_CASE("volume cli: --stack refuses what is not a stack of grey slices") {
     requireOneLineError(runDdtup({"--stack", work / "one", work / "v.png"}), 2, "v.png", "volume file");
     requireOneLineError(runDdtup({"--stack", work / "one", work / "sizes", "-o", work / "out"}), 2, "--stack", "one folder");
     CHECK(!std::filesystem::exists(work / "v.nrrd"));
+}
+
+TEST_CASE("volume cli: --backend vulkan flips on the device by the parallel rule") {
+    TempFolder work;
+    const std::array<uint32_t, 3> size = {9, 8, 9};
+    writeFloatNrrd(work / "ball.nrrd", size, ball(size), kLpsGeometry);
+    writeFloatNrrd(work / "ramp.nrrd", size, ramp(size), kLpsGeometry);
+    for (const std::string cost : {"variance", "face-scf"}) {
+        INFO(cost);
+        // The rule's meshes equal its CPU version's (test_tet_vulkan.cpp); here: it runs through
+        // the executable, says so, lowers the cost and leaves a linear field linear.
+        Run run = runDdtup({work / "ball.nrrd", work / "out.nrrd", "--backend", "vulkan", "--cost", cost, "--stats", "-q"});
+        REQUIRE(run.exit_code == 0);
+        CHECK(run.err.empty());  // validation (scripts/test turns it on) says nothing
+        CHECK_THAT(run.out, Catch::Contains("the parallel rule on the Vulkan device"));
+        CHECK_THAT(run.out, Catch::Contains("rounds"));
+        const size_t init = run.out.find("cost-init"), final = run.out.find("cost-final");
+        REQUIRE((init != std::string::npos && final != std::string::npos));
+        CHECK(std::stod(run.out.substr(final + 10)) < std::stod(run.out.substr(init + 9)));
+        run = runDdtup({work / "ramp.nrrd", work / "ramp2.nrrd", "--backend", "vulkan", "--cost", cost, "-q"});
+        REQUIRE(run.exit_code == 0);
+        // Float samples of values up to 45: a few of float's ulps.
+        CHECK(worstRampError(ddt::readVolume(work / "ramp2.nrrd"), size) < 1e-4);
+    }
 }
