@@ -7,6 +7,7 @@
 #include <map>
 #include <vector>
 
+#include "tet_test_support.h"
 #include "tet_cost.h"
 #include "tet_flips.h"
 #include "tet_mesh.h"
@@ -16,9 +17,9 @@ using ddt::kNoTet;
 using ddt::TetVertices;
 using ddt::TetWeight;
 
-namespace {
+using namespace ddt::test;
 
-using Size = std::array<uint32_t, 3>;
+namespace {
 
 uint32_t vertexId(const Size& size, uint32_t x, uint32_t y, uint32_t z) { return x + size[0] * (y + size[1] * z); }
 
@@ -64,23 +65,7 @@ ddt::TetMesh meshFromTets(const Size& size, const std::vector<TetVertices>& tets
         if (ddt::orientOf(mesh, t) < 0) std::swap(t[2], t[3]);
         mesh.vertices.push_back(t);
     }
-    mesh.neighbours.assign(mesh.vertices.size(), {kNoTet, kNoTet, kNoTet, kNoTet});
-    std::map<std::array<uint32_t, 3>, std::pair<uint32_t, uint32_t>> open;  // face → (tet, face index)
-    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
-        for (uint32_t f = 0; f < 4; ++f) {
-            std::array<uint32_t, 3> face;
-            for (uint32_t k = 0, j = 0; k < 4; ++k)
-                if (k != f) face[j++] = mesh.vertices[t][k];
-            std::sort(face.begin(), face.end());
-            const auto found = open.find(face);
-            if (found == open.end()) {
-                open[face] = {t, f};
-                continue;
-            }
-            mesh.neighbours[t][f] = found->second.first;
-            mesh.neighbours[found->second.first][found->second.second] = t;
-            open.erase(found);
-        }
+    linkNeighbours(mesh);
     return mesh;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tet_test_support.h"
 #include "tet_cost.h"
 #include "tet_flips.h"
 #include "tet_lawson.h"
@@ -15,40 +16,9 @@
 using ddt::FlipKind;
 using ddt::TetWeight;
 
+using namespace ddt::test;
+
 namespace {
-
-using Size = std::array<uint32_t, 3>;
-
-// The field of value(x, y, z) on the grid, normalized by its range.
-ddt::TetCostField fieldOf(const Size& size, const std::function<double(uint32_t, uint32_t, uint32_t)>& value,
-                          std::array<double, 3> spacing = {1.0, 1.0, 1.0}) {
-    std::vector<double> raw;
-    for (uint32_t z = 0; z < size[2]; ++z)
-        for (uint32_t y = 0; y < size[1]; ++y)
-            for (uint32_t x = 0; x < size[0]; ++x) raw.push_back(value(x, y, z));
-    ddt::TetCostField field;
-    field.size = size;
-    field.spacing = spacing;
-    field.values = ddt::normalizedValues(raw);
-    return field;
-}
-
-// 1 inside the sphere of radius `radius` around the grid's centre, 0 outside.
-ddt::TetCostField sphereField(uint32_t n, double radius) {
-    const double c = (n - 1) / 2.0;
-    return fieldOf({n, n, n}, [&](uint32_t x, uint32_t y, uint32_t z) {
-        return (x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c) <= radius * radius ? 1.0 : 0.0;
-    });
-}
-
-// A sharp plane across the grid's diagonal: 1 where x + 2y + 3z >= 15, else 0.
-ddt::TetCostField slantedPlaneField(std::array<double, 3> spacing = {1.0, 1.0, 1.0}) {
-    return fieldOf({6, 6, 6}, [](uint32_t x, uint32_t y, uint32_t z) { return x + 2 * y + 3 * z >= 15 ? 1.0 : 0.0; }, spacing);
-}
-
-bool sameMesh(const ddt::TetMesh& a, const ddt::TetMesh& b) {
-    return a.size == b.size && a.vertices == b.vertices && a.neighbours == b.neighbours && a.free_slots == b.free_slots;
-}
 
 // Runs the serial Lawson from the Kuhn mesh and checks its invariants after every iteration
 // and at the end: a valid mesh, the cached cost equal to a recomputation from scratch and
@@ -100,7 +70,7 @@ ddt::TetLawsonStats optimizeChecked(ddt::TetMesh& mesh, const ddt::TetCostField&
 
 TEST_CASE("tet lawson: a sharp slanted plane lowers both costs", "[tet]") {
     for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
-        const ddt::TetCostField field = slantedPlaneField({0.8, 0.8, 2.0});
+        const ddt::TetCostField field = slantedPlaneField(6, {0.8, 0.8, 2.0});
         ddt::TetMesh mesh = ddt::kuhnTetMesh(field.size);
         const ddt::TetLawsonStats stats = optimizeChecked(mesh, field, weight);
         CHECK(stats.flipCount() > 0);
@@ -220,7 +190,7 @@ TEST_CASE("tet lawson: neither the data's range nor the physical unit changes th
 }
 
 TEST_CASE("tet lawson: the iteration cap stops early and says so", "[tet]") {
-    const ddt::TetCostField field = slantedPlaneField();
+    const ddt::TetCostField field = slantedPlaneField(6);
     ddt::TetMesh mesh = ddt::kuhnTetMesh(field.size);
     ddt::TetLawsonOptions options;
     options.weight = TetWeight::variance;

@@ -7,38 +7,16 @@
 #include <random>
 #include <vector>
 
+#include "tet_test_support.h"
 #include "tet_mesh.h"
 #include "tet_resample.h"
 #include "volume.h"
 
+using namespace ddt::test;
+
 namespace {
 
-using Size = std::array<uint32_t, 3>;
-
 size_t voxelCount(const Size& s) { return size_t(s[0]) * s[1] * s[2]; }
-
-// Sets every tet's neighbours by matching faces (sorted vertex triples), for meshes built here.
-void linkNeighbours(ddt::TetMesh& mesh) {
-    std::map<std::array<uint32_t, 3>, std::pair<uint32_t, uint32_t>> open;  // face → (tet, face index)
-    mesh.neighbours.assign(mesh.slotCount(), {ddt::kNoTet, ddt::kNoTet, ddt::kNoTet, ddt::kNoTet});
-    for (uint32_t t = 0; t < mesh.slotCount(); ++t) {
-        if (!mesh.inUse(t)) continue;
-        for (uint32_t f = 0; f < 4; ++f) {
-            std::array<uint32_t, 3> face;
-            for (uint32_t k = 0, j = 0; k < 4; ++k)
-                if (k != f) face[j++] = mesh.vertices[t][k];
-            std::sort(face.begin(), face.end());
-            const auto found = open.find(face);
-            if (found == open.end()) {
-                open[face] = {t, f};
-                continue;
-            }
-            mesh.neighbours[t][f] = found->second.first;
-            mesh.neighbours[found->second.first][found->second.second] = t;
-            open.erase(found);
-        }
-    }
-}
 
 // A tetrahedralization other than Kuhn's, with no shared body diagonal: each cell cut into five
 // tets, the regular one on the cell's four corners of even x + y + z and one at each odd corner.

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tet_test_support.h"
 #include "context.h"
 #include "tet_cost.h"
 #include "tet_mesh.h"
@@ -21,34 +22,9 @@
 
 using ddt::TetWeight;
 
+using namespace ddt::test;
+
 namespace {
-
-using Size = std::array<uint32_t, 3>;
-
-ddt::TetCostField fieldOf(const Size& size, const std::function<double(uint32_t, uint32_t, uint32_t)>& value,
-                          std::array<double, 3> spacing = {1.0, 1.0, 1.0}) {
-    std::vector<double> raw;
-    for (uint32_t z = 0; z < size[2]; ++z)
-        for (uint32_t y = 0; y < size[1]; ++y)
-            for (uint32_t x = 0; x < size[0]; ++x) raw.push_back(value(x, y, z));
-    ddt::TetCostField field;
-    field.size = size;
-    field.spacing = spacing;
-    field.values = ddt::normalizedValues(raw);
-    return field;
-}
-
-ddt::TetCostField sphereField(uint32_t n, double radius) {
-    const double c = (n - 1) / 2.0;
-    return fieldOf({n, n, n}, [&](uint32_t x, uint32_t y, uint32_t z) {
-        return (x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c) <= radius * radius ? 1.0 : 0.0;
-    });
-}
-
-ddt::TetCostField slantedPlaneField(uint32_t n, std::array<double, 3> spacing) {
-    return fieldOf({n, n, n}, [n](uint32_t x, uint32_t y, uint32_t z) { return x + 2 * y + 3 * z >= 2.5 * n ? 1.0 : 0.0; },
-                   spacing);
-}
 
 // Independent values drawn from `seed`, `levels` levels: many 2–3 and 3–2 flips.
 ddt::TetCostField randomField(const Size& size, uint32_t seed, uint32_t levels) {
