@@ -1,11 +1,12 @@
 // The simplification kernels (glsl/simplify/) with their own pipeline layout (the bindings of
-// glsl/simplify/simplify_layout.h and SimplifyPush) and one descriptor set; destroyed with it.
+// glsl/simplify/simplify_layout.h and SimplifyPush) and one descriptor set (compute/kernel_layout.h).
 #pragma once
 
 #include <vulkan/vulkan.h>
 
 #include "buffer.h"
 #include "context.h"
+#include "kernel_layout.h"
 #include "simplify/simplify_layout.h"
 
 namespace ddt {
@@ -13,7 +14,6 @@ namespace ddt {
 class SimplifyKernels {
 public:
     explicit SimplifyKernels(VulkanContext& context);
-    ~SimplifyKernels();
     SimplifyKernels(const SimplifyKernels&) = delete;
     SimplifyKernels& operator=(const SimplifyKernels&) = delete;
 
@@ -30,13 +30,7 @@ public:
     VkPipeline collapse = VK_NULL_HANDLE;    // collapse_edges.comp
 
 private:
-    void destroy();
-
-    VulkanContext& context_;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    KernelLayout layout_;  // makes the kernels above, and destroys them with it
 };
 
 }  // namespace ddt

@@ -1,11 +1,12 @@
 // The tetrahedral flip kernels (glsl/volume/) with their own pipeline layout (the bindings of
-// glsl/volume/tet_layout.h and TetPush) and one descriptor set; destroyed with it.
+// glsl/volume/tet_layout.h and TetPush) and one descriptor set (compute/kernel_layout.h).
 #pragma once
 
 #include <vulkan/vulkan.h>
 
 #include "buffer.h"
 #include "context.h"
+#include "kernel_layout.h"
 #include "volume/tet_layout.h"
 
 namespace ddt {
@@ -13,7 +14,6 @@ namespace ddt {
 class TetKernels {
 public:
     explicit TetKernels(VulkanContext& context);
-    ~TetKernels();
     TetKernels(const TetKernels&) = delete;
     TetKernels& operator=(const TetKernels&) = delete;
 
@@ -29,14 +29,8 @@ public:
 
 private:
     VkPipeline kernelOf(uint32_t step) const;
-    void bindKernel(VkCommandBuffer commands, VkPipeline kernel, const TetPush& push) const;
-    void destroy();
 
-    VulkanContext& context_;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    KernelLayout layout_;  // makes the kernels below, and destroys them with it
     VkPipeline plan_ = VK_NULL_HANDLE;        // tet_plan.comp
     VkPipeline mark_ = VK_NULL_HANDLE;        // tet_mark.comp
     VkPipeline candidates_ = VK_NULL_HANDLE;  // tet_candidates.comp

@@ -1,0 +1,46 @@
+// The Vulkan objects a family of compute kernels shares: one descriptor set of storage buffers
+// (texel buffers, or whole buffers for the few that atomics or indirect arguments need), one
+// push-constant range, one pipeline layout, and the kernels' pipelines, all destroyed with it.
+// The simplification's kernels and the tetrahedral flips' are such families.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "buffer.h"
+#include "context.h"
+
+namespace ddt {
+
+class KernelLayout {
+public:
+    // bindings[i]: binding i's type (storage texel buffer or storage buffer).
+    KernelLayout(VulkanContext& context, std::vector<VkDescriptorType> bindings, uint32_t push_bytes);
+    ~KernelLayout();
+    KernelLayout(const KernelLayout&) = delete;
+    KernelLayout& operator=(const KernelLayout&) = delete;
+
+    // A kernel from embedded SPIR-V with this layout; destroyed with the layout.
+    VkPipeline createKernel(const uint32_t* spirv, size_t bytes);
+    // Points binding i at buffers[i] (its texel view or the whole buffer, by the binding's type),
+    // for every binding.
+    void bind(const Buffer* buffers);
+    // Binds `kernel`, the set and `push` (push_bytes of it) for the dispatches that follow.
+    void bindKernel(VkCommandBuffer commands, VkPipeline kernel, const void* push) const;
+
+private:
+    void destroy();
+
+    VulkanContext& context_;
+    std::vector<VkDescriptorType> bindings_;
+    uint32_t push_bytes_;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::vector<VkPipeline> kernels_;
+};
+
+}  // namespace ddt
