@@ -51,7 +51,6 @@ uvec4 verticesOf(uint t) { return imageLoad(tet_vertices, int(t)); }
 uvec4 neighboursOf(uint t) { return imageLoad(tet_neighbours, int(t)); }
 bool inUse(uint t) { return imageLoad(tet_vertices, int(t)).x != kNoTet; }
 
-double loadDouble(uvec2 words) { return packDouble2x32(words); }
 uvec4 doubleTexel(double value) { return uvec4(unpackDouble2x32(value), 0u, 0u); }
 
 double valueOf(uint v) { return packDouble2x32(imageLoad(vertex_values, int(v)).xy); }

@@ -3,8 +3,9 @@
 // Step (d) of core/volume/tet_parallel.h, run at the start of a round: each active tet (a new
 // tet of the last round or, for face_scf, a face-neighbour of one) lists in the evaluation
 // list the owner of each of its flippable, not all-flat sites (core's forEachSiteOwner); the
-// state bit keeps each owner listed once. The last round's unaccepted candidates are listed
-// already (tet_select.comp's clear step).
+// state bit keeps each owner listed once. The last round's unaccepted candidates whose read
+// sets a flip touched are listed already (tet_select.comp's judge step). In the first round the
+// active tets are those that are not flat (tet_refresh.comp's kTetStepInit).
 #include "tet_plan.glsl"
 
 void main() {
