@@ -17,7 +17,9 @@
 #include "grid_filters.h"
 #include "image.h"
 #include "image_file.h"
+#include "context.h"
 #include "tet_mesh.h"
+#include "volume/tet_device.h"
 #include "tet_resample.h"
 #include "test_volumes.h"
 #include "volume_magnify.h"
@@ -66,13 +68,23 @@ Method magnifyByKuhnMesh(const ddt::Volume& small, const std::array<uint32_t, 3>
     return method;
 }
 
-// ddtup's way (core/volume/volume_magnify.h), serial flips.
+// ddtup's way (core/volume/volume_magnify.h): serial flips, or with `context` the parallel
+// rule on that Vulkan device (compute/volume/tet_device.h).
 Method magnifyByDdt(const std::string& name, const ddt::Volume& small, const std::array<uint32_t, 3>& size,
-                    ddt::TetWeight weight) {
+                    ddt::TetWeight weight, ddt::VulkanContext* context = nullptr) {
     Method method;
     method.name = name;
     ddt::VolumeMagnifyOptions options;
     options.weight = weight;
+    if (context)
+        options.optimize = [context](ddt::TetMesh& mesh, const ddt::TetCostField& field, ddt::TetWeight w) {
+            ddt::TetParallelOptions parallel;
+            parallel.weight = w;
+            const ddt::TetParallelStats rule = ddt::optimizeTetMeshVulkan(*context, mesh, field, parallel);
+            ddt::TetLawsonStats stats;
+            stats.flips = rule.flips;
+            return stats;
+        };
     ddt::VolumeMagnifyStats stats;
     method.result.size = size;
     method.result.values = ddt::magnifyVolumeValues(small, size, options, stats);
@@ -114,6 +126,8 @@ int main(int argc, char** argv) {
     app.add_option("--noise", noises, "Gaussian noise sigmas added to the originals (0: none)")->delimiter(',')->capture_default_str();
     app.add_option("--out", out, "Folder for the table, the CSV and the crops")->capture_default_str();
     app.add_flag("--quick", quick, "One 16³ sphere, no noise: CI's check that the bench runs");
+    bool vulkan = false;
+    app.add_flag("--vulkan", vulkan, "Also DDT by the parallel rule on the first Vulkan device (rows \"…, Vulkan\")");
     CLI11_PARSE(app, argc, argv);
     if (quick) {
         sizes = {16};
@@ -132,6 +146,14 @@ int main(int argc, char** argv) {
         }
     }
     std::filesystem::create_directories(out);
+    std::unique_ptr<ddt::VulkanContext> context;
+    if (vulkan) {
+        context = ddt::createContext({});
+        std::printf("Vulkan device: %s\n", context->info.name.c_str());
+        // The first use of each kernel compiles it (lavapipe: up to a second); not a row's time.
+        magnifyByDdt("warm-up", bench::makeTestVolume(bench::TestVolumeKind::sphere, {8, 8, 8}), {8, 8, 8},
+                     ddt::TetWeight::face_scf, context.get());
+    }
 
     std::ostringstream table, csv;
     table << "| volume | noise σ | size | ÷ | method | PSNR dB | surface distance (voxels) | flips | optimize s | resample s |\n"
@@ -153,6 +175,12 @@ int main(int argc, char** argv) {
                     methods.push_back(magnifyByKuhnMesh(small, size));
                     methods.push_back(magnifyByDdt("DDT, variance", small, size, ddt::TetWeight::variance));
                     methods.push_back(magnifyByDdt("DDT, face-SCF", small, size, ddt::TetWeight::face_scf));
+                    if (context) {
+                        methods.push_back(
+                            magnifyByDdt("DDT, variance, Vulkan", small, size, ddt::TetWeight::variance, context.get()));
+                        methods.push_back(
+                            magnifyByDdt("DDT, face-SCF, Vulkan", small, size, ddt::TetWeight::face_scf, context.get()));
+                    }
                     for (const Method& m : methods) {
                         const double psnr = bench::volumePsnr(clean, m.result, range);
                         const double distance = bench::isosurfaceDistance(clean, m.result, surfaceLevel(kind) * range);
@@ -172,7 +200,8 @@ int main(int argc, char** argv) {
                     if (factor == 2 && n == sizes.front()) {
                         std::vector<const ddt::Volume*> shown = {&clean};
                         for (const Method& m : methods)
-                            if (m.name != "Kuhn mesh, no flips") shown.push_back(&m.result);
+                            if (m.name != "Kuhn mesh, no flips" && m.name.find("Vulkan") == std::string::npos)
+                            shown.push_back(&m.result);
                         char name[128];
                         std::snprintf(name, sizeof name, "/crops-%s-noise%.2f-%u.png", bench::testVolumeName(kind).c_str(),
                                       noise, n);
