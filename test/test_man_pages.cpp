@@ -47,7 +47,8 @@ void requireSections(const std::string& page, const std::vector<std::string>& he
 
 TEST_CASE("man pages: ddtup.1 has the options from --help and the sections from docs/ddtup.h2m") {
     requireSections(kPages + "/ddtup.1",
-                    {"NAME", "SYNOPSIS", "OPTIONS", "EXIT STATUS", "PROGRESS JSON", "TILING AND MEMORY", "MESHES", "EXAMPLES"});
+                    {"NAME", "SYNOPSIS", "OPTIONS", "EXIT STATUS", "PROGRESS JSON", "TILING AND MEMORY", "MESHES", "VOLUMES",
+                     "EXAMPLES"});
     CHECK_THAT(readFile(kPages + "/ddtup.1"), Catch::Contains("scale"));
 }
 
