@@ -26,32 +26,6 @@ using namespace ddt::test;
 
 namespace {
 
-// Independent values in [0, 1] drawn from `seed`, with `levels` levels (many exact ties).
-ddt::TetCostField randomField(const Size& size, uint32_t seed, uint32_t levels) {
-    std::mt19937 rng(seed);
-    return fieldOf(size, [&](uint32_t, uint32_t, uint32_t) { return double(rng() % levels); });
-}
-
-// The same tets without free slots: in-use records renumbered in slot order.
-ddt::TetMesh compacted(const ddt::TetMesh& mesh) {
-    std::vector<uint32_t> renumbered(mesh.slotCount(), ddt::kNoTet);
-    ddt::TetMesh out;
-    out.size = mesh.size;
-    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
-        if (mesh.inUse(t)) {
-            renumbered[t] = out.slotCount();
-            out.vertices.push_back(mesh.vertices[t]);
-        }
-    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
-        if (mesh.inUse(t)) {
-            ddt::TetNeighbours n = mesh.neighbours[t];
-            for (uint32_t& across : n)
-                if (across != ddt::kNoTet) across = renumbered[across];
-            out.neighbours.push_back(n);
-        }
-    return out;
-}
-
 // Runs the parallel rule from the Kuhn mesh and checks its invariants after every round and at
 // the end: a valid mesh, the cached cost equal to a recomputation and never rising, and no tet
 // owning a flip worth applying (a brute-force look at every tet's owned sites).

@@ -26,36 +26,10 @@ using namespace ddt::test;
 
 namespace {
 
-// Independent values drawn from `seed`, `levels` levels: many 2–3 and 3–2 flips.
-ddt::TetCostField randomField(const Size& size, uint32_t seed, uint32_t levels) {
-    std::mt19937 rng(seed);
-    return fieldOf(size, [&](uint32_t, uint32_t, uint32_t) { return double(rng() % levels); }, {1.0, 0.7, 1.3});
-}
-
 // Bitwise equality of doubles (0.0 and −0.0 differ, as a bit-for-bit claim should).
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 std::unique_ptr<ddt::VulkanContext> validatedContext() { return ddt::createContext({-1, true}); }
-
-// The same tets without free slots: in-use records renumbered in slot order.
-ddt::TetMesh compacted(const ddt::TetMesh& mesh) {
-    std::vector<uint32_t> renumbered(mesh.slotCount(), ddt::kNoTet);
-    ddt::TetMesh out;
-    out.size = mesh.size;
-    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
-        if (mesh.inUse(t)) {
-            renumbered[t] = out.slotCount();
-            out.vertices.push_back(mesh.vertices[t]);
-        }
-    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
-        if (mesh.inUse(t)) {
-            ddt::TetNeighbours n = mesh.neighbours[t];
-            for (uint32_t& across : n)
-                if (across != ddt::kNoTet) across = renumbered[across];
-            out.neighbours.push_back(n);
-        }
-    return out;
-}
 
 // Runs core's rule and the device's on `start` (the Kuhn mesh of `field` by default) and
 // compares everything; the device's report.

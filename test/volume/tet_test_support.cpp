@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <random>
 
 namespace ddt::test {
 
@@ -28,6 +29,30 @@ TetCostField sphereField(uint32_t n, double radius) {
 TetCostField slantedPlaneField(uint32_t n, std::array<double, 3> spacing) {
     return fieldOf({n, n, n}, [n](uint32_t x, uint32_t y, uint32_t z) { return x + 2 * y + 3 * z >= 2.5 * n ? 1.0 : 0.0; },
                    spacing);
+}
+
+TetCostField randomField(const Size& size, uint32_t seed, uint32_t levels) {
+    std::mt19937 rng(seed);
+    return fieldOf(size, [&](uint32_t, uint32_t, uint32_t) { return double(rng() % levels); });
+}
+
+TetMesh compacted(const TetMesh& mesh) {
+    std::vector<uint32_t> renumbered(mesh.slotCount(), kNoTet);
+    TetMesh out;
+    out.size = mesh.size;
+    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
+        if (mesh.inUse(t)) {
+            renumbered[t] = out.slotCount();
+            out.vertices.push_back(mesh.vertices[t]);
+        }
+    for (uint32_t t = 0; t < mesh.slotCount(); ++t)
+        if (mesh.inUse(t)) {
+            TetNeighbours n = mesh.neighbours[t];
+            for (uint32_t& across : n)
+                if (across != kNoTet) across = renumbered[across];
+            out.neighbours.push_back(n);
+        }
+    return out;
 }
 
 bool sameMesh(const TetMesh& a, const TetMesh& b) {

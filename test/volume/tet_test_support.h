@@ -22,6 +22,12 @@ TetCostField sphereField(uint32_t n, double radius);
 // A sharp plane across the n³ grid's diagonal: 1 where x + 2y + 3z >= 2.5 n, else 0.
 TetCostField slantedPlaneField(uint32_t n, std::array<double, 3> spacing = {1.0, 1.0, 1.0});
 
+// Independent values drawn from `seed`, with `levels` levels (many exact ties), normalized.
+TetCostField randomField(const Size& size, uint32_t seed, uint32_t levels);
+
+// The same tets without free slots: in-use records renumbered in slot order.
+TetMesh compacted(const TetMesh& mesh);
+
 // Every record equal: slots, vertices, neighbours, free slots.
 bool sameMesh(const TetMesh& a, const TetMesh& b);
 
