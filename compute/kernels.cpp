@@ -65,8 +65,9 @@ VkPipeline createKernel(VulkanContext& context, VkPipelineLayout layout, const u
                         const KernelVariant& variant) {
     const VkSpecializationMapEntry entries[] = {{0, offsetof(KernelVariant, key_by_gain), sizeof(uint32_t)},
                                                 {1, offsetof(KernelVariant, single_round), sizeof(uint32_t)},
-                                                {2, offsetof(KernelVariant, cost), sizeof(uint32_t)}};
-    const VkSpecializationInfo specialization{3, entries, sizeof(variant), &variant};
+                                                {2, offsetof(KernelVariant, cost), sizeof(uint32_t)},
+                                                {3, offsetof(KernelVariant, positioned), sizeof(VkBool32)}};
+    const VkSpecializationInfo specialization{4, entries, sizeof(variant), &variant};
     return createComputePipeline(context, layout, spirv, sizeof(spirv), &specialization);
 }
 
@@ -79,6 +80,7 @@ VkDescriptorType bindingType(uint32_t binding) {
 
 Kernels createKernels(VulkanContext& context, const KernelVariant& variant) {
     Kernels k;
+    k.variant = variant;
     VkDescriptorSetLayoutBinding bindings[kBindingCount];
     for (uint32_t i = 0; i < kBindingCount; ++i)
         bindings[i] = {i, bindingType(i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
@@ -122,9 +124,18 @@ Kernels createKernels(VulkanContext& context, const KernelVariant& variant) {
     return k;
 }
 
+void createPositionedKernels(VulkanContext& context, Kernels& k) {
+    if (k.positioned_candidates) return;
+    KernelVariant variant = k.variant;
+    variant.positioned = 1;
+    k.positioned_candidates = createKernel(context, k.layout, kSpirvCandidates, variant);
+    k.positioned_edge_cost = createKernel(context, k.layout, kSpirvEdgeCost, variant);
+}
+
 void destroyKernels(VulkanContext& context, Kernels& k) {
     const ReconstructionKernels& r = k.reconstruction;
     for (VkPipeline pipeline : {k.plan, k.candidates, k.select, k.flip, k.edge_cost, k.row_spans, k.render,
+                                k.positioned_candidates, k.positioned_edge_cost,
                                 r.star_starts, r.value_bounds, r.initial_bubbles, r.locate_samples, r.evaluate_surface,
                                 r.degrade_y, r.degrade_x, r.transpose_x, r.transpose_y, r.project_triangles,
                                 r.update_values, r.update_bubbles})

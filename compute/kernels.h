@@ -13,11 +13,12 @@
 namespace ddt {
 
 // Specialization constants of the optimisation's kernels: the accept/reject rule (see
-// glsl/select.comp) and the cost (glsl/common.glsl's kCost).
+// glsl/select.comp), the cost (glsl/common.glsl's kCost) and where the vertices are (kPositioned).
 struct KernelVariant {
     uint32_t key_by_gain = 0;   // MaxGain: higher gain wins; else lower id
     uint32_t single_round = 0;  // local-max: one round per iteration
     uint32_t cost = 0;          // kCostSederberg, kCostVariance or kCostFaceScf (glsl/content_cost.h)
+    uint32_t positioned = 0;    // 1: the mesh has explicit positions (a VkBool32)
 };
 
 // The consistent reconstruction's kernels (glsl/reconstruct/, driven by compute/reconstruct/).
@@ -47,9 +48,17 @@ struct Kernels {
     VkPipeline row_spans = VK_NULL_HANDLE;
     VkPipeline render = VK_NULL_HANDLE;
     ReconstructionKernels reconstruction;
+    // The kernels that evaluate costs, candidates and edge_cost, for meshes with explicit
+    // positions (kPositioned); made by createPositionedKernels when a job first needs them.
+    VkPipeline positioned_candidates = VK_NULL_HANDLE;
+    VkPipeline positioned_edge_cost = VK_NULL_HANDLE;
+    KernelVariant variant;  // the kernels' specialization
 };
 
+// The kernels of `variant` (positioned 0: the grid's).
 Kernels createKernels(VulkanContext& context, const KernelVariant& variant);
+// Makes positioned_candidates and positioned_edge_cost (variant with positioned 1), unless they exist.
+void createPositionedKernels(VulkanContext& context, Kernels& kernels);
 
 // A write of one descriptor of `type` at `binding` of `set`; the caller points it at its buffer.
 VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, uint32_t binding, VkDescriptorType type);

@@ -1,6 +1,7 @@
 #include "vulkan_backend.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -58,9 +59,11 @@ struct VulkanBackend::State {
 
     const Image* image = nullptr;
     uint32_t width = 0, height = 0, edge_count = 0;
+    uint32_t vertex_count = 0;                    // the mesh's vertexCount()
+    std::vector<Position> explicit_positions;     // the mesh's positions (empty: the grid's places)
 
     Buffer edge_vertices, edge_neighbours, luma, alpha, gain, status[2], mark, active_list[2], candidate_list,
-        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans;
+        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans, positions;
     SurfaceBuffers surface;  // the consistent reconstruction's arrays (placeholders until it runs)
     bool quadratic = false;  // render the reconstructed surface, not the input values
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
@@ -72,7 +75,7 @@ struct VulkanBackend::State {
         return {&edge_vertices, &edge_neighbours, &luma,          &alpha,        &gain,          &status[0],
                 &status[1],     &mark,            &active_list[0], &active_list[1], &candidate_list, &round_list[0],
                 &round_list[1], &control,         &control_readback, &args,      &partial_sums,  &pixels,
-                &band,          &row_spans};
+                &band,          &row_spans,       &positions};
     }
 
     void releaseBuffers() {
@@ -86,6 +89,13 @@ struct VulkanBackend::State {
     }
 
     KernelBindings bindings() const { return {kernels.layout, descriptor_set}; }
+    // The kernels that evaluate costs, specialised for the mesh's places (glsl/common.glsl's kPositioned).
+    VkPipeline candidatesKernel() const {
+        return explicit_positions.empty() ? kernels.candidates : kernels.positioned_candidates;
+    }
+    VkPipeline edgeCostKernel() const {
+        return explicit_positions.empty() ? kernels.edge_cost : kernels.positioned_edge_cost;
+    }
 
     // The job's scalars; kernel-specific fields are filled by the caller.
     PushConstants push() const {
@@ -103,13 +113,24 @@ struct VulkanBackend::State {
         return p;
     }
 
+    // What a job keeps on the device: a mesh's vertices (with explicit positions or not) and edges.
+    struct JobSize {
+        uint64_t vertices = 0, edges = 0;
+        bool positioned = false;
+    };
+    static JobSize gridJob(uint32_t w, uint32_t h) { return {uint64_t(w) * h, gridEdgeCount(w, h), false}; }
+    JobSize preparedJob() const { return {vertex_count, edge_count, !explicit_positions.empty()}; }
     struct MemoryNeed {
         uint64_t bytes = 0;
         std::string problem;  // "" or the per-buffer limit the job breaks
     };
     // With `reconstruction`, the consistent reconstruction's arrays too.
-    MemoryNeed memoryNeed(uint32_t w, uint32_t h, bool reconstruction) const;
-    void checkMemory(uint32_t w, uint32_t h, bool reconstruction);
+    MemoryNeed memoryNeed(const JobSize& job, bool reconstruction) const;
+    // Throws DeviceOutOfMemory for a job the device cannot hold; `what` names it ("W×H image").
+    void checkMemory(const JobSize& job, bool reconstruction, const std::string& what);
+    void checkMemory(uint32_t w, uint32_t h, bool reconstruction) {
+        checkMemory(gridJob(w, h), reconstruction, std::to_string(w) + "×" + std::to_string(h) + " image");
+    }
     void createBuffers(const Image& image);
     void writeDescriptors();
     void resetOptimisation();
@@ -172,22 +193,23 @@ uint32_t VulkanBackend::validationMessages() const { return state_->context->val
 // per pixel (compute/reconstruct/surface_buffers.h: 3 × 3 supersamples with their hits, sums
 // per half-edge); its supersample arrays reach the texel-buffer elements at 3862² pixels.
 // prepare checks the plain need and reconstruct the whole; automatic tiles are sized for the
-// surface the upscale asks for.
-VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, uint32_t h, bool reconstruction) const {
+// surface the upscale asks for. A mesh with explicit positions adds 8 bytes per vertex.
+VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(const JobSize& job, bool reconstruction) const {
     VkPhysicalDeviceMaintenance3Properties maintenance{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &maintenance;
     vkGetPhysicalDeviceProperties2(context->physical, &properties);
 
-    const uint64_t edges = gridEdgeCount(w, h), vertices = uint64_t(w) * h;
+    const uint64_t edges = job.edges, vertices = job.vertices;
     const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 4 + (options.active_set ? 2 * 4 : 0) +
                               (rule.single_round ? 0 : 2 * 4);
     // The reconstruction's largest arrays are its 3 × 3 supersamples per pixel.
     const uint64_t elements = reconstruction ? std::max(edges, surfaceBufferLargestElements(vertices, edges)) : edges;
     const uint64_t largest = elements * 16;
     MemoryNeed need;
-    // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels.
-    need.bytes = edges * per_edge + vertices * (4 + 4 + 16) + kBandBytes +
+    // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels; its
+    // position as an rg32i texel where explicit.
+    need.bytes = edges * per_edge + vertices * (4 + 4 + 16 + (job.positioned ? 8 : 0)) + kBandBytes +
                  (reconstruction ? surfaceBufferBytes(vertices, edges) : 0);
     if (edges >= kCopyEntry) need.problem = "more edges than the kernels can index";
     else if (elements > context->properties.limits.maxTexelBufferElements)
@@ -202,20 +224,20 @@ VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(uint32_t w, ui
 
 // Refuses, before allocating anything, a job the device cannot hold: as an out-of-memory
 // error, so that a tiled upscale retries with smaller tiles.
-void VulkanBackend::State::checkMemory(uint32_t w, uint32_t h, bool reconstruction) {
-    const MemoryNeed need = memoryNeed(w, h, reconstruction);
+void VulkanBackend::State::checkMemory(const JobSize& job, bool reconstruction, const std::string& what) {
+    const MemoryNeed need = memoryNeed(job, reconstruction);
     std::string problem = need.problem;
     const uint64_t available = ddt::memoryAvailable(*context);
     if (problem.empty() && need.bytes > available)
         problem = "it needs " + mebibytes(need.bytes) + " of device memory, more than the " + mebibytes(available) +
                   " available";
     if (!problem.empty())
-        throw DeviceOutOfMemory(std::to_string(w) + "×" + std::to_string(h) + " image too large for " +
+        throw DeviceOutOfMemory(what + " too large for " +
                                 context->info.name + ": " + problem + "; try --tile or --backend cpu");
 }
 
 uint64_t VulkanBackend::memoryNeeded(uint32_t width, uint32_t height, uint32_t, bool reconstruction) const {
-    const State::MemoryNeed need = state_->memoryNeed(width, height, reconstruction);
+    const State::MemoryNeed need = state_->memoryNeed(State::gridJob(width, height), reconstruction);
     return need.problem.empty() ? need.bytes : UINT64_MAX;
 }
 
@@ -225,7 +247,7 @@ const Image& VulkanBackend::preparedImage() const { return *state_->image; }
 
 void VulkanBackend::State::createBuffers(const Image& img) {
     VulkanContext& c = *context;
-    const uint64_t edges = edge_count, vertices = uint64_t(width) * height;
+    const uint64_t edges = edge_count, vertices = vertex_count;
     const Placement device = Placement::Device;
     edge_vertices = createBuffer(c, edges * 16, device, VK_FORMAT_R32G32B32A32_UINT);
     edge_neighbours = createBuffer(c, edges * 16, device, VK_FORMAT_R32G32B32A32_UINT);
@@ -243,6 +265,8 @@ void VulkanBackend::State::createBuffers(const Image& img) {
     partial_sums = createBuffer(c, uint64_t(groupsFor(edge_count)) * 8, device, VK_FORMAT_R32G32_UINT);
     pixels = createBuffer(c, vertices * 16, device, VK_FORMAT_R32G32B32A32_SFLOAT);
     row_spans = createBuffer(c, uint64_t(height) * 8 + 4, device, VK_FORMAT_R32_UINT);
+    // One texel, never read, for the grid's places.
+    positions = createBuffer(c, explicit_positions.empty() ? 8 : vertices * 8, device, VK_FORMAT_R32G32_SINT);
     // A placeholder until the first render sizes it.
     band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32G32B32A32_SFLOAT);
     surface = createSurfacePlaceholders(c);
@@ -284,6 +308,7 @@ void VulkanBackend::State::writeDescriptors() {
     by_binding[kBindingPartialSums] = &partial_sums;
     by_binding[kBindingControl] = &control;
     by_binding[kBindingArgs] = &args;
+    by_binding[kBindingPositions] = &positions;
     for (uint32_t i = 0; i < kBindingCount; ++i)
         if (const Buffer* b = surface.atBinding(i)) by_binding[i] = b;
 
@@ -302,26 +327,40 @@ void VulkanBackend::State::writeDescriptors() {
 }
 
 void VulkanBackend::prepare(const Image& image) {
+    // Checked before the mesh is built: a grid too large for the device is refused at once.
+    state_->checkMemory(image.width, image.height, false);
+    prepareFrom(image, buildGridMesh(image.width, image.height));
+}
+
+// The image holds the vertices' values: pixel v is vertex v's (the grid's image, or for a mesh
+// with explicit positions any image of at least vertexCount() pixels).
+void VulkanBackend::prepareFrom(const Image& image, Mesh mesh) {
     State& s = *state_;
+    assert(mesh.vertexCount() <= uint64_t(image.width) * image.height);
+    assert(mesh.positions.empty() || (mesh.width <= kMaxPositionedSide && mesh.height <= kMaxPositionedSide));
     s.releaseBuffers();
     s.image = &image;
-    s.width = image.width;
-    s.height = image.height;
-    const uint64_t edges = gridEdgeCount(image.width, image.height);
-    s.edge_count = uint32_t(std::min<uint64_t>(edges, UINT32_MAX));
-    s.checkMemory(image.width, image.height, false);
-
-    const Mesh mesh = buildGridMesh(image.width, image.height);
+    s.width = mesh.width;
+    s.height = mesh.height;
+    s.edge_count = mesh.edgeCount();
+    s.vertex_count = mesh.vertexCount();
+    s.explicit_positions = std::move(mesh.positions);
+    const std::string what = s.explicit_positions.empty()
+                                 ? std::to_string(mesh.width) + "×" + std::to_string(mesh.height) + " image"
+                                 : "mesh of " + std::to_string(s.vertex_count) + " points";
+    s.checkMemory(s.preparedJob(), false, what);
+    VulkanContext& c = *s.context;
+    if (!s.explicit_positions.empty()) createPositionedKernels(c, s.kernels);
     const CostField field = costFieldOf(image);
     s.createBuffers(image);
-    VulkanContext& c = *s.context;
     uploadToBuffer(c, s.edge_vertices, mesh.vertices.data(), s.edge_vertices.size);
     uploadToBuffer(c, s.edge_neighbours, mesh.neighbours.data(), s.edge_neighbours.size);
     uploadToBuffer(c, s.luma, field.luma.data(), s.luma.size);
     if (image.hasAlpha()) uploadToBuffer(c, s.alpha, field.alpha.data(), s.alpha.size);
+    if (!s.explicit_positions.empty()) uploadToBuffer(c, s.positions, s.explicit_positions.data(), s.positions.size);
     // One rgba32f texel per vertex: a vertex's channels load at once.
-    std::vector<float> texels(size_t(image.width) * image.height * 4, 0.0f);
-    for (size_t v = 0; v < size_t(image.width) * image.height; ++v)
+    std::vector<float> texels(size_t(s.vertex_count) * 4, 0.0f);
+    for (size_t v = 0; v < s.vertex_count; ++v)
         std::copy_n(image.pixels.data() + v * image.channels, image.channels, texels.data() + v * 4);
     uploadToBuffer(c, s.pixels, texels.data(), s.pixels.size);
 }
@@ -339,7 +378,7 @@ void VulkanBackend::State::resetOptimisation() {
 
 double VulkanBackend::State::meshCost() {
     CommandBatch commands(*context);
-    dispatch(commands.buffer(), kernels.edge_cost, bindings(), push(), groupsFor(edge_count));
+    dispatch(commands.buffer(), edgeCostKernel(), bindings(), push(), groupsFor(edge_count));
     commands.submitAndWait();
     std::vector<double> sums(groupsFor(edge_count));
     downloadFromBuffer(*context, partial_sums, sums.data(), sums.size() * 8);
@@ -353,7 +392,7 @@ std::vector<double> VulkanBackend::deviceEdgeCosts() {
     CommandBatch commands(*s.context);
     PushConstants p = s.push();
     p.step = 1;
-    dispatch(commands.buffer(), s.kernels.edge_cost, s.bindings(), p, groupsFor(s.edge_count));
+    dispatch(commands.buffer(), s.edgeCostKernel(), s.bindings(), p, groupsFor(s.edge_count));
     commands.submitAndWait();
     std::vector<double> costs(s.edge_count);
     downloadFromBuffer(*s.context, s.gain, costs.data(), costs.size() * 8);
@@ -401,7 +440,7 @@ void VulkanBackend::State::collectStepTimes() {
 }
 
 void VulkanBackend::State::recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip) {
-    if (candidates) recordStep(commands, kArgsCandidates, kernels.candidates);
+    if (candidates) recordStep(commands, kArgsCandidates, candidatesKernel());
     for (uint32_t r = 0; r < rounds; ++r) recordStep(commands, kArgsSelect, kernels.select);
     if (flip) recordStep(commands, kArgsFlip, kernels.flip);
 }
@@ -531,7 +570,7 @@ ParallelSimplifyStats VulkanBackend::simplify(Mesh& mesh, Image& values, uint32_
     State& s = *state_;
     // The simplifier's arrays come on top of the optimisation's, which the next prepare frees.
     const uint64_t needed = deviceSimplifierBytes(mesh.edgeCount(), mesh.vertexCount()),
-                   held = s.memoryNeed(s.width, s.height, false).bytes, available = ddt::memoryAvailable(*s.context);
+                   held = s.memoryNeed(s.preparedJob(), false).bytes, available = ddt::memoryAvailable(*s.context);
     std::string problem = deviceSimplifierProblem(*s.context, mesh.edgeCount(), mesh.vertexCount());
     if (problem.empty() && needed + held > available)
         problem = "it needs " + mebibytes(needed) + " of device memory beside the optimisation's " + mebibytes(held) +
@@ -548,6 +587,7 @@ Mesh VulkanBackend::mesh() {
     Mesh mesh;
     mesh.width = s.width;
     mesh.height = s.height;
+    mesh.positions = s.explicit_positions;
     mesh.vertices.resize(s.edge_count);
     mesh.neighbours.resize(s.edge_count);
     downloadFromBuffer(*s.context, s.edge_vertices, mesh.vertices.data(), s.edge_vertices.size);

@@ -48,6 +48,7 @@ public:
     ~VulkanBackend() override;
 
     void prepare(const Image& image) override;
+    void prepareFrom(const Image& image, Mesh initial) override;
     OptimizeStats optimize() override;
     void reconstruct(const DegradationModel& model) override;
     void renderWindow(const RenderWindow& window, float* rows) override;

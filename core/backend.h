@@ -34,6 +34,11 @@ public:
     virtual ~Backend() = default;
     // Builds the initial triangulation of `image` (which must outlive the backend's use).
     virtual void prepare(const Image& image) = 0;
+    // Like prepare, from `initial` instead of the grid's triangulation: a triangulation of some
+    // of the image's pixels (core/delaunay/, the known ones of a mask), over which optimize
+    // runs the same flips. renderWindow and reconstruct need the grid's mesh; such a mesh is
+    // rendered on the host from mesh() (core/delaunay/sampled_render.h).
+    virtual void prepareFrom(const Image& image, Mesh initial) = 0;
     virtual OptimizeStats optimize() = 0;
     // Replaces plain DDT's surface (the input values, linear on each triangle) by the
     // consistent reconstruction under `model` (core/reconstruct.h); renderWindow then renders

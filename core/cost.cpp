@@ -21,18 +21,18 @@ StencilValues stencilValues(const std::vector<float>& channel, const FlipStencil
 }
 
 // Sederberg's or face-SCF's share of an interior edge, for one channel.
-double channelEdgeCost(const std::vector<float>& z, const EdgeVertices& v, uint32_t width, bool face_weighted) {
-    Gradient left = planeGradient(v.a, v.b, v.l, z[v.a], z[v.b], z[v.l], width);
-    Gradient right = planeGradient(v.b, v.a, v.r, z[v.b], z[v.a], z[v.r], width);
+double channelEdgeCost(const std::vector<float>& z, const EdgeVertices& v, Places places, bool face_weighted) {
+    Gradient left = planeGradient(v.a, v.b, v.l, z[v.a], z[v.b], z[v.l], places);
+    Gradient right = planeGradient(v.b, v.a, v.r, z[v.b], z[v.a], z[v.r], places);
     return pairCost(left, right, face_weighted);
 }
 
 // Variance's share of e, for one channel: the cost of the triangles it reports, left then right.
 double channelVarianceShare(const std::vector<float>& z, const EdgeVertices& v, bool left, bool right,
-                            uint32_t width) {
+                            Places places) {
     double share = 0.0;
-    if (left) share += varianceCost(v.a, v.b, v.l, z[v.a], z[v.b], z[v.l], width);
-    if (right) share += varianceCost(v.b, v.a, v.r, z[v.b], z[v.a], z[v.r], width);
+    if (left) share += varianceCost(v.a, v.b, v.l, z[v.a], z[v.b], z[v.l], places);
+    if (right) share += varianceCost(v.b, v.a, v.r, z[v.b], z[v.a], z[v.r], places);
     return share;
 }
 
@@ -73,18 +73,19 @@ CostField costFieldOf(const Image& image) {
 
 double edgeCost(const Mesh& mesh, const CostField& field, uint32_t e, CostFunction cost) {
     const EdgeVertices& v = mesh.vertices[e];
+    const Places places = placesOf(mesh);
     if (cost == CostFunction::variance) {
         // The triangles e reports, as forEachTriangle: those of whose edges e has the lowest id.
         const EdgeNeighbours& n = mesh.neighbours[e];
         const bool left = v.l != kNone && e < n.bl && e < n.la, right = v.r != kNone && e < n.ar && e < n.rb;
-        double share = channelVarianceShare(field.luma, v, left, right, mesh.width);
-        if (!field.alpha.empty()) share += channelVarianceShare(field.alpha, v, left, right, mesh.width);
+        double share = channelVarianceShare(field.luma, v, left, right, places);
+        if (!field.alpha.empty()) share += channelVarianceShare(field.alpha, v, left, right, places);
         return share;
     }
     if (v.l == kNone || v.r == kNone) return 0.0;
     const bool face_weighted = cost == CostFunction::face_scf;
-    double share = channelEdgeCost(field.luma, v, mesh.width, face_weighted);
-    if (!field.alpha.empty()) share += channelEdgeCost(field.alpha, v, mesh.width, face_weighted);
+    double share = channelEdgeCost(field.luma, v, places, face_weighted);
+    if (!field.alpha.empty()) share += channelEdgeCost(field.alpha, v, places, face_weighted);
     return share;
 }
 
@@ -96,10 +97,11 @@ double meshCost(const Mesh& mesh, const CostField& field, CostFunction cost) {
 
 double flipGainOf(const Mesh& mesh, const CostField& field, uint32_t e, CostFunction cost) {
     const FlipStencil s = flipStencil(mesh, e);
-    if (!flipIsConvex(s, mesh.width)) return -std::numeric_limits<double>::infinity();
+    const Places places = placesOf(mesh);
+    if (!flipIsConvex(s, places)) return -std::numeric_limits<double>::infinity();
     const uint32_t id = uint32_t(cost);
-    double gain = costFlipGain(id, s, stencilValues(field.luma, s), mesh.width);
-    if (!field.alpha.empty()) gain += costFlipGain(id, s, stencilValues(field.alpha, s), mesh.width);
+    double gain = costFlipGain(id, s, stencilValues(field.luma, s), places);
+    if (!field.alpha.empty()) gain += costFlipGain(id, s, stencilValues(field.alpha, s), places);
     return gain;
 }
 

@@ -35,7 +35,9 @@ const char* costFunctionName(CostFunction cost);
 // The cost of a name costFunctionName gives, or nothing.
 std::optional<CostFunction> parseCostFunction(const std::string& name);
 
-// Per-vertex values the cost looks at.
+// Per-vertex values the cost looks at, indexed by vertex id: luma[v] is vertex v's. width and
+// height are the image's, not the mesh's: the vertices' places come from the mesh (placesOf;
+// for a mesh with explicit positions, costFieldOf of an image whose pixel v is vertex v's value).
 struct CostField {
     uint32_t width = 0;
     uint32_t height = 0;

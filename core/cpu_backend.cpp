@@ -50,6 +50,11 @@ public:
         mesh_released_ = false;
     }
 
+    void prepareFrom(const Image& image, Mesh initial) override {
+        prepare(image);
+        mesh_ = std::move(initial);
+    }
+
     OptimizeStats optimize() override {
         requireMesh();
         renderer_.reset();

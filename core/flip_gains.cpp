@@ -7,33 +7,48 @@ namespace ddt {
 
 namespace {
 
-// A vertex of a stencil: its id and the coordinates planeGradient derives from it.
+// A vertex of a stencil: its id and the coordinates planeGradient derives from it: its pixel
+// centre (x, y) on the grid, or its explicit position in fixed point.
 struct Corner {
     uint32_t id;
     int32_t x, y;
 };
 
 // What planeGradient computes from the vertices alone: the triangle turned so that its smallest
-// id comes first (orientation kept), and its coordinate differences.
+// id comes first (orientation kept), and triangleSides' coordinate differences and twice area.
 struct TriangleShape {
     int first;  // which corner comes first after the turn: 0, 1 or 2
     double dx1, dy1, dx2, dy2, scale;
 };
 
-// planeGradient's differences of coordinates below 2^28, exact in either order.
+// triangleSides (glsl/sederberg.h) of corners given as coordinates, with the same operations:
+// on the grid differences of integers and their exact products, with explicit positions
+// fixed-point differences times 1 / kPositionOne and positionOrient's exact area. The places
+// are a template argument, so that the grid's path tests no flag per corner or triangle.
+template <bool positioned>
 inline TriangleShape turnedShape(int first, const Corner& c0, const Corner& c1, const Corner& c2) {
+    if constexpr (positioned) {
+        const double unit = 1.0 / double(kPositionOne);
+        const double dx1 = double(c1.x - c0.x) * unit, dy1 = double(c1.y - c0.y) * unit;
+        const double dx2 = double(c2.x - c0.x) * unit, dy2 = double(c2.y - c0.y) * unit;
+        const int64_t twice_area = positionOrient(c0.x, c0.y, c1.x, c1.y, c2.x, c2.y);
+        return {first, dx1, dy1, dx2, dy2, double(twice_area) * (unit * unit)};
+    }
     const double dx1 = c1.x - c0.x, dy1 = c1.y - c0.y, dx2 = c2.x - c0.x, dy2 = c2.y - c0.y;
     return {first, dx1, dy1, dx2, dy2, dx1 * dy2 - dx2 * dy1};
 }
 
-inline Corner cornerOf(uint32_t id, const DivideBy& by_width) {
+template <bool positioned>
+inline Corner cornerOf(uint32_t id, const DivideBy& by_width, const Position* positions) {
+    if constexpr (positioned) return {id, positions[id].x, positions[id].y};
     return {id, int32_t(by_width.remainder(id)), int32_t(by_width.quotient(id))};
 }
 
+template <bool positioned>
 inline TriangleShape shapeOf(const Corner& p0, const Corner& p1, const Corner& p2) {
-    if (p1.id < p0.id && p1.id < p2.id) return turnedShape(1, p1, p2, p0);
-    if (p2.id < p0.id && p2.id < p1.id) return turnedShape(2, p2, p0, p1);
-    return turnedShape(0, p0, p1, p2);
+    if (p1.id < p0.id && p1.id < p2.id) return turnedShape<positioned>(1, p1, p2, p0);
+    if (p2.id < p0.id && p2.id < p1.id) return turnedShape<positioned>(2, p2, p0, p1);
+    return turnedShape<positioned>(0, p0, p1, p2);
 }
 
 // planeGradient of the triangle with values z0, z1, z2 at its corners (in the order given to shapeOf).
@@ -56,22 +71,28 @@ inline double varianceOf(const TriangleShape& s, float z0, float z1, float z2) {
 }  // namespace
 
 FlipGains::FlipGains(const Mesh& mesh, const CostField& field, CostFunction cost)
-    : mesh_(mesh), field_(field), cost_(cost), by_width_(mesh.width) {
+    : mesh_(mesh), field_(field), cost_(cost), by_width_(mesh.width), positions_(placesOf(mesh).positions) {
     channels_.push_back({field.luma, {}, {}});
     if (!field.alpha.empty()) channels_.push_back({field.alpha, {}, {}});
     if (cost_ == CostFunction::variance) return;  // nothing to keep
     const bool face_weighted = cost_ == CostFunction::face_scf;
     for (Channel& channel : channels_) channel.costs.resize(mesh.edgeCount());
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-        const EdgeVertices& v = mesh.vertices[e];
+    if (positions_) keepCosts<true>(face_weighted);
+    else keepCosts<false>(face_weighted);
+}
+
+template <bool positioned>
+void FlipGains::keepCosts(bool face_weighted) {
+    auto corner = [&](uint32_t id) { return cornerOf<positioned>(id, by_width_, positions_); };
+    for (uint32_t e = 0; e < mesh_.edgeCount(); ++e) {
+        const EdgeVertices& v = mesh_.vertices[e];
         if (v.l == kNone || v.r == kNone) {
             for (Channel& channel : channels_) channel.costs[e] = 0.0;
             continue;
         }
         // edgeCost's: the pairCost of the left triangle (a, b, l) and the right one (b, a, r).
-        const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
-        const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
-        const TriangleShape left = shapeOf(a, b, l), right = shapeOf(b, a, r);
+        const Corner a = corner(v.a), b = corner(v.b), l = corner(v.l), r = corner(v.r);
+        const TriangleShape left = shapeOf<positioned>(a, b, l), right = shapeOf<positioned>(b, a, r);
         for (Channel& channel : channels_) {
             const std::vector<float>& z = channel.values;
             channel.costs[e] = pairCost(gradientOf(left, z[v.a], z[v.b], z[v.l]),
@@ -97,12 +118,18 @@ double FlipGains::gainOf(uint32_t e) {
     changed_[0] = kNone;
     const EdgeVertices& v = mesh_.vertices[e];
     if (v.l == kNone || v.r == kNone) return -std::numeric_limits<double>::infinity();
-    if (cost_ == CostFunction::variance) return varianceGainOf(e);
+    if (cost_ == CostFunction::variance) return positions_ ? varianceGainOf<true>(e) : varianceGainOf<false>(e);
+    return positions_ ? scfGainOf<true>(e) : scfGainOf<false>(e);
+}
+
+template <bool positioned>
+double FlipGains::scfGainOf(uint32_t e) {
+    const EdgeVertices& v = mesh_.vertices[e];
     const bool face_weighted = cost_ == CostFunction::face_scf;
-    const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
-    const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
-    // flipIsConvex: both new triangles positive (orientation's exact integer arithmetic).
-    const TriangleShape rbl = shapeOf(r, b, l), lar = shapeOf(l, a, r);
+    auto corner = [&](uint32_t id) { return cornerOf<positioned>(id, by_width_, positions_); };
+    const Corner a = corner(v.a), b = corner(v.b), l = corner(v.l), r = corner(v.r);
+    // flipIsConvex: both new triangles positive (orientation's sign is exact).
+    const TriangleShape rbl = shapeOf<positioned>(r, b, l), lar = shapeOf<positioned>(l, a, r);
     if (!(rbl.scale > 0.0 && lar.scale > 0.0)) return -std::numeric_limits<double>::infinity();
 
     const EdgeNeighbours& n = mesh_.neighbours[e];
@@ -118,8 +145,8 @@ double FlipGains::gainOf(uint32_t e) {
     TriangleShape outer[4];
     for (int k = 0; k < 4; ++k)
         if (far_ids[k] != kNone) {
-            far[k] = cornerOf(far_ids[k], by_width_);
-            outer[k] = shapeOf(*near[k][0], *near[k][1], far[k]);
+            far[k] = corner(far_ids[k]);
+            outer[k] = shapeOf<positioned>(*near[k][0], *near[k][1], far[k]);
         }
 
     changed_[0] = e;
@@ -163,13 +190,14 @@ double FlipGains::gainOf(uint32_t e) {
 
 // varianceGain's sums over e's two triangles, now and after the flip, channel by channel as
 // flipGainOf adds them; -infinity for a quadrilateral that is not strictly convex.
+template <bool positioned>
 double FlipGains::varianceGainOf(uint32_t e) const {
     const EdgeVertices& v = mesh_.vertices[e];
-    const Corner a = cornerOf(v.a, by_width_), b = cornerOf(v.b, by_width_);
-    const Corner l = cornerOf(v.l, by_width_), r = cornerOf(v.r, by_width_);
-    const TriangleShape rbl = shapeOf(r, b, l), lar = shapeOf(l, a, r);
+    auto corner = [&](uint32_t id) { return cornerOf<positioned>(id, by_width_, positions_); };
+    const Corner a = corner(v.a), b = corner(v.b), l = corner(v.l), r = corner(v.r);
+    const TriangleShape rbl = shapeOf<positioned>(r, b, l), lar = shapeOf<positioned>(l, a, r);
     if (!(rbl.scale > 0.0 && lar.scale > 0.0)) return -std::numeric_limits<double>::infinity();
-    const TriangleShape abl = shapeOf(a, b, l), bar = shapeOf(b, a, r);
+    const TriangleShape abl = shapeOf<positioned>(a, b, l), bar = shapeOf<positioned>(b, a, r);
     double gain = 0.0;
     for (size_t ch = 0; ch < channels_.size(); ++ch) {
         const std::vector<float>& z = channels_[ch].values;

@@ -213,10 +213,11 @@ std::vector<Triangle> listTriangles(const Mesh& mesh) {
 namespace {
 
 // Checks one side of edge e: the triangle (p, q, t) with its other edges e_qt, e_tp.
-std::string checkSide(const Mesh& mesh, uint32_t e, uint32_t p, uint32_t q, uint32_t t, uint32_t e_qt, uint32_t e_tp) {
+std::string checkSide(const Mesh& mesh, MeshHull hull, uint32_t e, uint32_t p, uint32_t q, uint32_t t, uint32_t e_qt,
+                      uint32_t e_tp) {
     if (t == kNone) {
         if (e_qt != kNone || e_tp != kNone) return "missing triangle but neighbour edges set";
-        if (!onHullSide(mesh, p, q)) return "one-sided edge not on the hull";
+        if (hull == MeshHull::rectangle && !onHullSide(mesh, p, q)) return "one-sided edge not on the hull";
         return "";
     }
     if (t >= mesh.vertexCount()) return "adjacent vertex out of range";
@@ -237,13 +238,45 @@ std::string checkSide(const Mesh& mesh, uint32_t e, uint32_t p, uint32_t q, uint
     return "";
 }
 
+// The one-sided edges must form one closed loop around the mesh, turning only left (or going
+// straight) at each vertex, and enclose exactly the triangles' area: then the positive
+// triangles tile a convex polygon whose corners are mesh vertices, the hull of the vertices.
+std::string checkConvexBoundary(const Mesh& mesh, __int128 twice_area) {
+    // next[q] = p for each boundary edge traversed with its triangle on the left.
+    std::unordered_map<uint32_t, uint32_t> next;
+    for (const EdgeVertices& v : mesh.vertices) {
+        if (v.l != kNone && v.r != kNone) continue;
+        const uint32_t from = v.l == kNone ? v.b : v.a, to = v.l == kNone ? v.a : v.b;
+        if (!next.emplace(from, to).second) return "boundary passes a vertex twice";
+    }
+    if (next.size() < 3) return "boundary shorter than a triangle";
+    const uint32_t start = next.begin()->first;
+    uint32_t previous = start, current = next.at(start);
+    size_t length = 1;
+    __int128 loop_area = 0;  // the shoelace sum: twice the loop's signed area
+    do {
+        const auto found = next.find(current);
+        if (found == next.end()) return "boundary is not closed";
+        const Position p = positionOf(mesh, previous), q = positionOf(mesh, current), r = positionOf(mesh, found->second);
+        if (positionOrient(p.x, p.y, q.x, q.y, r.x, r.y) < 0) return "boundary is not convex";
+        loop_area += int64_t(p.x) * q.y - int64_t(q.x) * p.y;
+        previous = current;
+        current = found->second;
+        ++length;
+    } while (previous != start && length <= next.size() + 1);
+    if (previous != start || length != next.size() + 1) return "boundary is more than one loop";
+    if (loop_area != twice_area) return "triangles do not fill the boundary";
+    return "";
+}
+
 }  // namespace
 
-std::string checkMesh(const Mesh& mesh) {
+std::string checkMesh(const Mesh& mesh, MeshHull hull) {
     const uint32_t w = mesh.width, h = mesh.height;
     if (w < 2 || h < 2) return "mesh smaller than 2x2";
     if (mesh.neighbours.size() != mesh.vertices.size()) return "wrong number of edges";
-    if (!mesh.positions.empty() && mesh.positions.size() != mesh.vertexCount()) return "wrong number of positions";
+    if (hull == MeshHull::rectangle && !mesh.positions.empty() && mesh.positions.size() != size_t(w) * h)
+        return "wrong number of positions";
     std::vector<uint64_t> keys;
     keys.reserve(mesh.edgeCount());
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
@@ -254,8 +287,8 @@ std::string checkMesh(const Mesh& mesh) {
             problem = "main vertices invalid";
         else if (v.l == kNone && v.r == kNone)
             problem = "edge without triangles";
-        if (problem.empty()) problem = checkSide(mesh, e, v.a, v.b, v.l, n.bl, n.la);
-        if (problem.empty()) problem = checkSide(mesh, e, v.b, v.a, v.r, n.ar, n.rb);
+        if (problem.empty()) problem = checkSide(mesh, hull, e, v.a, v.b, v.l, n.bl, n.la);
+        if (problem.empty()) problem = checkSide(mesh, hull, e, v.b, v.a, v.r, n.ar, n.rb);
         if (!problem.empty()) {
             std::ostringstream out;
             out << "edge " << e << " (" << v.a << ", " << v.b << ", " << v.l << ", " << v.r << "): " << problem;
@@ -280,8 +313,9 @@ std::string checkMesh(const Mesh& mesh) {
         const Position p = positionOf(mesh, t.v0), q = positionOf(mesh, t.v1), r = positionOf(mesh, t.v2);
         twice_area += positionOrient(p.x, p.y, q.x, q.y, r.x, r.y);
     }
-    if (twice_area != __int128(2 * cells) * kPositionOne * kPositionOne) return "total area differs from (w-1)(h-1)";
-    return "";
+    if (hull == MeshHull::rectangle && twice_area != __int128(2 * cells) * kPositionOne * kPositionOne)
+        return "total area differs from (w-1)(h-1)";
+    return checkConvexBoundary(mesh, twice_area);
 }
 
 }  // namespace ddt

@@ -6,6 +6,9 @@
 //   (core/simplify/) uses a subset of the ids, and may move them: then `positions` holds each
 //   vertex's place in fixed point (glsl/fixed_position.h); its edges are any triangulation of
 //   the used vertices that covers the grid's rectangle [0, w − 1] × [0, h − 1].
+//   A triangulation of samples (core/delaunay/) covers the convex hull of its vertices
+//   instead: known pixels of a masked image (a subset of the grid's ids, at their centres), or
+//   points anywhere in the rectangle (ids 0 … n − 1 with n explicit positions).
 // - orientation: orient(p, q, r) = (q - p) × (r - p) = (qx-px)(ry-py) - (qy-py)(rx-px).
 //   "Positive" triangles have orient > 0 (counter-clockwise in a y-up frame, clockwise on
 //   screen). Every triangle of a valid mesh is positive.
@@ -51,12 +54,6 @@ struct EdgeNeighbours {
     uint32_t bl, la, ar, rb;
 };
 
-// A vertex's place in input pixels × kPositionOne (glsl/fixed_position.h).
-struct Position {
-    int32_t x, y;
-    bool operator==(const Position&) const = default;
-};
-
 struct Mesh {
     uint32_t width = 0;
     uint32_t height = 0;
@@ -66,7 +63,8 @@ struct Mesh {
     std::vector<Position> positions;
 
     uint32_t edgeCount() const { return uint32_t(vertices.size()); }
-    uint32_t vertexCount() const { return width * height; }
+    // Vertex ids run below this: the grid's w·h, or one per explicit position.
+    uint32_t vertexCount() const { return positions.empty() ? width * height : uint32_t(positions.size()); }
 };
 
 // Vertex v's position (explicit, or its pixel centre's; the sides must then be at most
@@ -76,6 +74,11 @@ inline Position gridPosition(uint32_t v, uint32_t width) {
 }
 inline Position positionOf(const Mesh& mesh, uint32_t v) {
     return mesh.positions.empty() ? gridPosition(v, mesh.width) : mesh.positions[v];
+}
+// Where the cost formulas (glsl/sederberg.h) find the mesh's vertices: the explicit positions,
+// or, without them, the pixel centres of the width × height grid.
+inline Places placesOf(const Mesh& mesh) {
+    return {mesh.width, mesh.positions.empty() ? nullptr : mesh.positions.data()};
 }
 
 // Gives every vertex its explicit position, its pixel centre's (a no-op if it has them).
@@ -139,11 +142,17 @@ void forEachTriangle(const Mesh& mesh, F f) {
     }
 }
 
+// What a mesh's boundary must be: the rectangle [0, w − 1] × [0, h − 1] (the grid's mesh and
+// its simplifications), or the convex hull of its vertices (a triangulation of samples,
+// core/delaunay/).
+enum class MeshHull { rectangle, convex };
+
 // Checks the mesh: every record consistent with its neighbours, every triangle positive,
-// interior edges shared by two triangles, boundary edges along the rectangle's sides with
-// one, Euler's count for a disk, total area (w−1)(h−1), no duplicate edge, all at the
-// vertices' positions (positionOf: sides of at most kMaxPositionedSide). Returns "" if valid,
-// else the first problem found.
-std::string checkMesh(const Mesh& mesh);
+// interior edges shared by two triangles, boundary edges with one forming a single convex
+// loop that the triangles fill exactly, Euler's count for a disk, no duplicate edge, all at
+// the vertices' positions (positionOf: sides of at most kMaxPositionedSide); for
+// MeshHull::rectangle also boundary edges along the rectangle's sides and total area
+// (w−1)(h−1). Returns "" if valid, else the first problem found.
+std::string checkMesh(const Mesh& mesh, MeshHull hull = MeshHull::rectangle);
 
 }  // namespace ddt

@@ -54,9 +54,14 @@ RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t
     return window;
 }
 
+int64_t snappedSample(int64_t s, uint32_t out_size) {
+    const unsigned __int128 twice_out = 2 * uint64_t(out_size);
+    return int64_t((2 * (unsigned __int128)(s) * kPositionOne + twice_out) / (2 * twice_out));
+}
+
 MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles)
-    : image_(image), bubbles_(bubbles), positions_(mesh.positions) {
-    assert(image.width == mesh.width && image.height == mesh.height);
+    : image_(image), bubbles_(bubbles), width_(mesh.width), height_(mesh.height), positions_(mesh.positions) {
+    assert(image.pixels.size() >= size_t(mesh.vertexCount()) * image.channels);
     assert(!bubbles || bubbles->size() == size_t(mesh.edgeCount()) * image.channels);
     // The triangles sorted by top row (counting sort, stable), so a band of output rows visits
     // only nearby triangles.
@@ -73,7 +78,7 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vect
 }
 
 std::pair<uint32_t, uint32_t> MeshRenderer::rowsOf(const Triangle& t) const {
-    const uint32_t w = image_.width;
+    const uint32_t w = width_;
     if (positions_.empty()) return {std::min({t.v0, t.v1, t.v2}) / w, std::max({t.v0, t.v1, t.v2}) / w};
     const int32_t y0 = positions_[t.v0].y, y1 = positions_[t.v1].y, y2 = positions_[t.v2].y;
     const uint32_t top = uint32_t(std::min({y0, y1, y2})) >> kPositionBits;
@@ -82,14 +87,15 @@ std::pair<uint32_t, uint32_t> MeshRenderer::rowsOf(const Triangle& t) const {
 }
 
 MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles)
-    : image_(image), bubbles_(bubbles), positions_(std::move(tables.positions_)),
+    : image_(image), bubbles_(bubbles), width_(tables.width_), height_(tables.height_),
+      positions_(std::move(tables.positions_)),
       triangles_(std::move(tables.triangles_)), first_in_row_(std::move(tables.first_in_row_)),
       tallest_(tables.tallest_) {
-    assert(image.width == tables.image_.width && image.height == tables.image_.height);
+    assert(image.pixels.size() == tables.image_.pixels.size() && image.channels == tables.image_.channels);
 }
 
 void MeshRenderer::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const {
-    renderWindow(wholeRows(image_.width, image_.height, out, y_begin, y_end), rows);
+    renderWindow(wholeRows(width_, height_, out, y_begin, y_end), rows);
 }
 
 namespace {
@@ -104,12 +110,6 @@ struct SampleAxes {
     std::vector<int64_t> su, sv;
     std::vector<int8_t> dir_u, dir_v;
 };
-
-// Sample coordinate s (raster.h's units, 1/(2·out_size)) in 1/kPositionOne pixels, rounded.
-int64_t snappedSample(int64_t s, uint32_t out_size) {
-    const unsigned __int128 twice_out = 2 * uint64_t(out_size);
-    return int64_t((2 * (unsigned __int128)(s) * kPositionOne + twice_out) / (2 * twice_out));
-}
 
 SampleAxes sampleAxesOf(const RenderWindow& window, bool snapped) {
     const uint32_t in_w = window.input_width, in_h = window.input_height;
@@ -228,7 +228,7 @@ void scanTriangle(const SampleAxes& axes, const int64_t px[3], const int64_t py[
 // The triangles whose samples can fall in the window's rows: those whose top row lies in the
 // crop rows the window samples, widened upwards by the tallest triangle.
 std::pair<uint32_t, uint32_t> MeshRenderer::trianglesAround(const RenderWindow& window) const {
-    const uint32_t h = image_.height, in_h = window.input_height, out_h = window.out.height, cy = window.crop_y;
+    const uint32_t h = height_, in_h = window.input_height, out_h = window.out.height, cy = window.crop_y;
     if (window.x_begin >= window.x_end || window.y_begin >= window.y_end) return {0, 0};
     const int64_t unit = vertexCoord(1, out_h);
     const uint32_t v_first = uint32_t(sampleCoord(window.y_begin, in_h, out_h) / unit);
@@ -245,7 +245,7 @@ std::pair<uint32_t, uint32_t> MeshRenderer::trianglesAround(const RenderWindow& 
 template <typename Visit>
 void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint32_t end, Visit visit) const {
     // w, h: the crop the mesh covers; the whole input (window.input_*) sets the sampling.
-    const uint32_t w = image_.width, h = image_.height;
+    const uint32_t w = width_, h = height_;
     const uint32_t out_w = window.out.width, out_h = window.out.height;
     const uint32_t cx = window.crop_x, cy = window.crop_y;
     assert(cx + w <= window.input_width && cy + h <= window.input_height);
@@ -350,7 +350,7 @@ void MeshRenderer::locateSamples(OutputSize out, uint32_t first, uint32_t end, s
     // About as many samples in each triangle as on average.
     hits.reserve(start + size_t(1.25 * double(out.width) * out.height / triangles_.size() * (end - first)) + 16);
     std::fill(ends, ends + (end - first), 0);  // first each triangle's count
-    visitSamples(wholeRows(image_.width, image_.height, out, 0, out.height), first, end, [&](uint32_t i) {
+    visitSamples(wholeRows(width_, height_, out, 0, out.height), first, end, [&](uint32_t i) {
         return [&, count = ends + (i - first)](uint32_t x, uint32_t y, double l0, double l1, double l2) {
             hits.push_back({y * out.width + x, {float(l0), float(l1), float(l2)}});
             ++*count;

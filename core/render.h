@@ -50,6 +50,10 @@ struct RenderWindow {
     uint32_t height() const { return y_end - y_begin; }
 };
 
+// Sample coordinate s (raster.h's units, 1/(2·out_size)) in 1/kPositionOne pixels, rounded: where
+// a mesh with explicit positions samples (render.cpp).
+int64_t snappedSample(int64_t s, uint32_t out_size);
+
 // Output rows [y_begin, y_end) of an untiled width × height input.
 RenderWindow wholeRows(uint32_t width, uint32_t height, OutputSize out, uint32_t y_begin, uint32_t y_end);
 
@@ -68,8 +72,9 @@ struct SampleHit {
 // colour to at most its alpha.
 class MeshRenderer {
 public:
-    // `image` holds the vertex values (premultiplied); `bubbles`, if not null, edgeCount() ×
-    // channels values. All must outlive the renderer.
+    // `image` holds the vertex values (premultiplied), pixel v for vertex v: the image the
+    // mesh's grid was made of, or for a mesh of points one value per point (an n × 1 image);
+    // `bubbles`, if not null, edgeCount() × channels values. All must outlive the renderer.
     MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles = nullptr);
     // A renderer of the same mesh as `tables` for another surface, taking over its triangle
     // tables instead of building them again.
@@ -96,6 +101,7 @@ private:
 
     const Image& image_;
     const std::vector<float>* bubbles_;
+    uint32_t width_ = 0, height_ = 0;        // the mesh's frame (its crop of the input)
     std::vector<Position> positions_;        // the mesh's explicit positions (empty: the grid's)
     std::vector<Triangle> triangles_;        // sorted by their top row
     std::vector<uint32_t> first_in_row_;     // index of the first triangle per top row, + end

@@ -11,6 +11,10 @@ layout(local_size_x = kGroupSize) in;
 // The cost the optimisation lowers: kCostSederberg, kCostVariance or kCostFaceScf
 // (glsl/content_cost.h; compute/kernels.h sets it from VulkanOptions::cost).
 layout(constant_id = 2) const uint kCost = kCostSederberg;
+// Whether the mesh has explicit vertex positions (core/mesh.h), which the cost formulas then
+// read from `positions` (glsl/sederberg.h's Places); false: every vertex at its pixel centre,
+// computed from its id, and the reads compile away (compute/kernels.h sets it).
+layout(constant_id = 3) const bool kPositioned = false;
 
 layout(push_constant) uniform Push {
     PushConstants push;
@@ -39,6 +43,14 @@ layout(binding = kBindingControl, std430) buffer ControlBlock {
 layout(binding = kBindingArgs, std430) buffer ArgsBlock {
     uvec4 args[kArgsCount];
 };
+layout(binding = kBindingPositions, rg32i) uniform readonly iimageBuffer positions;
+
+// glsl/sederberg.h's places of the vertices, and the explicit positions it reads.
+Position vertexPosition(uint v) {
+    const ivec2 p = imageLoad(positions, int(v)).xy;
+    return Position(p.x, p.y);
+}
+Places places() { return Places(push.width, kPositioned); }
 
 // Invocations of the whole dispatch, for loops over ranges larger than one dispatch.
 uint invocationStride() { return gl_NumWorkGroups.x * kGroupSize; }
@@ -109,18 +121,18 @@ StencilValues stencilValues(bool alpha_channel, FlipStencil s) {
 // which is below any threshold (core returns -infinity, which GLSL cannot spell).
 double flipGainOf(uint e) {
     FlipStencil s = flipStencilOf(e);
-    if (!flipIsConvex(s, push.width)) return -1.0lf;
-    precise double gain = costFlipGain(kCost, s, stencilValues(false, s), push.width);
-    if (push.has_alpha != 0) gain += costFlipGain(kCost, s, stencilValues(true, s), push.width);
+    if (!flipIsConvex(s, places())) return -1.0lf;
+    precise double gain = costFlipGain(kCost, s, stencilValues(false, s), places());
+    if (push.has_alpha != 0) gain += costFlipGain(kCost, s, stencilValues(true, s), places());
     return gain;
 }
 
 // Sederberg's or face-SCF's share of an interior edge, for one channel.
 double channelEdgeCost(bool alpha_channel, uvec4 v) {
     Gradient left = planeGradient(v.x, v.y, v.z, valueAt(alpha_channel, v.x), valueAt(alpha_channel, v.y),
-                                  valueAt(alpha_channel, v.z), push.width);
+                                  valueAt(alpha_channel, v.z), places());
     Gradient right = planeGradient(v.y, v.x, v.w, valueAt(alpha_channel, v.y), valueAt(alpha_channel, v.x),
-                                   valueAt(alpha_channel, v.w), push.width);
+                                   valueAt(alpha_channel, v.w), places());
     return pairCost(left, right, kCost == kCostFaceScf);
 }
 
@@ -128,8 +140,8 @@ double channelEdgeCost(bool alpha_channel, uvec4 v) {
 double channelVarianceShare(bool alpha_channel, uvec4 v, bool left, bool right) {
     const float za = valueAt(alpha_channel, v.x), zb = valueAt(alpha_channel, v.y);
     precise double share = 0.0lf;
-    if (left) share += varianceCost(v.x, v.y, v.z, za, zb, valueAt(alpha_channel, v.z), push.width);
-    if (right) share += varianceCost(v.y, v.x, v.w, zb, za, valueAt(alpha_channel, v.w), push.width);
+    if (left) share += varianceCost(v.x, v.y, v.z, za, zb, valueAt(alpha_channel, v.z), places());
+    if (right) share += varianceCost(v.y, v.x, v.w, zb, za, valueAt(alpha_channel, v.w), places());
     return share;
 }
 

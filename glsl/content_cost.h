@@ -12,12 +12,14 @@
 // z is the luma the SCF reads (core/cost.h: Rec. 601 of the stored values in [0, 1]); an image
 // with alpha adds the alpha channel's cost, as for the SCF. A boundary edge's SCF is 0.
 //
-// Every triangle of the optimiser's meshes has area exactly 1/2: its vertices are pixel
+// Every triangle of the grid's triangulations has area exactly 1/2: its vertices are pixel
 // centres, and a triangulation that uses every pixel centre leaves no lattice point inside a
 // triangle or on its sides, so Pick's theorem gives area = 0 + 3/2 − 1 = 1/2. The areas are
 // computed anyway (the paper's definition, and exact integers at no cost), but it follows that
 // face-SCF's cost is a third of Sederberg's on these meshes, edge by edge (SCF · (1/2 + 1/2) / 3),
-// and its flips are Sederberg's but for gains within a factor 3 of kFlipGainThreshold.
+// and its flips are Sederberg's but for gains within a factor 3 of kFlipGainThreshold. On a
+// mesh of some pixels or of explicit positions the areas differ, and so do the three costs'
+// flips (glsl/sederberg.h's Places; how each cost scales with the triangles: kFlipGainThreshold).
 #ifndef DDTUP_CONTENT_COST_H
 #define DDTUP_CONTENT_COST_H
 
@@ -52,7 +54,7 @@ DDT_FN double varianceShare(double twice_area, float z0, float z1, float z2) {
 // area(T) · Var of the positive triangle T = (i0, i1, i2) with values z0..z2. Like
 // planeGradient it first turns T so that its smallest vertex id comes first (orientation
 // kept): every listing of one triangle then sums the squares in one order, bit-identically.
-DDT_FN double varianceCost(uint i0, uint i1, uint i2, float z0, float z1, float z2, uint width) {
+DDT_FN double varianceCost(uint i0, uint i1, uint i2, float z0, float z1, float z2, Places places) {
     if (i1 < i0 && i1 < i2) {
         uint t = i0; i0 = i1; i1 = i2; i2 = t;
         float s = z0; z0 = z1; z1 = z2; z2 = s;
@@ -60,25 +62,25 @@ DDT_FN double varianceCost(uint i0, uint i1, uint i2, float z0, float z1, float 
         uint t = i0; i0 = i2; i2 = i1; i1 = t;
         float s = z0; z0 = z2; z2 = z1; z1 = s;
     }
-    return varianceShare(orientation(i0, i1, i2, width), z0, z1, z2);
+    return varianceShare(orientation(i0, i1, i2, places), z0, z1, z2);
 }
 
 // Variance's cost decrease when e flips, for one channel: a triangle's cost depends on its own
 // vertices only, so only e's two triangles change, and the gain reads e's record alone (ROI:
 // the 1-region, see core/mesh.h). The caller checks flipIsConvex first.
 //   before: triangles (a, b, l) and (b, a, r)   after: (r, b, l) and (l, a, r)
-DDT_FN double varianceGain(FlipStencil s, StencilValues z, uint width) {
-    DDT_PRECISE double before = varianceCost(s.a, s.b, s.l, z.a, z.b, z.l, width) +
-                                varianceCost(s.b, s.a, s.r, z.b, z.a, z.r, width);
-    DDT_PRECISE double after = varianceCost(s.r, s.b, s.l, z.r, z.b, z.l, width) +
-                               varianceCost(s.l, s.a, s.r, z.l, z.a, z.r, width);
+DDT_FN double varianceGain(FlipStencil s, StencilValues z, Places places) {
+    DDT_PRECISE double before = varianceCost(s.a, s.b, s.l, z.a, z.b, z.l, places) +
+                                varianceCost(s.b, s.a, s.r, z.b, z.a, z.r, places);
+    DDT_PRECISE double after = varianceCost(s.r, s.b, s.l, z.r, z.b, z.l, places) +
+                               varianceCost(s.l, s.a, s.r, z.l, z.a, z.r, places);
     return before - after;
 }
 
 // The gain of `cost` (kCost…) for one channel. Variance reads only a, b, l, r of the stencil.
-DDT_FN double costFlipGain(uint cost, FlipStencil s, StencilValues z, uint width) {
-    if (cost == kCostVariance) return varianceGain(s, z, width);
-    return scfFlipGain(s, z, width, cost == kCostFaceScf);
+DDT_FN double costFlipGain(uint cost, FlipStencil s, StencilValues z, Places places) {
+    if (cost == kCostVariance) return varianceGain(s, z, places);
+    return scfFlipGain(s, z, places, cost == kCostFaceScf);
 }
 
 #ifdef __cplusplus

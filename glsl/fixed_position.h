@@ -27,6 +27,16 @@ const int kPositionOne = 1 << kPositionBits;
 // The widest and tallest input whose mesh can hold explicit positions (2^20 = 1 048 576 pixels).
 const uint kMaxPositionedSide = 1u << 20;
 
+// A vertex's place in input pixels × kPositionOne (core/mesh.h's explicit positions; in the
+// kernels an rg32i texel).
+struct Position {
+    int x;
+    int y;
+#ifdef __cplusplus
+    bool operator==(const Position&) const = default;
+#endif
+};
+
 // Twice the signed area of (p, q, r): positive for positive (core/mesh.h) triangles. Exact.
 DDT_FN int64_t positionOrient(int px, int py, int qx, int qy, int rx, int ry) {
     return int64_t(qx - px) * int64_t(ry - py) - int64_t(qy - py) * int64_t(rx - px);

@@ -100,7 +100,9 @@ const uint kBindingValueWeights = 29;       // per vertex: SART's normaliser ⟨
 const uint kBindingBubbles = 30;            // per edge
 const uint kBindingBubbleWeights = 31;      // per edge: ⟨φ, Dᵀ1⟩
 const uint kBindingStarStart = 32;          // r32ui per vertex: its lowest-id edge, where its star walk starts
-const uint kBindingCount = 33;
+// Explicit positions (core/mesh.h), read by the kernels that evaluate costs when kPositioned.
+const uint kBindingPositions = 33;          // rg32i per vertex: its Position (glsl/fixed_position.h)
+const uint kBindingCount = 34;
 
 // Counters and state of the optimisation, written by the kernels, read by the host after
 // each submit. Counters that kernels append to are updated with atomics.

@@ -228,7 +228,7 @@ TEST_CASE("cost: a non-convex quadrilateral gives -infinity") {
     ddt::Mesh mesh = ddt::buildGridMesh(4, 3);
     for (auto [p, q] : {std::pair{1u, 5u}, {4u, 5u}}) {
         const uint32_t f = edgeBetween(mesh, p, q);
-        REQUIRE(ddt::flipIsConvex(ddt::flipStencil(mesh, f), 4));
+        REQUIRE(ddt::flipIsConvex(ddt::flipStencil(mesh, f), ddt::placesOf(mesh)));
         ddt::flipEdge(mesh, f);
     }
     REQUIRE(ddt::checkMesh(mesh) == "");
@@ -236,7 +236,7 @@ TEST_CASE("cost: a non-convex quadrilateral gives -infinity") {
     REQUIRE(e == 2);
     CHECK(mesh.vertices[e].l == 9);
     CHECK(mesh.vertices[e].r == 6);
-    CHECK_FALSE(ddt::flipIsConvex(ddt::flipStencil(mesh, e), 4));
+    CHECK_FALSE(ddt::flipIsConvex(ddt::flipStencil(mesh, e), ddt::placesOf(mesh)));
     std::mt19937 rng(3);
     for (int round = 0; round < 5; ++round) {
         ddt::CostField field = fieldOf(ddt::test::randomImage(rng, 4, 3, 1));

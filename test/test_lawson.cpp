@@ -220,11 +220,11 @@ TEST_CASE("lawson: a non-convex quadrilateral is never flipped") {
     ddt::Image image = makeImage(4, 3, 1, values);
     ddt::CostField field = ddt::costFieldOf(image);
     const ddt::FlipStencil s = ddt::flipStencil(mesh, 2);
-    REQUIRE_FALSE(ddt::flipIsConvex(s, 4));
+    REQUIRE_FALSE(ddt::flipIsConvex(s, ddt::placesOf(mesh)));
     auto at = [&](uint32_t vertex) { return vertex == kNone ? 0.0f : values[vertex]; };
     const ddt::StencilValues z{at(s.a), at(s.b), at(s.l), at(s.r), at(s.far_bl), at(s.far_la), at(s.far_ar), at(s.far_rb)};
     // The gain formula alone, without the convexity test, "wants" the flip.
-    REQUIRE(ddt::flipGain(s, z, 4) > ddt::kFlipGainThreshold);
+    REQUIRE(ddt::flipGain(s, z, ddt::placesOf(mesh)) > ddt::kFlipGainThreshold);
 
     ddt::LawsonOptions one_sweep;
     one_sweep.max_sweeps = 1;

@@ -100,7 +100,7 @@ TEST_CASE("mesh: gridEdgeCount counts horizontal, vertical and diagonal edges") 
 
 TEST_CASE("mesh: a flip rotates the record and patches the four neighbours") {
     ddt::Mesh mesh = ddt::buildGridMesh(3, 3);
-    REQUIRE(ddt::flipIsConvex(ddt::flipStencil(mesh, 2), 3));
+    REQUIRE(ddt::flipIsConvex(ddt::flipStencil(mesh, 2), ddt::placesOf(mesh)));
     ddt::flipEdge(mesh, 2);
     // Cell (0,0) now has the diagonal 1–3:
     //     0 ------- 1
@@ -126,12 +126,12 @@ TEST_CASE("mesh: flipping an edge twice restores the mesh, four times the record
     ddt::test::flipRandomEdges(mesh, rng, 40);
     REQUIRE(ddt::checkMesh(mesh) == "");
     for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-        if (!ddt::flipIsConvex(ddt::flipStencil(mesh, e), mesh.width)) continue;
+        if (!ddt::flipIsConvex(ddt::flipStencil(mesh, e), ddt::placesOf(mesh))) continue;
         INFO("edge " << e);
         const ddt::Mesh before = mesh;
         const Record r = recordOf(mesh, e);
         ddt::flipEdge(mesh, e);
-        REQUIRE(ddt::flipIsConvex(ddt::flipStencil(mesh, e), mesh.width));  // a convex quad stays convex
+        REQUIRE(ddt::flipIsConvex(ddt::flipStencil(mesh, e), ddt::placesOf(mesh)));  // a convex quad stays convex
         ddt::flipEdge(mesh, e);
         CHECK(recordOf(mesh, e) == Record{r.b, r.a, r.r, r.l, r.ar, r.rb, r.bl, r.la});
         ddt::Mesh expected = before;
@@ -166,7 +166,7 @@ TEST_CASE("mesh: flipIsConvex agrees with an independent convexity test") {
         ddt::test::flipRandomEdges(mesh, rng, 10);
         for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
             const bool mine = ddt::test::quadIsStrictlyConvex(mesh, e);
-            CHECK(ddt::flipIsConvex(ddt::flipStencil(mesh, e), mesh.width) == mine);
+            CHECK(ddt::flipIsConvex(ddt::flipStencil(mesh, e), ddt::placesOf(mesh)) == mine);
             (mine ? convex : not_convex)++;
         }
     }
@@ -253,7 +253,7 @@ TEST_CASE("mesh: checkMesh catches every kind of corruption") {
              // so its forced flip to 1–9 leaves the flat triangle (9, 5, 1).
              ddt::flipEdge(m, e);
              const uint32_t f = edgeBetween(m, 5, 6);
-             REQUIRE_FALSE(ddt::flipIsConvex(ddt::flipStencil(m, f), m.width));
+             REQUIRE_FALSE(ddt::flipIsConvex(ddt::flipStencil(m, f), ddt::placesOf(m)));
              ddt::flipEdge(m, f);
          }},
     };

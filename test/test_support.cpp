@@ -70,7 +70,7 @@ uint32_t flipRandomEdges(Mesh& mesh, std::mt19937& rng, uint32_t count) {
     // Bounded tries: a tiny mesh may have few convex quads at some moment.
     for (uint32_t tries = 0; done < count && tries < 20 * count; ++tries) {
         uint32_t e = pick(rng);
-        if (!flipIsConvex(flipStencil(mesh, e), mesh.width)) continue;
+        if (!flipIsConvex(flipStencil(mesh, e), placesOf(mesh))) continue;
         flipEdge(mesh, e);
         ++done;
     }

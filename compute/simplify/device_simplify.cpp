@@ -43,7 +43,7 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
     const uint32_t edges = mesh.edgeCount(), vertices = mesh.vertexCount();
     if (values.channels > kMaxQuadricDimensions - 2 || values.width != mesh.width || values.height != mesh.height)
         throw std::invalid_argument("device simplification: values do not fit the mesh");
-    if (mesh.positions.size() != mesh.vertexCount())
+    if (mesh.positions.size() != size_t(mesh.width) * mesh.height)
         throw std::invalid_argument("device simplification: the mesh's positions are not explicit");
     if (const std::string problem = deviceSimplifierProblem(context, edges, vertices); !problem.empty())
         throw std::invalid_argument("device simplification: " + problem);
