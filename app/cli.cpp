@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -11,11 +12,13 @@
 #include "batch_plan.h"
 #include "exit_codes.h"
 #include "cost.h"
+#include "delaunay.h"
 #include "flip_rule.h"
 #include "image.h"
 #include "image_formats.h"
 #include "json_line.h"
 #include "mesh_file.h"
+#include "point_file.h"
 #include "tiled_upscale.h"
 #include "volume_file.h"
 
@@ -73,6 +76,59 @@ std::string validateMesh(const CLI::App& app, const Settings& settings) {
     return "";
 }
 
+// "" if --mask makes sense with the rest, else the message.
+std::string validateMask(const CLI::App& app, const Settings& settings) {
+    if (settings.mask.empty()) return "";
+    if (!settings.singleForm() || settings.inputs.size() != 1)
+        return "--mask pairs one mask with one input: `ddtup IN --mask MASK OUT`";
+    if (settings.simplifies()) return "--mask and simplification (--simplify, --max-error) do not combine yet";
+    if (!settings.mesh.empty()) return "--mask and --mesh do not combine yet (the mesh file's border ring assumes the image's rectangle)";
+    if (app.count("--reconstruct") && settings.reconstruct == "consistent")
+        return "--mask renders the linear surface on the known pixels' triangulation; --reconstruct consistent needs every "
+               "pixel's value";
+    if (settings.tile) return "--mask triangulates the known pixels in one piece; --tile does not apply";
+    if (sameFile(settings.mask, settings.inputs.front())) return "--mask " + settings.mask + ": is the input itself";
+    if (settings.output != kStandardStream && sameFile(settings.mask, settings.output))
+        return "--mask " + settings.mask + ": is also the output; refusing to overwrite it";
+    return "";
+}
+
+// "" if point-file inputs (core/io/point_file.h) make sense with the rest, else the message.
+std::string validatePoints(const CLI::App& app, const Settings& settings) {
+    const bool any_points = std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath);
+    if (!any_points) return app.count("--frame") ? "--frame applies to point files (.csv, .ply)" : "";
+    if (!settings.mask.empty()) return "--mask applies to images: a point file lists only known samples";
+    if (settings.simplifies()) return "point files and simplification (--simplify, --max-error) do not combine yet";
+    if (!settings.mesh.empty()) return "point files and --mesh do not combine yet";
+    if (app.count("--reconstruct") && settings.reconstruct == "consistent")
+        return "a point file is rendered linearly on its triangulation; --reconstruct consistent needs a full image";
+    if (settings.tile) return "a point file is triangulated in one piece; --tile does not apply";
+    if (settings.format.empty() && (!settings.singleForm() || settings.output == kStandardStream))
+        return "a point file's output needs a format: name the output file, or give -f png";
+    if (app.count("--frame") && (settings.frame_width > kMaxDelaunaySide || settings.frame_height > kMaxDelaunaySide))
+        return "--frame: at most " + std::to_string(kMaxDelaunaySide) + " pixels a side (the exact in-circle test's range)";
+    return "";
+}
+
+// --frame's "WxH" (or W×H): both sides at least 2; "" if it parses, else the message.
+std::string parseFrame(const std::string& text, Settings& settings) {
+    const std::string bad = "--frame " + text + ": give the points' frame as WIDTHxHEIGHT in input pixels, each at least 2";
+    std::string spelled = text;
+    if (const size_t times = spelled.find("×"); times != std::string::npos) spelled.replace(times, std::string("×").size(), "x");
+    const size_t x = spelled.find('x');
+    if (x == std::string::npos || x == 0 || x + 1 == spelled.size()) return bad;
+    const std::string sides[2] = {spelled.substr(0, x), spelled.substr(x + 1)};
+    uint64_t values[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        if (sides[i].size() > 9 || sides[i].find_first_not_of("0123456789") != std::string::npos) return bad;
+        values[i] = std::stoull(sides[i]);
+        if (values[i] < 2) return bad;
+    }
+    settings.frame_width = uint32_t(values[0]);
+    settings.frame_height = uint32_t(values[1]);
+    return "";
+}
+
 // A factor of -s: a finite number >= 1, the whole text.
 bool parseFactor(const std::string& text, double& factor) {
     size_t used = 0;
@@ -110,7 +166,7 @@ bool perAxisScale(const Settings& settings) { return settings.axis_scales[0] > 0
 std::vector<std::string> imageOnlyOptions(const CLI::App& app, const Settings& settings) {
     std::vector<std::string> given;
     for (const char* name : {"--quality", "--mesh", "--mesh-height", "--simplify", "--max-error", "--reconstruct",
-                             "--width", "--height", "--variant", "--no-active-set"})
+                             "--width", "--height", "--variant", "--no-active-set", "--mask", "--frame"})
         if (app.count(name)) given.push_back(name);
     if (settings.depth == "half") given.push_back("--depth half");
     return given;
@@ -179,7 +235,9 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
         return "standard output is a terminal; redirect it to a file or a pipe";
     if (settings.output == kStandardStream && settings.format.empty() && !std::filesystem::path(settings.inputs.front()).has_extension())
         return "writing to standard output needs -f FORMAT (the input has no extension to follow)";
-    return validateMesh(app, settings);
+    if (std::string problem = validateMesh(app, settings); !problem.empty()) return problem;
+    if (std::string problem = validateMask(app, settings); !problem.empty()) return problem;
+    return validatePoints(app, settings);
 }
 
 // CLI11 messages are one line today; keep it that way whatever it says.
@@ -241,6 +299,20 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "mean-square distance, in 8-bit levels (1/255 of the range), from the merged vertices' colour "
                    "planes; with --simplify, whichever limit comes first")
         ->default_str("none");
+    app.add_option("--mask", settings.mask,
+                   "Reconstruct the input from some of its pixels: those where this image (the input's size) is not "
+                   "black are known, the rest are filled in (holes, dead pixels, sparse samples). The known pixels' "
+                   "Delaunay triangulation is optimized by the same flips and rendered linearly on each triangle, "
+                   "outside their hull with the nearest value. One input; the image in one piece; alpha keeps its "
+                   "meaning (transparency) and never marks unknown pixels")
+        ->default_str("none: every pixel is known");
+    std::string frame_text;
+    app.add_option("--frame", frame_text,
+                   "For point files (.csv x,y,values or .ply with vertex colours): the frame the points lie in, "
+                   "WIDTHxHEIGHT input pixels with pixel centres at 0 … WIDTH − 1 and 0 … HEIGHT − 1; the output "
+                   "is this frame magnified. Points are triangulated (Delaunay), optimized by the same flips and "
+                   "rendered linearly on each triangle, outside their hull with the nearest value")
+        ->default_str("the smallest frame from 0 that holds the points");
     app.add_option("--mesh-height", settings.mesh_height,
                    "With --mesh: z = luma × this, in output pixels (Rec. 709 weights on the stored values), a "
                    "2.5-D relief; 0 keeps the mesh flat")
@@ -342,6 +414,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
             settings.inputs.pop_back();
         }
     }
+    if (app.count("--frame"))
+        if (std::string problem = parseFrame(frame_text, settings); !problem.empty()) return usageError(problem);
     if (app.count("--scale"))
         if (std::string problem = parseScale(scale_text, settings); !problem.empty()) return usageError(problem);
     settings.image_only_options = imageOnlyOptions(app, settings);

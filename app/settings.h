@@ -30,6 +30,9 @@ struct Settings {
     double max_error = 0.0;    // --max-error: the largest collapse error, RMS in 8-bit levels; 0 = none
 
     bool simplifies() const { return simplify > 0.0 || max_error > 0.0; }
+    std::string mask;          // --mask: the image whose non-black pixels mark the input's known ones; "" = all known
+    // --frame WxH: the frame of point-file inputs (core/delaunay/point_mesh.h); 0 = the points' own
+    uint32_t frame_width = 0, frame_height = 0;
 
     double scale = 0.0;       // 0: not given
     // Volumes only (core/volume/): -s FX,FY,FZ, a factor per axis; all 0 when -s gave one factor.

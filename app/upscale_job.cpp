@@ -6,8 +6,12 @@
 #include <filesystem>
 #include <optional>
 
+#include "delaunay.h"
+#include "delaunay/sampled_upscale.h"
 #include "indexed_mesh.h"
 #include "mesh_file.h"
+#include "point_file.h"
+#include "delaunay/point_mesh.h"
 #include "simplified_upscale.h"
 #include "tiled_upscale.h"
 
@@ -45,12 +49,32 @@ OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_
     return scaledOutputSize(width, height, settings.scale);
 }
 
+// The Delaunay triangulation of the pixels `mask_path` marks as known in `image`.
+Mesh triangulateKnown(const std::string& mask_path, const Image& image) {
+    const Image mask = ImageReader(mask_path).read();
+    if (mask.width != image.width || mask.height != image.height)
+        throw UserError(mask_path + ": the mask is " + std::to_string(mask.width) + "×" + std::to_string(mask.height) +
+                        ", the input " + std::to_string(image.width) + "×" + std::to_string(image.height));
+    if (image.width > kMaxDelaunaySide || image.height > kMaxDelaunaySide)
+        throw UserError(mask_path + ": masks apply to images of at most " + std::to_string(kMaxDelaunaySide) +
+                        " pixels a side (the exact in-circle test's range)");
+    const std::vector<uint32_t> known = knownPixels(mask);
+    std::vector<Position> places(known.size());
+    for (size_t i = 0; i < known.size(); ++i) places[i] = gridPosition(known[i], image.width);
+    if (std::string problem = delaunayInputProblem(places); !problem.empty())
+        throw UserError(mask_path + ": the known pixels cannot be triangulated (" + problem + ")");
+    return delaunayOfPixels(image.width, image.height, known);
+}
+
 }  // namespace
 
 struct ImageJob::State {
     std::optional<ImageReader> reader;  // from open() to decode()
+    std::optional<PointSamples> points;  // a point file's, from open() to decode()
+    Frame frame;                         // a point file's
     uint32_t channels = 0;
-    Image image;
+    Image image;                  // the input; for a point file, its vertex values (point_mesh.h)
+    std::optional<Mesh> samples;  // --mask or a point file: the known samples' triangulation
     std::optional<ImageWriter> writer;
     std::optional<BandStream> bands;  // from process() to write()
     std::chrono::steady_clock::time_point rendered;  // when process() sent the last band
@@ -76,8 +100,7 @@ WriteOptions ImageJob::writeOptions() const {
 void ImageJob::open() {
     reporter_.stage(index_, task_.input, Stage::Read);
     const auto start = std::chrono::steady_clock::now();
-    state_->reader.emplace(task_.input);
-    const Image& header = state_->reader->header();
+    const Image header = isPointFilePath(task_.input) ? openPoints() : state_->reader.emplace(task_.input).header();
     state_->channels = header.channels;
     checkMagnifiable(task_.input, header);
     report_.out = requestedOutputSize(settings_, header.width, header.height);
@@ -108,7 +131,29 @@ void ImageJob::open() {
     report_.times.init_s = secondsSince(start);
 }
 
+// Reads the point file and returns the header of an image of its frame.
+Image ImageJob::openPoints() {
+    PointSamples& points = state_->points.emplace(readPointFile(task_.input));
+    state_->frame = settings_.frame_width ? Frame{settings_.frame_width, settings_.frame_height} : frameOfPoints(points);
+    if (state_->frame.width > kMaxDelaunaySide || state_->frame.height > kMaxDelaunaySide)
+        throw UserError(inputName(task_.input) + ": the points span a frame of " + std::to_string(state_->frame.width) +
+                        "×" + std::to_string(state_->frame.height) + " pixels; at most " +
+                        std::to_string(kMaxDelaunaySide) + " a side (the exact in-circle test's range)");
+    Image header;
+    header.width = state_->frame.width;
+    header.height = state_->frame.height;
+    header.channels = points.channels;
+    header.sample_type = points.sample_type;
+    return header;
+}
+
 uint64_t ImageJob::hostMemory() const {
+    if (state_->points) {
+        // The values image, twice (the file's and the merged copy), and the mesh: about 3
+        // edges a point of 32 bytes each, with the triangulation's scratch as much again.
+        const uint64_t n = state_->points->size();
+        return n * (2 * sizeof(float) * state_->channels + 2 * 3 * 32);
+    }
     const Image& header = state_->reader->header();
     const uint64_t input_floats = uint64_t(header.width) * header.height * header.channels;
     // The image and a tile's crop of it at most as large; the output's bands have a budget
@@ -118,9 +163,22 @@ uint64_t ImageJob::hostMemory() const {
 
 void ImageJob::decode() {
     const auto start = std::chrono::steady_clock::now();
+    if (state_->points) {
+        try {
+            SampledPoints sampled = triangulatePoints(*state_->points, state_->frame);
+            state_->samples = std::move(sampled.mesh);
+            state_->image = std::move(sampled.values);
+        } catch (const UserError& error) {
+            throw UserError(inputName(task_.input) + ": " + error.what());
+        }
+        state_->points.reset();
+        report_.times.init_s += secondsSince(start);
+        return;
+    }
     state_->image = state_->reader->read();
     for (const std::string& note : state_->reader->notes()) reporter_.notice(task_.input, note);
     state_->reader.reset();
+    if (!settings_.mask.empty()) state_->samples = triangulateKnown(settings_.mask, state_->image);
     report_.times.init_s += secondsSince(start);
 }
 
@@ -175,7 +233,10 @@ void ImageJob::render(Backend& backend) {
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
         options.mesh = mesh ? &*mesh : nullptr;
-        if (settings_.simplifies()) {
+        if (state_->samples) {
+            report_.stats = upscaleFromSamples(backend, state_->image, std::move(*state_->samples), out, sink, on_step);
+            state_->samples.reset();
+        } else if (settings_.simplifies()) {
             SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify,
                                                              settings_.max_error, options, sink, on_step);
             report_.stats = simplified.optimize;

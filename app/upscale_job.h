@@ -69,6 +69,7 @@ private:
     WriteOptions writeOptions() const;
     void render(Backend& backend);
     // Writes the task's mesh file from the stitched triangles of the optimised mesh.
+    Image openPoints();
     void writeMesh(std::vector<uint32_t> triangles, std::vector<Position> positions);
 
     struct State;

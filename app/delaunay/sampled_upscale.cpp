@@ -1,0 +1,43 @@
+#include "sampled_upscale.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "sampled_render.h"
+#include "user_error.h"
+
+namespace ddt {
+
+std::vector<uint32_t> knownPixels(const Image& mask) {
+    // Alpha is left out: the colour is premultiplied, so a transparent pixel reads as black.
+    const uint32_t colours = mask.hasAlpha() ? mask.channels - 1 : mask.channels;
+    std::vector<uint32_t> known;
+    for (size_t v = 0; v < size_t(mask.width) * mask.height; ++v) {
+        const float* pixel = mask.pixels.data() + v * mask.channels;
+        if (std::any_of(pixel, pixel + colours, [](float value) { return value != 0.0f; })) known.push_back(uint32_t(v));
+    }
+    return known;
+}
+
+OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh initial, OutputSize out,
+                                 const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step) {
+    if (automaticTileSide(backend, image.width, image.height, image.channels, 0, false) != 0)
+        throw UserError("a mask needs the image in one piece, and " + std::to_string(image.width) + "×" +
+                        std::to_string(image.height) + " is larger than the backend's memory holds at once");
+    if (on_step) on_step({0, 1, TilePhase::Optimize});
+    backend.prepareFrom(image, std::move(initial));
+    const OptimizeStats stats = backend.optimize();
+    const Mesh mesh = backend.mesh();
+    if (on_step) on_step({0, 1, TilePhase::Render});
+    Image rendered = renderSampledMesh(mesh, image, out);
+    const size_t row_floats = size_t(out.width) * image.channels;
+    const uint32_t band_rows = uint32_t(std::max<size_t>(1, (size_t(2) << 20) / row_floats));  // 8 MiB bands, as tiles have
+    for (uint32_t y = 0; y < out.height; y += band_rows) {
+        OutputRows band(y, std::min(out.height, y + band_rows), row_floats);
+        std::memcpy(band.floats.get(), rendered.row(y), band.rows() * row_floats * sizeof(float));
+        sink(std::move(band));
+    }
+    return stats;
+}
+
+}  // namespace ddt

@@ -1,0 +1,29 @@
+// `--mask`: magnifying an image from some of its pixels. The known pixels are triangulated
+// (core/delaunay/: the exact Delaunay triangulation, with the symbolic tie-break that makes a
+// full mask today's grid), the backend optimizes that mesh with the same flips as the grid's,
+// and the host renders it (core/delaunay/sampled_render.h): the plain DDT surface inside the
+// known pixels' hull, the nearest rendered value outside it. The unknown pixels' values are
+// never read.
+//
+// The image is processed in one piece: a triangulation of samples does not split into tiles
+// that join. The consistent reconstruction does not apply (it corrects each pixel against its
+// own value, which an unknown pixel does not have).
+#pragma once
+
+#include <functional>
+
+#include "tiled_upscale.h"
+
+namespace ddt {
+
+// The known pixels of `mask` (the same size as the image): the ids y·width + x where any colour
+// channel is non-zero (a fully transparent mask pixel is unknown), ascending.
+std::vector<uint32_t> knownPixels(const Image& mask);
+
+// Optimizes `initial` (a triangulation of some of `image`'s pixels) on `backend` and sends the
+// output of size `out` to `sink` in bands. Throws UserError when the image is too large for the
+// backend in one piece.
+OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh initial, OutputSize out,
+                                 const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step = {});
+
+}  // namespace ddt

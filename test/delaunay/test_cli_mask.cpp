@@ -1,0 +1,142 @@
+// `ddtup IN --mask MASK OUT` through the real executable: reconstruction from the known pixels
+// on both backends, the full mask as today's grid, and the refusals.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "image_file.h"
+#include "run_ddtup.h"
+#include "temp_folder.h"
+#include "test_support.h"
+
+namespace {
+
+using namespace ddt;
+
+// f(x, y) = 0.1 + 0.02 x + 0.03 y on a 20 × 15 image: values in [0.1, 0.9].
+double ramp(double x, double y) { return 0.1 + 0.02 * x + 0.03 * y; }
+
+Image rampImage(uint32_t width, uint32_t height) {
+    std::vector<float> pixels;
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) pixels.push_back(float(ramp(x, y)));
+    Image image = test::makeImage(width, height, 1, pixels);
+    image.sample_type = SampleType::Float;
+    return image;
+}
+
+// White where `known(x, y)`, black elsewhere.
+template <typename Known>
+Image maskImage(uint32_t width, uint32_t height, Known known) {
+    std::vector<float> pixels;
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) pixels.push_back(known(x, y) ? 1.0f : 0.0f);
+    return test::makeImage(width, height, 1, pixels);
+}
+
+}  // namespace
+
+TEST_CASE("cli mask: a linear field comes back from a fifth of its pixels on both backends", "[delaunay]") {
+    TempFolder work;
+    const uint32_t w = 20, h = 15;
+    const std::string input = work / "ramp.tif", mask = work / "mask.png";
+    writeImage(input, rampImage(w, h));
+    std::mt19937 rng(3);
+    std::bernoulli_distribution known(0.2);
+    // The corners are known, so the hull is the whole rectangle; the rest at random.
+    writeImage(mask, maskImage(w, h, [&](uint32_t x, uint32_t y) {
+                   return ((x == 0 || x == w - 1) && (y == 0 || y == h - 1)) || known(rng);
+               }));
+    for (const std::string backend : {"cpu", "vulkan"}) {
+        INFO(backend);
+        const std::string output = work / (backend + ".tif");
+        const Run run = runDdtup({input, "--mask", mask, "-s", "2", output, "--backend", backend, "-q"});
+        REQUIRE(run.exit_code == 0);
+        CHECK(run.err.empty());
+        const Image out = readImage(output);
+        REQUIRE(out.width == 2 * w);
+        REQUIRE(out.height == 2 * h);
+        // A plane costs nothing anywhere, so any triangulation renders it: output pixel X samples
+        // input x = (X + 0.5) / 2 − 0.5, clamped into the image (core/render.h). The tolerance is
+        // float interpolation of values below 1 (barycentric weights in float).
+        double worst = 0.0;
+        for (uint32_t y = 0; y < out.height; ++y)
+            for (uint32_t x = 0; x < out.width; ++x) {
+                const double sx = std::clamp((x + 0.5) / 2 - 0.5, 0.0, double(w - 1));
+                const double sy = std::clamp((y + 0.5) / 2 - 0.5, 0.0, double(h - 1));
+                worst = std::max(worst, std::abs(out.pixels[size_t(y) * out.width + x] - ramp(sx, sy)));
+            }
+        CHECK(worst < 1e-5);
+    }
+}
+
+TEST_CASE("cli mask: with every pixel known the output is the grid's, bit for bit", "[delaunay]") {
+    TempFolder work;
+    const std::string input = test::testDataPath("crop32_astronaut.png"), mask = work / "all.png";
+    writeImage(mask, maskImage(32, 32, [](uint32_t, uint32_t) { return true; }));
+    const Run plain = runDdtup({input, "-s", "3", work / "plain.png", "--reconstruct", "plain", "--backend", "cpu", "-q"});
+    const Run masked = runDdtup({input, "--mask", mask, "-s", "3", work / "masked.png", "--backend", "cpu", "-q"});
+    REQUIRE(plain.exit_code == 0);
+    REQUIRE(masked.exit_code == 0);
+    CHECK(readImage(work / "plain.png").pixels == readImage(work / "masked.png").pixels);
+}
+
+TEST_CASE("cli mask: holes are filled from around them, the known pixels kept", "[delaunay]") {
+    TempFolder work;
+    const std::string input = test::testDataPath("crop32_astronaut.png"), mask = work / "holes.png";
+    // Two round holes and a dead column; the rest known.
+    auto known = [](uint32_t x, uint32_t y) {
+        const auto outside = [&](int cx, int cy, int r) { return (int(x) - cx) * (int(x) - cx) + (int(y) - cy) * (int(y) - cy) > r * r; };
+        return outside(10, 10, 4) && outside(22, 20, 5) && x != 27;
+    };
+    writeImage(mask, maskImage(32, 32, known));
+    for (const std::string backend : {"cpu", "vulkan"}) {
+        INFO(backend);
+        const Run run = runDdtup({input, "--mask", mask, "-s", "1", work / (backend + ".png"), "--backend", backend, "-q"});
+        REQUIRE(run.exit_code == 0);
+        const Image original = readImage(input), out = readImage(work / (backend + ".png"));
+        REQUIRE(out.pixels.size() == original.pixels.size());
+        // At ×1 each output pixel samples its own pixel centre, a vertex where the pixel is known.
+        size_t known_count = 0;
+        for (uint32_t y = 0; y < 32; ++y)
+            for (uint32_t x = 0; x < 32; ++x) {
+                if (!known(x, y)) continue;
+                ++known_count;
+                for (uint32_t k = 0; k < original.channels; ++k) {
+                    const size_t i = (size_t(y) * 32 + x) * original.channels + k;
+                    REQUIRE(out.pixels[i] == original.pixels[i]);
+                }
+            }
+        CHECK(known_count > 800);
+    }
+}
+
+TEST_CASE("cli mask: bad masks and combinations are refused in one line", "[delaunay]") {
+    TempFolder work;
+    const std::string input = test::testDataPath("crop32_astronaut.png");
+    const std::string small = work / "small.png", sparse = work / "sparse.png", line = work / "line.png";
+    writeImage(small, maskImage(16, 32, [](uint32_t, uint32_t) { return true; }));
+    writeImage(sparse, maskImage(32, 32, [](uint32_t x, uint32_t y) { return x == 3 && (y == 4 || y == 9); }));
+    writeImage(line, maskImage(32, 32, [](uint32_t x, uint32_t y) { return x == y; }));
+    const std::string out = work / "out.png";
+    requireOneLineError(runDdtup({input, "--mask", small, out}), 1, small, "the mask is 16×32, the input 32×32");
+    requireOneLineError(runDdtup({input, "--mask", sparse, out}), 1, sparse, "fewer than 3 points");
+    requireOneLineError(runDdtup({input, "--mask", line, out}), 1, line, "collinear");
+    requireOneLineError(runDdtup({input, "--mask", work / "none.png", out}), 1, "none.png", "");
+    CHECK_FALSE(std::filesystem::exists(out));
+
+    const std::string mask = work / "mask.png";
+    writeImage(mask, maskImage(32, 32, [](uint32_t x, uint32_t) { return x % 2 == 0; }));
+    requireOneLineError(runDdtup({input, input, "--mask", mask, "-o", work / "dir"}), 2, "--mask", "one input");
+    requireOneLineError(runDdtup({input, "--mask", mask, out, "--simplify", "0.5"}), 2, "--mask", "simplification");
+    requireOneLineError(runDdtup({input, "--mask", mask, out, "--mesh", work / "m.ply"}), 2, "--mask", "--mesh");
+    requireOneLineError(runDdtup({input, "--mask", mask, out, "--tile", "64"}), 2, "--mask", "--tile");
+    requireOneLineError(runDdtup({input, "--mask", mask, out, "--reconstruct", "consistent"}), 2, "--mask", "consistent");
+    const std::string before = readFile(mask);
+    requireOneLineError(runDdtup({input, "--mask", mask, mask}), 2, "--mask", "overwrite");
+    CHECK(readFile(mask) == before);
+    CHECK_FALSE(std::filesystem::exists(out));
+}
