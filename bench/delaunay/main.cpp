@@ -318,7 +318,16 @@ int run(const Settings& s) {
     if (!delaunay.empty()) printDelaunayTable(delaunay, delaunay_load);
     if (!runs.empty()) printReconstructionTable(runs, reconstruction_load);
     if (!s.json.empty()) writeJson(s.json, delaunay, runs, s);
-    return 0;
+    // A check that failed fails the run, so that CI's quick run (bench/CMakeLists.txt) tests them.
+    int status = 0;
+    for (const bench::TriangulationRow& row : delaunay)
+        if (row.comparison != "equal" && row.comparison != "both valid") {
+            std::fprintf(stderr, "ddtup-bench-delaunay: %s, %llu points: %s (ddtup: %s; CGAL valid: %s)\n",
+                         row.set.c_str(), static_cast<unsigned long long>(row.points), row.comparison.c_str(),
+                         row.ddtup_check.empty() ? "pass" : row.ddtup_check.c_str(), row.cgal_valid ? "yes" : "no");
+            status = 1;
+        }
+    return status;
 }
 
 }  // namespace
