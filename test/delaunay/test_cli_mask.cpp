@@ -8,6 +8,7 @@
 #include <random>
 
 #include "image_file.h"
+#include "plane_check.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "test_support.h"
@@ -59,17 +60,9 @@ TEST_CASE("cli mask: a linear field comes back from a fifth of its pixels on bot
         const Image out = readImage(output);
         REQUIRE(out.width == 2 * w);
         REQUIRE(out.height == 2 * h);
-        // A plane costs nothing anywhere, so any triangulation renders it: output pixel X samples
-        // input x = (X + 0.5) / 2 − 0.5, clamped into the image (core/render.h). The tolerance is
+        // A plane costs nothing anywhere, so any triangulation renders it. The tolerance is
         // float interpolation of values below 1 (barycentric weights in float).
-        double worst = 0.0;
-        for (uint32_t y = 0; y < out.height; ++y)
-            for (uint32_t x = 0; x < out.width; ++x) {
-                const double sx = std::clamp((x + 0.5) / 2 - 0.5, 0.0, double(w - 1));
-                const double sy = std::clamp((y + 0.5) / 2 - 0.5, 0.0, double(h - 1));
-                worst = std::max(worst, std::abs(out.pixels[size_t(y) * out.width + x] - ramp(sx, sy)));
-            }
-        CHECK(worst < 1e-5);
+        CHECK(test::worstPlaneError(out, w, h, ramp) < 1e-5);
     }
 }
 

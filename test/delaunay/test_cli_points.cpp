@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "image_file.h"
+#include "plane_check.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "test_support.h"
@@ -53,14 +54,7 @@ TEST_CASE("cli points: a plane comes back from scattered points on both backends
         // (core/render.h), up to 1/2048 pixel off on each axis: at most (0.02 + 0.03) / 2048
         // = 2.4e-5 of the plane; 3e-5 leaves room for the float printing of the CSV's values
         // (6 significant digits, 5e-7 here) and float interpolation.
-        double worst = 0.0;
-        for (uint32_t y = 0; y < out.height; ++y)
-            for (uint32_t x = 0; x < out.width; ++x) {
-                const double sx = std::clamp((x + 0.5) / 2 - 0.5, 0.0, double(w - 1));
-                const double sy = std::clamp((y + 0.5) / 2 - 0.5, 0.0, double(h - 1));
-                worst = std::max(worst, std::abs(out.pixels[size_t(y) * out.width + x] - ramp(sx, sy)));
-            }
-        CHECK(worst < 3e-5);
+        CHECK(test::worstPlaneError(out, w, h, ramp) < 3e-5);
     }
 }
 

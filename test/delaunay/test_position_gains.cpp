@@ -15,6 +15,7 @@
 #include "flip_gains.h"
 #include "lawson.h"
 #include "mesh.h"
+#include "stepwise_check.h"
 #include "test_support.h"
 #include "vulkan_backend.h"
 
@@ -23,12 +24,6 @@ namespace {
 using namespace ddt;
 
 const CostFunction kCosts[] = {CostFunction::sederberg, CostFunction::variance, CostFunction::face_scf};
-
-// Gains are the same fp64 formula on both sides (glsl/sederberg.h); a device may round a
-// division or square root differently in the last bit, far below 1e-12 on gains below ~40
-// (the jittered grid's triangles have heights above ~0.1 px, so its SCF stays below ~200 and
-// its gains' terms below ~1e3 · 1e-16).
-const double kGainTolerance = 1e-12;
 
 // The width × height grid's mesh with explicit positions: interior vertices moved off their
 // pixel centres by up to ±`jitter` (in 1/kPositionOne px) along each axis, the border's kept,
@@ -61,11 +56,6 @@ Image asRow(const Image& image) {
     return row;
 }
 
-double largestGain(const Mesh& mesh, const CostField& field, CostFunction cost) {
-    double largest = -1.0;
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) largest = std::max(largest, flipGainOf(mesh, field, e, cost));
-    return largest;
-}
 
 // Written here from the definitions, independently of glsl/: a triangle of points (x, y, z).
 struct Point {
@@ -126,48 +116,6 @@ double costOf(const std::vector<Tri>& mesh, CostFunction cost) {
         }
     }
     return total;
-}
-
-// Checks the Vulkan rule against core's gains and flips at every iteration (as
-// test/delaunay/test_sampled_mesh.cpp does on meshes of known pixels).
-void checkStepwise(const Image& values, const Mesh& initial, CostFunction cost) {
-    const CostField field = costFieldOf(values);
-    VulkanOptions options;
-    options.validation = true;
-    options.cost = cost;
-    VulkanBackend backend(options);
-    backend.prepareFrom(values, initial);
-    // The costs before any flip, edge by edge.
-    const std::vector<double> device_costs = backend.deviceEdgeCosts();
-    REQUIRE(device_costs.size() == initial.edgeCount());
-    for (uint32_t e = 0; e < initial.edgeCount(); ++e)
-        CHECK(std::abs(device_costs[e] - edgeCost(initial, field, e, cost)) <= kGainTolerance);
-    Mesh expected_next = initial;
-    uint32_t iterations = 0, flips = 0;
-    backend.optimizeStepwise([&](const IterationSnapshot& snapshot) {
-        ++iterations;
-        // The device's mesh comes back with its positions.
-        CHECK(test::sameRecords(snapshot.mesh, expected_next));
-        // Each accepted gain, recomputed by core just before its own flip, is the device's.
-        Mesh mesh = snapshot.mesh;
-        for (uint32_t e : snapshot.accepted) {
-            const size_t i = std::lower_bound(snapshot.candidates.begin(), snapshot.candidates.end(), e) -
-                             snapshot.candidates.begin();
-            REQUIRE(i < snapshot.candidates.size());
-            CHECK(std::abs(flipGainOf(mesh, field, e, cost) - snapshot.candidate_gains[i]) <= kGainTolerance);
-            flipEdge(mesh, e);
-            ++flips;
-        }
-        CHECK(checkMesh(mesh, MeshHull::convex) == "");
-        expected_next = std::move(mesh);
-    });
-    CHECK(iterations > 1);
-    CHECK(flips > 0);
-    const Mesh final_mesh = backend.mesh();
-    CHECK(test::sameRecords(final_mesh, expected_next));
-    CHECK(largestGain(final_mesh, field, cost) <= kFlipGainThreshold + kGainTolerance);
-    CHECK(std::abs(backend.deviceMeshCost() - meshCost(final_mesh, field, cost)) <= 1e-9);
-    CHECK(backend.validationMessages() == 0);
 }
 
 }  // namespace
@@ -335,7 +283,7 @@ TEST_CASE("positions: the serial optimizer on a jittered grid keeps a valid mesh
         CHECK(stats.cost_final < stats.cost_init);
         CHECK(stats.cost_init == meshCost(initial, field, cost));
         CHECK(stats.cost_final == meshCost(mesh, field, cost));
-        CHECK(largestGain(mesh, field, cost) <= kFlipGainThreshold);
+        CHECK(test::largestGain(mesh, field, cost) <= kFlipGainThreshold);
         // The positions matter: the grid's places give other flips.
         Mesh on_grid = initial;
         on_grid.positions.clear();
@@ -353,7 +301,7 @@ TEST_CASE("positions: Vulkan's flips on a jittered grid equal core's, step by st
     const Image values = asRow(test::randomImage(rng, w, h, 3));
     for (CostFunction cost : kCosts) {
         INFO(costFunctionName(cost));
-        checkStepwise(values, mesh, cost);
+        test::checkVulkanStepwise(values, mesh, cost);
     }
 }
 

@@ -10,16 +10,13 @@
 #include "lawson.h"
 #include "mesh.h"
 #include "sampled_render.h"
+#include "stepwise_check.h"
 #include "test_support.h"
 #include "vulkan_backend.h"
 
 namespace {
 
 using namespace ddt;
-
-// Gains are the same fp64 formula on both sides (glsl/sederberg.h); a device may round a
-// division or square root differently in the last bit, far below 1e-12 on gains below ~40.
-const double kGainTolerance = 1e-12;
 
 // About `share` of a width × height image's pixels, at random.
 std::vector<uint32_t> randomPixels(uint32_t width, uint32_t height, double share, uint32_t seed) {
@@ -29,12 +26,6 @@ std::vector<uint32_t> randomPixels(uint32_t width, uint32_t height, double share
     for (uint32_t v = 0; v < width * height; ++v)
         if (known(rng)) ids.push_back(v);
     return ids;
-}
-
-double largestGain(const Mesh& mesh, const CostField& field, CostFunction cost) {
-    double largest = -1.0;
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) largest = std::max(largest, flipGainOf(mesh, field, e, cost));
-    return largest;
 }
 
 }  // namespace
@@ -74,42 +65,16 @@ TEST_CASE("sampled mesh: the serial optimizer keeps the hull and reaches a local
         CHECK(checkMesh(mesh, MeshHull::convex) == "");
         CHECK(stats.flips > 0);
         CHECK(stats.cost_final < stats.cost_init);
-        CHECK(largestGain(mesh, field, cost) <= kFlipGainThreshold);
+        CHECK(test::largestGain(mesh, field, cost) <= kFlipGainThreshold);
     }
 }
 
 TEST_CASE("sampled mesh: Vulkan's flips on a mesh of known pixels equal core's, step by step", "[delaunay]") {
     std::mt19937 rng(6);
     const Image image = test::randomImage(rng, 26, 19, 3);
-    const CostField field = costFieldOf(image);
     for (CostFunction cost : {CostFunction::sederberg, CostFunction::variance, CostFunction::face_scf}) {
-        VulkanOptions options;
-        options.validation = true;
-        options.cost = cost;
-        VulkanBackend backend(options);
-        backend.prepareFrom(image, delaunayOfPixels(26, 19, randomPixels(26, 19, 0.25, 3)));
-        Mesh expected_next;
-        uint32_t iterations = 0;
-        backend.optimizeStepwise([&](const IterationSnapshot& snapshot) {
-            ++iterations;
-            if (snapshot.iteration > 0) CHECK(test::sameRecords(snapshot.mesh, expected_next));
-            // Each accepted gain, recomputed by core just before its own flip, is the device's.
-            Mesh mesh = snapshot.mesh;
-            for (uint32_t e : snapshot.accepted) {
-                const size_t i = std::lower_bound(snapshot.candidates.begin(), snapshot.candidates.end(), e) -
-                                 snapshot.candidates.begin();
-                REQUIRE(i < snapshot.candidates.size());
-                CHECK(std::abs(flipGainOf(mesh, field, e, cost) - snapshot.candidate_gains[i]) <= kGainTolerance);
-                flipEdge(mesh, e);
-            }
-            CHECK(checkMesh(mesh, MeshHull::convex) == "");
-            expected_next = std::move(mesh);
-        });
-        CHECK(iterations > 1);
-        const Mesh final_mesh = backend.mesh();
-        CHECK(test::sameRecords(final_mesh, expected_next));
-        CHECK(largestGain(final_mesh, field, cost) <= kFlipGainThreshold + kGainTolerance);
-        CHECK(backend.validationMessages() == 0);
+        INFO(costFunctionName(cost));
+        test::checkVulkanStepwise(image, delaunayOfPixels(26, 19, randomPixels(26, 19, 0.25, 3)), cost);
     }
 }
 
