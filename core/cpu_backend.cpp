@@ -41,18 +41,16 @@ class CpuBackend final : public Backend {
 public:
     explicit CpuBackend(const LawsonOptions& options) : options_(options) {}
 
-    void prepare(const Image& image) override {
+    void prepare(const Image& image) override { prepareFrom(image, buildGridMesh(image.width, image.height)); }
+
+    // `image` is a point mesh's n × 1 values image, not a grid, where `initial` has positions.
+    void prepareFrom(const Image& image, Mesh initial) override {
         image_ = &image;
         renderer_.reset();
         surface_.reset();
         field_ = costFieldOf(image);
-        mesh_ = buildGridMesh(image.width, image.height);
-        mesh_released_ = false;
-    }
-
-    void prepareFrom(const Image& image, Mesh initial) override {
-        prepare(image);
         mesh_ = std::move(initial);
+        mesh_released_ = false;
     }
 
     OptimizeStats optimize() override {

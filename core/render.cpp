@@ -91,7 +91,8 @@ MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const std:
       positions_(std::move(tables.positions_)),
       triangles_(std::move(tables.triangles_)), first_in_row_(std::move(tables.first_in_row_)),
       tallest_(tables.tallest_) {
-    assert(image.pixels.size() == tables.image_.pixels.size() && image.channels == tables.image_.channels);
+    // Not against tables.image_: a surface taken over is often the one `tables` read, moved.
+    assert(image.pixels.size() >= (positions_.empty() ? size_t(width_) * height_ : positions_.size()) * image.channels);
 }
 
 void MeshRenderer::renderRows(OutputSize out, uint32_t y_begin, uint32_t y_end, float* rows) const {

@@ -48,6 +48,7 @@ void Payload::putString(const std::string& text) {
 
 void Payload::putArray(const std::vector<uint64_t>& values) {
     put<uint64_t>(values.size());
+    if (values.empty()) return;  // data() may be null, and null + 0 is not for insert's range
     const char* p = reinterpret_cast<const char*>(values.data());
     bytes_.insert(bytes_.end(), p, p + values.size() * sizeof(uint64_t));
 }
@@ -67,7 +68,9 @@ std::string Payload::getString() {
 std::vector<uint64_t> Payload::getArray() {
     const uint64_t n = get<uint64_t>();
     std::vector<uint64_t> values(n);
-    std::memcpy(values.data(), take(n * sizeof(uint64_t)), n * sizeof(uint64_t));
+    const char* p = take(n * sizeof(uint64_t));
+    // An empty vector's data() may be null, which memcpy must not get even for zero bytes.
+    if (n > 0) std::memcpy(values.data(), p, n * sizeof(uint64_t));
     return values;
 }
 

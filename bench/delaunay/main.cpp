@@ -1,7 +1,8 @@
 // ddtup-bench-delaunay: the bench of scattered samples (bench/README.md), two tables.
-//  1. Delaunay: ddtup's serial triangulation of points (core/delaunay/) against CGAL's
-//     Delaunay_triangulation_2 — time, peak memory, checks — on uniform, clustered, grid and
-//     circle point sets of 10^4 points up to --max-points.
+//  1. Delaunay: ddtup's serial triangulation of points (core/delaunay/) and, with --vulkan, its
+//     device triangulation (compute/delaunay/) against CGAL's Delaunay_triangulation_2 — time,
+//     peak memory, checks — on uniform, clustered, grid and circle point sets of 10^4 points
+//     up to --max-points.
 //  2. Reconstruction: each bundled image rebuilt from some of its pixels (random 5, 10, 20 %,
 //     or all but random discs) by linear interpolation on the Delaunay mesh, by DDT on it, by
 //     CGAL's natural neighbours and, for the discs, by G'MIC's inpainting; PSNR against the
@@ -80,7 +81,7 @@ std::vector<bench::TriangulationRow> runDelaunayTable(const Settings& s) {
         // A single run where one already takes seconds: the median of 3 adds little there.
         const uint32_t repeats = set.points.size() >= 5'000'000 ? 1 : s.repeats;
         std::fprintf(stderr, "delaunay: %s, %zu points …\n", set.name.c_str(), set.points.size());
-        rows.push_back(bench::measureTriangulations(set, repeats, s.timeout_s));
+        rows.push_back(bench::measureTriangulations(set, repeats, s.timeout_s, s.vulkan));
     };
     auto wanted = [&](const char* name) { return std::find(s.sets.begin(), s.sets.end(), name) != s.sets.end(); };
     const std::pair<const char*, bench::PointSetKind> kinds[] = {{"uniform", bench::PointSetKind::uniform},
@@ -96,6 +97,15 @@ std::vector<bench::TriangulationRow> runDelaunayTable(const Settings& s) {
 
 std::string cell(const std::string& failure, const std::string& value) { return failure.empty() ? value : failure; }
 
+// The Vulkan columns of a row: wall s, its ratio to CGAL's wall time, peak MiB, edges vs serial.
+std::string vulkanCells(const bench::TriangulationRow& r) {
+    if (!r.vulkan_measured) return "— | — | — | —";
+    if (!r.vulkan_failure.empty()) return r.vulkan_failure + " | — | — | —";
+    const std::string ratio = r.cgal_failure.empty() ? fixed(r.vulkan_wall_s / r.cgal_wall_s, 2) : "—";
+    return fixed(r.vulkan_wall_s, 4) + " (" + std::to_string(r.vulkan_rounds) + " rounds) | " + ratio + " | " +
+           mib(r.vulkan_bytes) + " | " + r.vulkan_comparison;
+}
+
 // The load average, for the notes: on a shared machine the wall-clock times grow with it.
 std::string loadAverage() {
     double load[3] = {0, 0, 0};
@@ -106,15 +116,16 @@ std::string loadAverage() {
 void printDelaunayTable(const std::vector<bench::TriangulationRow>& rows, const std::string& load) {
     std::printf("\n### Delaunay triangulation: ddtup (serial) against CGAL\n\n");
     std::printf("| set | points | ddtup CPU s | CGAL CPU s | CPU ddtup/CGAL | ddtup wall s | CGAL wall s | ddtup peak MiB "
-                "| CGAL peak MiB | memory ddtup/CGAL | triangles | ddtup checks | CGAL is_valid | edges vs CGAL | Vulkan |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|\n");
+                "| CGAL peak MiB | memory ddtup/CGAL | triangles | ddtup checks | CGAL is_valid | edges vs CGAL "
+                "| Vulkan wall s | wall Vulkan/CGAL | Vulkan peak MiB | Vulkan edges vs serial |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---:|---:|---:|---|\n");
     for (const auto& r : rows) {
         const bool both = r.ddtup_failure.empty() && r.cgal_failure.empty();
         const std::string triangles = !r.ddtup_failure.empty() ? std::to_string(r.cgal_triangles)
                                       : (r.cgal_failure.empty() && r.ddtup_triangles != r.cgal_triangles)
                                           ? std::to_string(r.ddtup_triangles) + " vs " + std::to_string(r.cgal_triangles)
                                           : std::to_string(r.ddtup_triangles);
-        std::printf("| %s | %llu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | — |\n", r.set.c_str(),
+        std::printf("| %s | %llu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.set.c_str(),
                     (unsigned long long)r.points, cell(r.ddtup_failure, fixed(r.ddtup_s, 4)).c_str(),
                     cell(r.cgal_failure, fixed(r.cgal_s, 4)).c_str(), both ? fixed(r.ddtup_s / r.cgal_s, 2).c_str() : "—",
                     cell(r.ddtup_failure, fixed(r.ddtup_wall_s, 4)).c_str(),
@@ -123,12 +134,15 @@ void printDelaunayTable(const std::vector<bench::TriangulationRow>& rows, const 
                     both && r.cgal_bytes ? fixed(double(r.ddtup_bytes) / double(r.cgal_bytes), 2).c_str() : "—",
                     triangles.c_str(),
                     r.ddtup_failure.empty() ? (r.ddtup_check.empty() ? "pass" : r.ddtup_check.c_str()) : "—",
-                    r.cgal_failure.empty() ? (r.cgal_valid ? "pass" : "FAIL") : "—", r.comparison.c_str());
+                    r.cgal_failure.empty() ? (r.cgal_valid ? "pass" : "FAIL") : "—", r.comparison.c_str(),
+                    vulkanCells(r).c_str());
     }
     std::printf("\nTimes: median of the repeats (one run from 5·10^6 points), CPU time of the process and wall clock "
                 "(load average %s); peak: the growth of the peak resident set over the first run, in a forked child "
                 "per library (input excluded). ddtup checks: checkDelaunay and checkMesh(convex hull). edges vs CGAL: "
-                "on the random sets, where the triangulation is unique. Vulkan: the GPU Delaunay is not written yet.\n",
+                "on the random sets, where the triangulation is unique. Vulkan (--vulkan): the device's Delaunay on the "
+                "first Vulkan device — a serial sweep, then parallel flips on the device — wall clock of the whole call, "
+                "its edges against the serial ones on every set (the same tie-break makes them equal).\n",
                 load.c_str());
 }
 
@@ -274,6 +288,12 @@ void writeJson(const std::string& path, const std::vector<bench::TriangulationRo
             .key("ddtup_check").value(r.ddtup_check)
             .key("cgal_valid").value(r.cgal_valid)
             .key("comparison").value(r.comparison)
+            .key("vulkan_measured").value(r.vulkan_measured)
+            .key("vulkan_failure").value(r.vulkan_failure)
+            .key("vulkan_wall_seconds").value(r.vulkan_wall_s)
+            .key("vulkan_peak_bytes").value(r.vulkan_bytes)
+            .key("vulkan_rounds").value(r.vulkan_rounds)
+            .key("vulkan_comparison").value(r.vulkan_comparison)
             .endObject();
     }
     json.endArray();
@@ -320,13 +340,20 @@ int run(const Settings& s) {
     if (!s.json.empty()) writeJson(s.json, delaunay, runs, s);
     // A check that failed fails the run, so that CI's quick run (bench/CMakeLists.txt) tests them.
     int status = 0;
-    for (const bench::TriangulationRow& row : delaunay)
+    for (const bench::TriangulationRow& row : delaunay) {
         if (row.comparison != "equal" && row.comparison != "both valid") {
             std::fprintf(stderr, "ddtup-bench-delaunay: %s, %llu points: %s (ddtup: %s; CGAL valid: %s)\n",
                          row.set.c_str(), static_cast<unsigned long long>(row.points), row.comparison.c_str(),
                          row.ddtup_check.empty() ? "pass" : row.ddtup_check.c_str(), row.cgal_valid ? "yes" : "no");
             status = 1;
         }
+        if (row.vulkan_measured && row.vulkan_comparison != "equal") {
+            std::fprintf(stderr, "ddtup-bench-delaunay: %s, %llu points: Vulkan %s\n", row.set.c_str(),
+                         static_cast<unsigned long long>(row.points),
+                         row.vulkan_failure.empty() ? row.vulkan_comparison.c_str() : row.vulkan_failure.c_str());
+            status = 1;
+        }
+    }
     return status;
 }
 
@@ -337,7 +364,7 @@ int main(int argc, char** argv) {
     Settings s;
     app.add_option("--max-points", s.max_points, "Largest point set of the Delaunay table (10^4, 10^5 … up to this)")
         ->capture_default_str()->check(CLI::Range(uint64_t(10'000), uint64_t(100'000'000)));
-    app.add_flag("--quick", s.quick, "10^4 and 10^5 points; two images cropped to 256²: CI's check that the bench runs");
+    app.add_flag("--quick", s.quick, "10^4 and 10^5 points, one run each; two images cropped to 256²: CI's check that the bench runs");
     app.add_option("--sets", s.sets, "Point sets of the Delaunay table")
         ->delimiter(',')->capture_default_str()->check(CLI::IsMember({"uniform", "gaussians", "grid", "circle", "exact-circle"}));
     app.add_option("--json", s.json, "Also write every measurement to this file");
@@ -353,12 +380,15 @@ int main(int argc, char** argv) {
     app.add_option("--seed", s.seed, "Seed of the point sets and sample patterns")->capture_default_str();
     app.add_option("--tables", s.tables, "all, delaunay or reconstruction")
         ->capture_default_str()->check(CLI::IsMember({"all", "delaunay", "reconstruction"}));
-    app.add_flag("--vulkan", s.vulkan, "Also DDT on the first Vulkan device (a row \"DDT, sederberg, Vulkan\")");
+    app.add_flag("--vulkan", s.vulkan,
+                 "Also the Delaunay triangulation and DDT on the first Vulkan device (the Vulkan columns; a row "
+                 "\"DDT, sederberg, Vulkan\")");
     CLI11_PARSE(app, argc, argv);
     if (s.quick) {
         s.max_points = std::min<uint64_t>(s.max_points, 100'000);
         if (s.images.empty()) s.images = {"astronaut", "monkey"};
         if (s.max_side == 0) s.max_side = 256;
+        s.repeats = 1;  // a check that the bench runs, not a measurement
     }
     if (!fs::is_directory(fs::path(s.data) / "real")) {
         std::fprintf(stderr, "ddtup-bench-delaunay: %s: no real/ folder of images\n", s.data.c_str());

@@ -1,10 +1,13 @@
 #include "triangulation_table.h"
 
 #include <algorithm>
+#include <memory>
 
 #include "cgal_peer.h"
 #include "child_run.h"
+#include "context.h"
 #include "delaunay.h"
+#include "delaunay/device_delaunay.h"
 
 namespace bench {
 
@@ -32,7 +35,7 @@ uint64_t differingEdges(const std::vector<uint64_t>& p, const std::vector<uint64
 
 }  // namespace
 
-TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, uint32_t timeout_s) {
+TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, uint32_t timeout_s, bool vulkan) {
     TriangulationRow row;
     row.set = set.name;
     row.points = set.points.size();
@@ -42,6 +45,8 @@ TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, ui
         return row;
     }
     const bool want_edges = set.unique_delaunay;
+    // The device's result equals the serial one on every set (the same symbolic tie-break).
+    const bool want_serial_edges = want_edges || vulkan;
 
     ChildResult ddtup = runInChild(
         [&](Payload& out) {
@@ -66,7 +71,7 @@ TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, ui
             out.put(span.peakBytes());
             out.put(triangles);
             out.putString(check);
-            out.putArray(want_edges ? sortedEdges(mesh) : std::vector<uint64_t>());
+            out.putArray(want_serial_edges ? sortedEdges(mesh) : std::vector<uint64_t>());
         },
         timeout_s);
     std::vector<uint64_t> ddtup_edges;
@@ -102,6 +107,43 @@ TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, ui
         row.cgal_triangles = cgal.payload.get<uint64_t>();
         row.cgal_valid = cgal.payload.get<bool>();
         cgal_edges = cgal.payload.getArray();
+    }
+
+    if (vulkan) {
+        row.vulkan_measured = true;
+        ChildResult device = runInChild(
+            [&](Payload& out) {
+                // The device, and a first run that compiles the kernels, outside the timed runs.
+                std::unique_ptr<ddt::VulkanContext> context = ddt::createContext({});
+                ddt::deviceDelaunayOfPoints(*context, 4, 4, {{0, 0}, {3 * ddt::kPositionOne, 1000}, {2000, 3 * ddt::kPositionOne}});
+                Span span;
+                ddt::Mesh mesh;
+                ddt::DeviceDelaunayStats stats;
+                for (uint32_t r = 0; r < repeats; ++r) {
+                    mesh = ddt::Mesh();
+                    span.begin();
+                    mesh = ddt::deviceDelaunayOfPoints(*context, set.width, set.height, set.points, &stats);
+                    span.end();
+                }
+                out.put(span.medianWallSeconds());
+                out.put(span.peakBytes());
+                out.put(stats.rounds);
+                out.putArray(sortedEdges(mesh));
+            },
+            timeout_s);
+        row.vulkan_failure = device.failure;
+        if (device.failure.empty()) {
+            row.vulkan_wall_s = device.payload.get<double>();
+            row.vulkan_bytes = device.payload.get<uint64_t>();
+            row.vulkan_rounds = device.payload.get<uint32_t>();
+            const std::vector<uint64_t> device_edges = device.payload.getArray();
+            if (!row.ddtup_failure.empty()) {
+                row.vulkan_comparison = "n/a";
+            } else {
+                const uint64_t differ = differingEdges(device_edges, ddtup_edges);
+                row.vulkan_comparison = differ == 0 ? "equal" : std::to_string(differ) + " edges differ";
+            }
+        }
     }
 
     if (!row.ddtup_failure.empty() || !row.cgal_failure.empty()) {

@@ -1,6 +1,8 @@
 // The Delaunay table's rows: ddtup's serial Delaunay (delaunayOfPoints) against CGAL's
 // Delaunay_triangulation_2 on one point set, each in its own forked child (child_run.h):
-// median time of `repeats` runs, peak memory of the first, and the checks.
+// median time of `repeats` runs, peak memory of the first, and the checks. With `vulkan`, also
+// the device's Delaunay (compute/delaunay/device_delaunay.h) on the first Vulkan device, in a
+// child of its own, compared with the serial result edge for edge on every set.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +26,18 @@ struct TriangulationRow {
     // Where the triangulation is unique: "equal" or "N edges differ"; on cocircular sets
     // "both valid" (both checks pass, same triangle count) or what failed.
     std::string comparison;
+    // The Vulkan Delaunay, when measured: "" or why not; median wall-clock time of the whole
+    // call (sweep, device rounds, numbering; the device and its kernels set up before); peak
+    // RSS growth (on lavapipe the device's memory is the process's); rounds; "equal" to the
+    // serial edges or "N edges differ".
+    bool vulkan_measured = false;
+    std::string vulkan_failure;
+    double vulkan_wall_s = 0.0;
+    uint64_t vulkan_bytes = 0;
+    uint32_t vulkan_rounds = 0;
+    std::string vulkan_comparison;
 };
 
-TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, uint32_t timeout_s);
+TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, uint32_t timeout_s, bool vulkan);
 
 }  // namespace bench
