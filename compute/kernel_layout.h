@@ -6,10 +6,12 @@
 
 #include <vulkan/vulkan.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "buffer.h"
+#include "commands.h"
 #include "context.h"
 
 namespace ddt {
@@ -29,6 +31,19 @@ public:
     void bind(const Buffer* buffers);
     // Binds `kernel`, the set and `push` (push_bytes of it) for the dispatches that follow.
     void bindKernel(VkCommandBuffer commands, VkPipeline kernel, const void* push) const;
+    // Records `kernel` with one invocation an edge for push.edge_count edges, in as many
+    // dispatches of kMaxGroups groups as that needs (push.first_edge: each one's first edge),
+    // each followed by the compute barrier.
+    template <typename Push>
+    void dispatchPerEdge(VkCommandBuffer commands, VkPipeline kernel, Push push) const {
+        const uint32_t per_dispatch = kMaxGroups * kGroupSize;
+        for (uint32_t first = 0; first < push.edge_count; first += per_dispatch) {
+            push.first_edge = first;
+            bindKernel(commands, kernel, &push);
+            vkCmdDispatch(commands, (std::min(per_dispatch, push.edge_count - first) + kGroupSize - 1) / kGroupSize, 1, 1);
+            computeBarrier(commands);
+        }
+    }
 
 private:
     void destroy();

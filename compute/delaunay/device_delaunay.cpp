@@ -1,6 +1,5 @@
 #include "device_delaunay.h"
 
-#include <algorithm>
 #include <cassert>
 #include <chrono>
 #include <stdexcept>
@@ -61,18 +60,6 @@ struct FlipBuffers {
     }
 };
 
-// Records `kernel` with one invocation an edge, in as many dispatches of kMaxGroups groups as
-// that needs, each followed by the compute barrier.
-void dispatchPerEdge(VkCommandBuffer commands, const KernelLayout& layout, VkPipeline kernel, DelaunayPush push) {
-    const uint32_t per_dispatch = kMaxGroups * kGroupSize;
-    for (uint32_t first = 0; first < push.edge_count; first += per_dispatch) {
-        push.first_edge = first;
-        layout.bindKernel(commands, kernel, &push);
-        vkCmdDispatch(commands, (std::min(per_dispatch, push.edge_count - first) + kGroupSize - 1) / kGroupSize, 1, 1);
-        computeBarrier(commands);
-    }
-}
-
 // Lawson's flips in parallel rounds on the device until every interior edge of `mesh` (positions
 // explicit) is locally Delaunay; the records are replaced by the result, numbered as before.
 void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& stats) {
@@ -101,7 +88,7 @@ void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& 
     computeBarrier(batch.buffer());
     for (uint32_t round = 0; round < kDelaunayRoundsPerBatch; ++round)
         for (VkPipeline kernel : {mark, select, flip})
-            dispatchPerEdge(batch.buffer(), layout, kernel, DelaunayPush{edges, 0, round, 0});
+            layout.dispatchPerEdge(batch.buffer(), kernel, DelaunayPush{edges, 0, round, 0});
     batch.finishRecording();
 
     // Flips never bring back an edge flipped away, so there are fewer than one per pair of points.

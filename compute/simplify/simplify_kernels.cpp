@@ -1,8 +1,5 @@
 #include "simplify_kernels.h"
 
-#include <algorithm>
-
-#include "commands.h"
 #include "kernels.h"
 #include "layout.h"
 #include "vulkan_error.h"
@@ -27,13 +24,7 @@ SimplifyKernels::SimplifyKernels(VulkanContext& context)
 void SimplifyKernels::bind(const Buffer (&buffers)[kSimplifyBindingCount]) { layout_.bind(buffers); }
 
 void SimplifyKernels::dispatchPerEdge(VkCommandBuffer commands, VkPipeline kernel, SimplifyPush push) const {
-    const uint32_t per_dispatch = kMaxGroups * kGroupSize;
-    for (uint32_t first = 0; first < push.edge_count; first += per_dispatch) {
-        push.first_edge = first;
-        layout_.bindKernel(commands, kernel, &push);
-        vkCmdDispatch(commands, (std::min(per_dispatch, push.edge_count - first) + kGroupSize - 1) / kGroupSize, 1, 1);
-        computeBarrier(commands);
-    }
+    layout_.dispatchPerEdge(commands, kernel, push);
 }
 
 }  // namespace ddt
