@@ -44,6 +44,21 @@ public:
             computeBarrier(commands);
         }
     }
+    // The same dispatches with their group counts read on the device from `args`, whose slots
+    // first_slot, first_slot + 1, … (one a dispatch, VkDispatchIndirectCommand 16 bytes apart)
+    // an earlier kernel wrote.
+    template <typename Push>
+    void dispatchPerEdgeIndirect(VkCommandBuffer commands, VkPipeline kernel, Push push, const Buffer& args,
+                                 uint32_t first_slot) const {
+        const uint32_t per_dispatch = kMaxGroups * kGroupSize;
+        uint32_t slot = first_slot;
+        for (uint32_t first = 0; first < push.edge_count; first += per_dispatch, ++slot) {
+            push.first_edge = first;
+            bindKernel(commands, kernel, &push);
+            vkCmdDispatchIndirect(commands, args.buffer, VkDeviceSize(slot) * 16);
+            computeBarrier(commands);
+        }
+    }
 
 private:
     void destroy();

@@ -97,13 +97,17 @@ std::vector<bench::TriangulationRow> runDelaunayTable(const Settings& s) {
 
 std::string cell(const std::string& failure, const std::string& value) { return failure.empty() ? value : failure; }
 
-// The Vulkan columns of a row: wall s, its ratio to CGAL's wall time, peak MiB, edges vs serial.
+// The Vulkan columns of a row: wall s, its ratio to CGAL's wall time, flips a point and the
+// stages, peak MiB, edges vs serial.
 std::string vulkanCells(const bench::TriangulationRow& r) {
-    if (!r.vulkan_measured) return "— | — | — | —";
-    if (!r.vulkan_failure.empty()) return r.vulkan_failure + " | — | — | —";
+    if (!r.vulkan_measured) return "— | — | — | — | —";
+    if (!r.vulkan_failure.empty()) return r.vulkan_failure + " | — | — | — | —";
     const std::string ratio = r.cgal_failure.empty() ? fixed(r.vulkan_wall_s / r.cgal_wall_s, 2) : "—";
+    const std::string stages = fixed(double(r.vulkan_flips) / double(r.points), 2) + "; " +
+                               fixed(r.vulkan_sweep_s, 3) + " / " + fixed(r.vulkan_device_s, 3) + " / " +
+                               fixed(r.vulkan_number_s, 3);
     return fixed(r.vulkan_wall_s, 4) + " (" + std::to_string(r.vulkan_rounds) + " rounds) | " + ratio + " | " +
-           mib(r.vulkan_bytes) + " | " + r.vulkan_comparison;
+           stages + " | " + mib(r.vulkan_bytes) + " | " + r.vulkan_comparison;
 }
 
 // The load average, for the notes: on a shared machine the wall-clock times grow with it.
@@ -117,8 +121,9 @@ void printDelaunayTable(const std::vector<bench::TriangulationRow>& rows, const 
     std::printf("\n### Delaunay triangulation: ddtup (serial) against CGAL\n\n");
     std::printf("| set | points | ddtup CPU s | CGAL CPU s | CPU ddtup/CGAL | ddtup wall s | CGAL wall s | ddtup peak MiB "
                 "| CGAL peak MiB | memory ddtup/CGAL | triangles | ddtup checks | CGAL is_valid | edges vs CGAL "
-                "| Vulkan wall s | wall Vulkan/CGAL | Vulkan peak MiB | Vulkan edges vs serial |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---:|---:|---:|---|\n");
+                "| Vulkan wall s | wall Vulkan/CGAL | Vulkan flips a point; sweep / device / numbering s "
+                "| Vulkan peak MiB | Vulkan edges vs serial |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---:|---:|---:|---:|---|\n");
     for (const auto& r : rows) {
         const bool both = r.ddtup_failure.empty() && r.cgal_failure.empty();
         const std::string triangles = !r.ddtup_failure.empty() ? std::to_string(r.cgal_triangles)
@@ -142,7 +147,9 @@ void printDelaunayTable(const std::vector<bench::TriangulationRow>& rows, const 
                 "per library (input excluded). ddtup checks: checkDelaunay and checkMesh(convex hull). edges vs CGAL: "
                 "on the random sets, where the triangulation is unique. Vulkan (--vulkan): the device's Delaunay on the "
                 "first Vulkan device — a serial sweep, then parallel flips on the device — wall clock of the whole call, "
-                "its edges against the serial ones on every set (the same tie-break makes them equal).\n",
+                "the last run's flips a point and its stages (the CPU's sweep; the device's rounds with the uploads "
+                "and downloads; the CPU's canonical numbering), its edges against the serial ones on every set (the "
+                "same tie-break makes them equal).\n",
                 load.c_str());
 }
 
@@ -293,6 +300,10 @@ void writeJson(const std::string& path, const std::vector<bench::TriangulationRo
             .key("vulkan_wall_seconds").value(r.vulkan_wall_s)
             .key("vulkan_peak_bytes").value(r.vulkan_bytes)
             .key("vulkan_rounds").value(r.vulkan_rounds)
+            .key("vulkan_flips").value(uint64_t(r.vulkan_flips))
+            .key("vulkan_sweep_seconds").value(r.vulkan_sweep_s)
+            .key("vulkan_device_seconds").value(r.vulkan_device_s)
+            .key("vulkan_number_seconds").value(r.vulkan_number_s)
             .key("vulkan_comparison").value(r.vulkan_comparison)
             .endObject();
     }

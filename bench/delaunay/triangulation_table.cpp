@@ -128,6 +128,10 @@ TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, ui
                 out.put(span.medianWallSeconds());
                 out.put(span.peakBytes());
                 out.put(stats.rounds);
+                out.put(stats.flips);
+                out.put(stats.sweep_seconds);
+                out.put(stats.flip_seconds);
+                out.put(stats.number_seconds);
                 out.putArray(sortedEdges(mesh));
             },
             timeout_s);
@@ -136,6 +140,10 @@ TriangulationRow measureTriangulations(const PointSet& set, uint32_t repeats, ui
             row.vulkan_wall_s = device.payload.get<double>();
             row.vulkan_bytes = device.payload.get<uint64_t>();
             row.vulkan_rounds = device.payload.get<uint32_t>();
+            row.vulkan_flips = device.payload.get<uint64_t>();
+            row.vulkan_sweep_s = device.payload.get<double>();
+            row.vulkan_device_s = device.payload.get<double>();
+            row.vulkan_number_s = device.payload.get<double>();
             const std::vector<uint64_t> device_edges = device.payload.getArray();
             if (!row.ddtup_failure.empty()) {
                 row.vulkan_comparison = "n/a";

@@ -28,13 +28,16 @@ struct TriangulationRow {
     std::string comparison;
     // The Vulkan Delaunay, when measured: "" or why not; median wall-clock time of the whole
     // call (sweep, device rounds, numbering; the device and its kernels set up before); peak
-    // RSS growth (on lavapipe the device's memory is the process's); rounds; "equal" to the
-    // serial edges or "N edges differ".
+    // RSS growth (on lavapipe the device's memory is the process's); rounds, flips and the
+    // stages' seconds of the last run (DeviceDelaunayStats); "equal" to the serial edges or
+    // "N edges differ".
     bool vulkan_measured = false;
     std::string vulkan_failure;
     double vulkan_wall_s = 0.0;
     uint64_t vulkan_bytes = 0;
     uint32_t vulkan_rounds = 0;
+    uint64_t vulkan_flips = 0;
+    double vulkan_sweep_s = 0.0, vulkan_device_s = 0.0, vulkan_number_s = 0.0;
     std::string vulkan_comparison;
 };
 

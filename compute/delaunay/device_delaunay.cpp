@@ -15,6 +15,7 @@
 
 // SPIR-V written by glslangValidator at build time (see CMakeLists.txt).
 #include "spirv/delaunay_flip.h"
+#include "spirv/delaunay_gate.h"
 #include "spirv/delaunay_mark.h"
 #include "spirv/delaunay_select.h"
 
@@ -45,6 +46,9 @@ struct FlipBuffers {
             buffers[kDelaunayBindingEdgeStates] = createBuffer(context, 4 * edges, Placement::Device, VK_FORMAT_R32_UINT);
             buffers[kDelaunayBindingTallies] =
                 createBuffer(context, 4 * 2 * kDelaunayRoundsPerBatch, Placement::Readback, VK_FORMAT_R32_UINT);
+            buffers[kDelaunayBindingDispatchArgs] =
+                createBuffer(context, 16 * VkDeviceSize(kDelaunayRoundsPerBatch) * delaunayDispatches(uint32_t(edges)),
+                             Placement::Device, VK_FORMAT_R32_UINT);
         } catch (...) {
             destroy();
             throw;
@@ -74,6 +78,7 @@ void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& 
     const VkPipeline mark = layout.createKernel(kSpirvDelaunayMark, sizeof(kSpirvDelaunayMark));
     const VkPipeline select = layout.createKernel(kSpirvDelaunaySelect, sizeof(kSpirvDelaunaySelect));
     const VkPipeline flip = layout.createKernel(kSpirvDelaunayFlip, sizeof(kSpirvDelaunayFlip));
+    const VkPipeline gate = layout.createKernel(kSpirvDelaunayGate, sizeof(kSpirvDelaunayGate));
 
     FlipBuffers device(context, mesh);
     uploadToBuffer(context, device.buffers[kDelaunayBindingEdgeVertices], mesh.vertices.data(), 16 * VkDeviceSize(edges));
@@ -81,14 +86,26 @@ void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& 
     uploadToBuffer(context, device.buffers[kDelaunayBindingPositions], mesh.positions.data(), 8 * mesh.positions.size());
     layout.bind(device.buffers);
 
-    // One batch of rounds, recorded once and submitted until a round marks nothing (the rounds
-    // after it in that batch then do nothing).
+    // One batch of rounds, recorded once and submitted until a round marks nothing. After the
+    // marks of each round the gate writes the group counts of the dispatches up to the next
+    // round's marks: none once a round has marked nothing, so the rest of the batch is empty.
     CommandBatch batch(context);
+    const Buffer& args = device.buffers[kDelaunayBindingDispatchArgs];
+    const uint32_t dispatches = delaunayDispatches(edges);
     vkCmdFillBuffer(batch.buffer(), device.buffers[kDelaunayBindingTallies].buffer, 0, VK_WHOLE_SIZE, 0);
     computeBarrier(batch.buffer());
-    for (uint32_t round = 0; round < kDelaunayRoundsPerBatch; ++round)
-        for (VkPipeline kernel : {mark, select, flip})
-            layout.dispatchPerEdge(batch.buffer(), kernel, DelaunayPush{edges, 0, round, 0});
+    for (uint32_t round = 0; round < kDelaunayRoundsPerBatch; ++round) {
+        const DelaunayPush push{edges, 0, round, 0};
+        if (round == 0)
+            layout.dispatchPerEdge(batch.buffer(), mark, push);
+        else
+            layout.dispatchPerEdgeIndirect(batch.buffer(), mark, push, args, (round - 1) * dispatches);
+        layout.bindKernel(batch.buffer(), gate, &push);
+        vkCmdDispatch(batch.buffer(), 1, 1, 1);
+        computeBarrier(batch.buffer());
+        for (VkPipeline kernel : {select, flip})
+            layout.dispatchPerEdgeIndirect(batch.buffer(), kernel, push, args, round * dispatches);
+    }
     batch.finishRecording();
 
     // Flips never bring back an edge flipped away, so there are fewer than one per pair of points.

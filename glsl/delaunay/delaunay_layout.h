@@ -6,6 +6,7 @@
 #ifndef DDTUP_DELAUNAY_LAYOUT_H
 #define DDTUP_DELAUNAY_LAYOUT_H
 
+#include "../layout.h"
 #include "../simplify/simplify_layout.h"
 
 #ifdef __cplusplus
@@ -19,7 +20,9 @@ const uint kDelaunayBindingEdgeNeighbours = 1u;  // r32ui, 4 per edge: bl, la, a
 const uint kDelaunayBindingPositions = 2u;       // rg32i per vertex: its position (fixed point)
 const uint kDelaunayBindingEdgeStates = 3u;      // r32ui per edge: kEdge… below
 const uint kDelaunayBindingTallies = 4u;         // r32ui, 2 per round of a batch: edges marked, flipped
-const uint kDelaunayBindingCount = 5u;
+const uint kDelaunayBindingDispatchArgs = 5u;   // r32ui, 4 per slot (VkDispatchIndirectCommand, padded):
+                                                 // delaunayDispatches(edges) slots per round of a batch
+const uint kDelaunayBindingCount = 6u;
 
 // An edge's state within a round: marked by delaunay_mark.comp, chosen by delaunay_select.comp.
 const uint kEdgeLocallyDelaunay = 0u;
@@ -27,9 +30,18 @@ const uint kEdgeMustFlip = 1u;
 const uint kEdgeFlipsNow = 2u;
 
 // Rounds recorded in one command buffer, submitted until a round marks nothing. Rounds after
-// that one find nothing to do; 16 keeps their cost (three dispatches each, about 60 µs on
-// lavapipe) small next to a host round trip per round.
+// that one dispatch no groups (delaunay_gate.comp); 16 keeps their cost (four dispatches each,
+// about 80 µs on lavapipe) small next to a host round trip per round.
 const uint kDelaunayRoundsPerBatch = 16u;
+
+// The dispatches one pass over `edges` edges takes: at most kMaxGroups groups each.
+#ifdef __cplusplus
+inline
+#endif
+uint delaunayDispatches(uint edges) {
+    const uint per_dispatch = kMaxGroups * kGroupSize;
+    return edges / per_dispatch + (edges % per_dispatch != 0u ? 1u : 0u);
+}
 
 // The order in which marked edges win a round: an edge flips if its priority is below every
 // marked edge's sharing a triangle with it. A bijection of the id (simplify_layout.h's

@@ -55,6 +55,15 @@ TEST_CASE("sweep triangulation: valid on random, gridded and collinear point set
         lines.push_back({x * kPositionOne, x * 512 + 1024});
     }
     sets.push_back(rowMajor(lines));
+    // Few distinct x's and y's: many points above one another (vertical front and hull edges,
+    // points right above L or R) and rows of several points.
+    for (int set = 0; set < 300; ++set) {
+        std::uniform_int_distribution<int32_t> coordinate(0, int32_t(1 + set % 12) * kPositionOne);
+        std::vector<Position> points(3 + set % 60);
+        for (Position& p : points) p = {coordinate(rng), coordinate(rng)};
+        points = rowMajor(points);
+        if (points.size() >= 3 && delaunayInputProblem(points).empty()) sets.push_back(points);
+    }
     for (const std::vector<Position>& points : sets) {
         INFO(points.size() << " points");
         REQUIRE(delaunayInputProblem(points) == "");
@@ -63,6 +72,22 @@ TEST_CASE("sweep triangulation: valid on random, gridded and collinear point set
         // Every point is a vertex: a triangulation of n points with h on the hull has 3n − 3 − h
         // edges, so as many as the Delaunay triangulation of the same points.
         CHECK(mesh.edgeCount() == delaunayOfPoints(100, 100, points).edgeCount());
+    }
+}
+
+TEST_CASE("sweep triangulation: two rows of a grid are zipped with the grid's diagonals", "[delaunay]") {
+    // 0 --- 1 --- 2        the first row and the second, zipped cell by cell: each unit
+    //   \     \     \       cell cut by (x, y)–(x + 1, y + 1), as buildGridMesh (and the
+    // 3 --- 4 --- 5        Delaunay tie-break) cuts it
+    for (const uint32_t width : {2u, 3u, 40u}) {
+        INFO(width << " x 2");
+        std::vector<Position> points;
+        for (uint32_t v = 0; v < 2 * width; ++v) points.push_back(gridPosition(v, width));
+        Mesh mesh = sweepTriangulation(width, 2, points);
+        renumberCanonically(mesh);
+        Mesh grid = buildGridMesh(width, 2);
+        makePositionsExplicit(grid);
+        CHECK(test::sameRecords(mesh, grid));
     }
 }
 
