@@ -1,9 +1,12 @@
 #include "device_delaunay.h"
 
+#include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <numeric>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "buffer.h"
 #include "canonical_edges.h"
@@ -46,9 +49,10 @@ struct FlipBuffers {
             buffers[kDelaunayBindingEdgeStates] = createBuffer(context, 4 * edges, Placement::Device, VK_FORMAT_R32_UINT);
             buffers[kDelaunayBindingTallies] =
                 createBuffer(context, 4 * 2 * kDelaunayRoundsPerBatch, Placement::Readback, VK_FORMAT_R32_UINT);
-            buffers[kDelaunayBindingDispatchArgs] =
-                createBuffer(context, 16 * VkDeviceSize(kDelaunayRoundsPerBatch) * delaunayDispatches(uint32_t(edges)),
-                             Placement::Device, VK_FORMAT_R32_UINT);
+            buffers[kDelaunayBindingEdgeLists] = createBuffer(context, 4 * 2 * edges, Placement::Device, VK_FORMAT_R32_UINT);
+            buffers[kDelaunayBindingListLengths] = createBuffer(context, 4 * 2, Placement::Device, VK_FORMAT_R32_UINT);
+            buffers[kDelaunayBindingDispatchArgs] = createBuffer(
+                context, 16 * 2 * VkDeviceSize(delaunayDispatches(uint32_t(edges))), Placement::Device, VK_FORMAT_R32_UINT);
         } catch (...) {
             destroy();
             throw;
@@ -63,6 +67,20 @@ struct FlipBuffers {
             if (buffer.buffer != VK_NULL_HANDLE) destroyBuffer(context, buffer);
     }
 };
+
+// The first round's work: list 0 holds every edge, its dispatches cover them all.
+void startWithEveryEdge(VulkanContext& context, FlipBuffers& device, uint32_t edges) {
+    std::vector<uint32_t> every_edge(edges);
+    std::iota(every_edge.begin(), every_edge.end(), 0u);
+    uploadToBuffer(context, device.buffers[kDelaunayBindingEdgeLists], every_edge.data(), 4 * VkDeviceSize(edges));
+    const uint32_t lengths[2] = {edges, 0};
+    uploadToBuffer(context, device.buffers[kDelaunayBindingListLengths], lengths, sizeof(lengths));
+    const uint32_t per_dispatch = kMaxGroups * kGroupSize;
+    std::vector<uint32_t> first_args;  // VkDispatchIndirectCommand, padded to 16 bytes
+    for (uint32_t first = 0; first < edges; first += per_dispatch)
+        first_args.insert(first_args.end(), {(std::min(per_dispatch, edges - first) + kGroupSize - 1) / kGroupSize, 1, 1, 0});
+    uploadToBuffer(context, device.buffers[kDelaunayBindingDispatchArgs], first_args.data(), 4 * first_args.size());
+}
 
 // Lawson's flips in parallel rounds on the device until every interior edge of `mesh` (positions
 // explicit) is locally Delaunay; the records are replaced by the result, numbered as before.
@@ -84,11 +102,11 @@ void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& 
     uploadToBuffer(context, device.buffers[kDelaunayBindingEdgeVertices], mesh.vertices.data(), 16 * VkDeviceSize(edges));
     uploadToBuffer(context, device.buffers[kDelaunayBindingEdgeNeighbours], mesh.neighbours.data(), 16 * VkDeviceSize(edges));
     uploadToBuffer(context, device.buffers[kDelaunayBindingPositions], mesh.positions.data(), 8 * mesh.positions.size());
+    startWithEveryEdge(context, device, edges);
     layout.bind(device.buffers);
 
-    // One batch of rounds, recorded once and submitted until a round marks nothing. After the
-    // marks of each round the gate writes the group counts of the dispatches up to the next
-    // round's marks: none once a round has marked nothing, so the rest of the batch is empty.
+    // One batch of rounds, recorded once and submitted until a round marks nothing. Each round
+    // goes through its work list with group counts the last round's gate wrote.
     CommandBatch batch(context);
     const Buffer& args = device.buffers[kDelaunayBindingDispatchArgs];
     const uint32_t dispatches = delaunayDispatches(edges);
@@ -96,15 +114,11 @@ void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& 
     computeBarrier(batch.buffer());
     for (uint32_t round = 0; round < kDelaunayRoundsPerBatch; ++round) {
         const DelaunayPush push{edges, 0, round, 0};
-        if (round == 0)
-            layout.dispatchPerEdge(batch.buffer(), mark, push);
-        else
-            layout.dispatchPerEdgeIndirect(batch.buffer(), mark, push, args, (round - 1) * dispatches);
+        for (VkPipeline kernel : {mark, select, flip})
+            layout.dispatchPerEdgeIndirect(batch.buffer(), kernel, push, args, (round % 2) * dispatches);
         layout.bindKernel(batch.buffer(), gate, &push);
         vkCmdDispatch(batch.buffer(), 1, 1, 1);
         computeBarrier(batch.buffer());
-        for (VkPipeline kernel : {select, flip})
-            layout.dispatchPerEdgeIndirect(batch.buffer(), kernel, push, args, round * dispatches);
     }
     batch.finishRecording();
 

@@ -18,11 +18,30 @@ layout(binding = kDelaunayBindingPositions, rg32i) uniform readonly iimageBuffer
 layout(binding = kDelaunayBindingEdgeStates, r32ui) uniform uimageBuffer edge_states;
 layout(binding = kDelaunayBindingTallies, r32ui) uniform uimageBuffer tallies;
 
-// This invocation's edge, or kNone past the last.
+layout(binding = kDelaunayBindingEdgeLists, r32ui) uniform uimageBuffer edge_lists;
+layout(binding = kDelaunayBindingListLengths, r32ui) uniform uimageBuffer list_lengths;
+
+// The work list this round goes through, and the one it fills for the next.
+uint roundList() { return push.round & 1u; }
+uint nextList() { return 1u - (push.round & 1u); }
+
+// This invocation's edge: its entry of the round's work list, or kNone past the list's end.
 uint invocationEdge() {
-    const uint e = push.first_edge + gl_GlobalInvocationID.x;
-    return e < push.edge_count ? e : kNone;
+    const uint i = push.first_edge + gl_GlobalInvocationID.x;
+    if (i >= imageLoad(list_lengths, int(roundList())).x) return kNone;
+    return imageLoad(edge_lists, int(roundList() * push.edge_count + i)).x;
 }
+
+// Puts edge g (or nothing, for kNone) on the next round's work list, once: the first to set
+// its kEdgeQueued bit appends it. The next round's marks write its state afresh, clearing it.
+void queueForNextRound(uint g) {
+    if (g == kNone) return;
+    if ((imageAtomicOr(edge_states, int(g), kEdgeQueued) & kEdgeQueued) != 0u) return;
+    const uint slot = imageAtomicAdd(list_lengths, int(nextList()), 1u);
+    imageStore(edge_lists, int(nextList() * push.edge_count + slot), uvec4(g));
+}
+
+uint stateOf(uint e) { return imageLoad(edge_states, int(e)).x & kEdgeStateMask; }
 
 uint vertexWord(uint e, uint i) { return imageLoad(edge_vertices, int(4u * e + i)).x; }
 uint neighbourWord(uint e, uint i) { return imageLoad(edge_neighbours, int(4u * e + i)).x; }

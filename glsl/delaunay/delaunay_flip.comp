@@ -6,7 +6,8 @@
 // its four neighbours each get their side facing e rewritten for the new triangles (r, l, a)
 // and (l, r, b). A neighbour's ends never change in this round (it shares a triangle with a
 // flipping edge, so it is not one), so which side faces e is read safely; another flip may
-// rewrite its other side at the same time, which touches other words.
+// rewrite its other side at the same time, which touches other words. The flipped edge and
+// its four neighbours go on the next round's list: their quadrilaterals changed.
 #include "delaunay_common.glsl"
 
 // The positive triangle (x, y, z) on neighbour g = x–y, its other edges e_yz and e_zx: g's
@@ -21,7 +22,7 @@ void attachSide(uint g, uint x, uint z, uint e_yz, uint e_zx) {
 void main() {
     const uint e = invocationEdge();
     if (e == kNone) return;
-    if (imageLoad(edge_states, int(e)).x != kEdgeFlipsNow) return;
+    if (stateOf(e) != kEdgeFlipsNow) return;
     const uvec4 v = verticesOf(e);  // a, b, l, r
     const uvec4 n = neighboursOf(e);  // bl, la, ar, rb
     const uint a = v.x, b = v.y, l = v.z, r = v.w;
@@ -35,4 +36,6 @@ void main() {
     attachSide(ar, a, l, e, la);  // (a, r, l)
     attachSide(rb, r, l, bl, e);  // (r, b, l)
     attachSide(bl, b, r, e, rb);  // (b, l, r)
+    queueForNextRound(e);
+    for (uint i = 0u; i < 4u; ++i) queueForNextRound(n[i]);
 }

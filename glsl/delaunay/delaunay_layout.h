@@ -20,18 +20,24 @@ const uint kDelaunayBindingEdgeNeighbours = 1u;  // r32ui, 4 per edge: bl, la, a
 const uint kDelaunayBindingPositions = 2u;       // rg32i per vertex: its position (fixed point)
 const uint kDelaunayBindingEdgeStates = 3u;      // r32ui per edge: kEdge… below
 const uint kDelaunayBindingTallies = 4u;         // r32ui, 2 per round of a batch: edges marked, flipped
-const uint kDelaunayBindingDispatchArgs = 5u;   // r32ui, 4 per slot (VkDispatchIndirectCommand, padded):
-                                                 // delaunayDispatches(edges) slots per round of a batch
-const uint kDelaunayBindingCount = 6u;
+const uint kDelaunayBindingEdgeLists = 5u;       // r32ui, 2 × edges: the two work lists, list i at i × edges
+const uint kDelaunayBindingListLengths = 6u;     // r32ui, 2: the work lists' lengths
+const uint kDelaunayBindingDispatchArgs = 7u;    // r32ui, 4 per slot (VkDispatchIndirectCommand, padded):
+                                                 // delaunayDispatches(edges) slots per work list
+const uint kDelaunayBindingCount = 8u;
 
 // An edge's state within a round: marked by delaunay_mark.comp, chosen by delaunay_select.comp.
 const uint kEdgeLocallyDelaunay = 0u;
 const uint kEdgeMustFlip = 1u;
 const uint kEdgeFlipsNow = 2u;
+// A bit beside the state: the edge is on the next round's work list already.
+const uint kEdgeQueued = 4u;
+const uint kEdgeStateMask = 3u;
 
-// Rounds recorded in one command buffer, submitted until a round marks nothing. Rounds after
-// that one dispatch no groups (delaunay_gate.comp); 16 keeps their cost (four dispatches each,
-// about 80 µs on lavapipe) small next to a host round trip per round.
+// Rounds recorded in one command buffer, submitted until a round marks nothing. Round r works
+// through list r % 2 and fills the other (an even count, so every batch starts on list 0).
+// Rounds after the last with marks have empty lists and dispatch no groups; 16 keeps their
+// cost (four dispatches each, about 80 µs on lavapipe) small next to a host round trip per round.
 const uint kDelaunayRoundsPerBatch = 16u;
 
 // The dispatches one pass over `edges` edges takes: at most kMaxGroups groups each.

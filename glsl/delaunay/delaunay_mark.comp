@@ -1,13 +1,13 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-// A round's first step: mark every interior edge that is not locally Delaunay (the far vertex
-// of its right triangle inside its left triangle's circumcircle, under the perturbed predicate
-// of core/delaunay/predicates.h), and count them in the round's tally. Every edge is tested
-// every round. Skipping the edges found locally Delaunay and unchanged since (a flag per edge,
-// set by the flips) did not pay on lavapipe, where a round costs mostly its 3 × (edges)
-// invocations: at 10^6 uniform points a round with almost no marks took 100 ms, one with
-// 500 000, 155 ms; the flags took the flips from 6.7 s to 7.2 s (one run each, a busy machine).
+// A round's first step: mark every interior edge of the round's work list that is not locally
+// Delaunay (the far vertex of its right triangle inside its left triangle's circumcircle, under
+// the perturbed predicate of core/delaunay/predicates.h), and count them in the round's tally.
+// The first round's list is every edge; a later round's holds the edges whose quadrilateral the
+// last round changed (the flipped edges and their neighbours) and the marked edges that did not
+// flip: every other edge was found locally Delaunay and is still. Lists, not a flag per edge
+// tested by every invocation: on lavapipe a pass costs mostly its invocations (PLATFORM.md).
 #include "delaunay_common.glsl"
 #include "in_circle.h"
 
