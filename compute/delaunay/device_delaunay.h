@@ -2,10 +2,11 @@
 // on a Vulkan device, equal to the CPU reference record for record.
 //
 // Recipe: a first triangulation by a serial sweep on the CPU (core/delaunay/
-// sweep_triangulation.h); then rounds on the device (glsl/delaunay/) — mark the edges that are
-// not locally Delaunay, select those whose priority is least among the marked edges of their
-// two triangles, flip them — until a round marks none; then the canonical numbering
-// (core/delaunay/canonical_edges.h) on the CPU.
+// sweep_triangulation.h); then rounds on the device (glsl/delaunay/) — mark the edges of the
+// round's work list that are not locally Delaunay, select those whose priority is least among
+// the marked edges of their two triangles, flip them, list the edges whose quadrilaterals
+// changed and the marked ones that lost for the next round — until a round marks none; then
+// the canonical numbering (core/delaunay/canonical_edges.h) on the CPU.
 //
 // Why the result equals delaunayOfPoints': the marks use the same perturbed predicate
 // (glsl/delaunay/in_circle.h, checked against predicates.h by the tests), under which no four
@@ -14,19 +15,23 @@
 // two below them in the lift (a tetrahedron of the lifted points is passed), so the lifted
 // surface only goes down and no triangulation repeats: the flips stop, after at most one flip
 // per pair of points (an edge flipped away never comes back). A round with a mark flips at least
-// its marked edge of least priority, so the rounds stop too, at a triangulation of the convex
-// hull with every interior edge locally Delaunay. By Delaunay's lemma (see checkDelaunay) it is
+// its marked edge of least priority, so the rounds stop too. The lists miss no edge to flip: an
+// edge off a round's list was found locally Delaunay by its last marks, and a flip that changes
+// its quadrilateral lists it. So the last round leaves a triangulation of the convex hull with
+// every interior edge locally Delaunay. By Delaunay's lemma (see checkDelaunay) it is
 // then the perturbed Delaunay triangulation, which is unique: the reference's, and after the
 // canonical numbering the same records.
 //
-// Measured on lavapipe (LP_NUM_THREADS=2, Release, a shared 2-core VM, the better of two runs;
-// uniform points in a 4096² frame), against delaunayOfPoints on one core:
-//   10^4 points: 0.054 s (29 rounds, 7.9 flips a point), CPU 0.010 s
-//   10^5 points: 0.63 s (39 rounds, 10.6 flips a point), CPU 0.11 s
-//   10^6 points: 6.4 s (44 rounds, 13.3 flips a point; sweep 0.36 s, rounds 5.6 s, numbering
-//                0.41 s), CPU 1.43 s
-// Few rounds, but the sweep's long triangles cost many flips (the CPU's insertion makes about
-// 3 a point), and each round visits every edge three times.
+// Measured on lavapipe (LP_NUM_THREADS=2, Release, a shared 2-core VM; `ddtup-bench-delaunay
+// --tables delaunay --vulkan --repeats 2`, uniform points in a 4096² frame), against CGAL's
+// Delaunay_triangulation_2, wall clock:
+//   10^4 points: 0.040 s (17 rounds), CGAL 0.009 s
+//   10^5 points: 0.22 s (20 rounds), CGAL 0.12 s
+//   10^6 points: 2.4 s (22 rounds, 0.91 flips a point; sweep 0.19 s, device 1.78 s, numbering
+//                0.30 s), CGAL 1.28 s
+// The advancing-front sweep leaves fewer than one flip a point (the first sweep, which joined
+// each point to every hull vertex it saw, left 13), and a round after the first goes through
+// its work list, the edges the last one touched, not every edge.
 #pragma once
 
 #include <cstdint>

@@ -28,8 +28,8 @@
 // cell, so a pixel grid starts with no fan at all.
 //
 // Finding the front edge over p: a short walk from a front vertex near p in x, the one last
-// inserted in p's bucket of x (√n buckets) or the one that removed it from the front, or
-// else from the previous point, which is always on the front.
+// inserted in p's bucket of x (√n buckets) or the one that removed it from the front, or the
+// nearest bucket's such.
 #include "sweep_triangulation.h"
 
 #include <cassert>
@@ -99,6 +99,7 @@ private:
     void addAboveFront(uint32_t p);
     void addBeyondRight(uint32_t p);
     void addBeyondLeft(uint32_t p);
+    uint32_t nearbyFrontVertex(uint32_t p) const;
     uint32_t frontVertexAtOrLeftOf(uint32_t p) const;
     void joinToEdgeBefore(uint32_t p, uint32_t v);
     void joinToEdgeAfter(uint32_t p, uint32_t v);
@@ -235,12 +236,25 @@ void Sweep::addPoint(uint32_t p) {
     on_front_[p] = true;
 }
 
+// A front vertex near p in x: the first hint still on the front in p's bucket or the nearest
+// ones either side, else the previous point.
+uint32_t Sweep::nearbyFrontVertex(uint32_t p) const {
+    const size_t bucket = bucketOf(p), buckets = hint_.size();
+    for (size_t distance = 0; distance < buckets; ++distance) {
+        for (const size_t b : {bucket - distance, bucket + distance}) {  // wraps past 0: too large
+            if (b >= buckets) continue;
+            const uint32_t v = hint_[b];
+            if (v != kNone && on_front_[v]) return v;
+        }
+    }
+    return p - 1;
+}
+
 // The front vertex l with l.x ≤ p.x < r.x for r = previous_[l] (the first from R at or left
 // of p), found by walking from a hint. Needs L.x ≤ p.x < R.x.
 uint32_t Sweep::frontVertexAtOrLeftOf(uint32_t p) const {
     const int32_t x = at(p).x;
-    uint32_t v = hint_[bucketOf(p)];
-    if (v == kNone || !on_front_[v]) v = p - 1;
+    uint32_t v = nearbyFrontVertex(p);
     if (at(v).x <= x) {
         while (at(previous_[v]).x <= x) v = previous_[v];
     } else {
