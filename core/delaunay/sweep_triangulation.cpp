@@ -32,6 +32,7 @@
 // nearest bucket's such.
 #include "sweep_triangulation.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <utility>
