@@ -33,29 +33,21 @@ public:
     void bindKernel(VkCommandBuffer commands, VkPipeline kernel, const void* push) const;
     // Records `kernel` with one invocation an edge for push.edge_count edges, in as many
     // dispatches of kMaxGroups groups as that needs (push.first_edge: each one's first edge),
-    // each followed by the compute barrier.
+    // each followed by the compute barrier. With `args`, each dispatch's group count is read on
+    // the device from its slot, first_slot, first_slot + 1, … (VkDispatchIndirectCommand, 16
+    // bytes apart), which an earlier kernel wrote.
     template <typename Push>
-    void dispatchPerEdge(VkCommandBuffer commands, VkPipeline kernel, Push push) const {
-        const uint32_t per_dispatch = kMaxGroups * kGroupSize;
-        for (uint32_t first = 0; first < push.edge_count; first += per_dispatch) {
-            push.first_edge = first;
-            bindKernel(commands, kernel, &push);
-            vkCmdDispatch(commands, (std::min(per_dispatch, push.edge_count - first) + kGroupSize - 1) / kGroupSize, 1, 1);
-            computeBarrier(commands);
-        }
-    }
-    // The same dispatches with their group counts read on the device from `args`, whose slots
-    // first_slot, first_slot + 1, … (one a dispatch, VkDispatchIndirectCommand 16 bytes apart)
-    // an earlier kernel wrote.
-    template <typename Push>
-    void dispatchPerEdgeIndirect(VkCommandBuffer commands, VkPipeline kernel, Push push, const Buffer& args,
-                                 uint32_t first_slot) const {
+    void dispatchPerEdge(VkCommandBuffer commands, VkPipeline kernel, Push push, const Buffer* args = nullptr,
+                         uint32_t first_slot = 0) const {
         const uint32_t per_dispatch = kMaxGroups * kGroupSize;
         uint32_t slot = first_slot;
         for (uint32_t first = 0; first < push.edge_count; first += per_dispatch, ++slot) {
             push.first_edge = first;
             bindKernel(commands, kernel, &push);
-            vkCmdDispatchIndirect(commands, args.buffer, VkDeviceSize(slot) * 16);
+            if (args)
+                vkCmdDispatchIndirect(commands, args->buffer, VkDeviceSize(slot) * 16);
+            else
+                vkCmdDispatch(commands, (std::min(per_dispatch, push.edge_count - first) + kGroupSize - 1) / kGroupSize, 1, 1);
             computeBarrier(commands);
         }
     }

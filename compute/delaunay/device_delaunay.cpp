@@ -1,6 +1,5 @@
 #include "device_delaunay.h"
 
-#include <algorithm>
 #include <cassert>
 #include <chrono>
 #include <numeric>
@@ -68,18 +67,22 @@ struct FlipBuffers {
     }
 };
 
-// The first round's work: list 0 holds every edge, its dispatches cover them all.
-void startWithEveryEdge(VulkanContext& context, FlipBuffers& device, uint32_t edges) {
+// The first round's work: list 0 holds every edge, and the gate, run as if after a round 1
+// that had filled list 0, writes its dispatches' group counts.
+void startWithEveryEdge(VulkanContext& context, const KernelLayout& layout, VkPipeline gate, FlipBuffers& device,
+                        uint32_t edges) {
     std::vector<uint32_t> every_edge(edges);
     std::iota(every_edge.begin(), every_edge.end(), 0u);
     uploadToBuffer(context, device.buffers[kDelaunayBindingEdgeLists], every_edge.data(), 4 * VkDeviceSize(edges));
     const uint32_t lengths[2] = {edges, 0};
     uploadToBuffer(context, device.buffers[kDelaunayBindingListLengths], lengths, sizeof(lengths));
-    const uint32_t per_dispatch = kMaxGroups * kGroupSize;
-    std::vector<uint32_t> first_args;  // VkDispatchIndirectCommand, padded to 16 bytes
-    for (uint32_t first = 0; first < edges; first += per_dispatch)
-        first_args.insert(first_args.end(), {(std::min(per_dispatch, edges - first) + kGroupSize - 1) / kGroupSize, 1, 1, 0});
-    uploadToBuffer(context, device.buffers[kDelaunayBindingDispatchArgs], first_args.data(), 4 * first_args.size());
+    CommandBatch start(context);
+    const DelaunayPush after_round_1{edges, 0, 1, 0};
+    layout.bindKernel(start.buffer(), gate, &after_round_1);
+    vkCmdDispatch(start.buffer(), 1, 1, 1);
+    computeBarrier(start.buffer());  // for the batches' dispatches, later in submission order
+    start.finishRecording();
+    start.submitAndWait();
 }
 
 // Lawson's flips in parallel rounds on the device until every interior edge of `mesh` (positions
@@ -102,8 +105,8 @@ void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& 
     uploadToBuffer(context, device.buffers[kDelaunayBindingEdgeVertices], mesh.vertices.data(), 16 * VkDeviceSize(edges));
     uploadToBuffer(context, device.buffers[kDelaunayBindingEdgeNeighbours], mesh.neighbours.data(), 16 * VkDeviceSize(edges));
     uploadToBuffer(context, device.buffers[kDelaunayBindingPositions], mesh.positions.data(), 8 * mesh.positions.size());
-    startWithEveryEdge(context, device, edges);
     layout.bind(device.buffers);
+    startWithEveryEdge(context, layout, gate, device, edges);
 
     // One batch of rounds, recorded once and submitted until a round marks nothing. Each round
     // goes through its work list with group counts the last round's gate wrote.
@@ -115,7 +118,7 @@ void flipUntilDelaunay(VulkanContext& context, Mesh& mesh, DeviceDelaunayStats& 
     for (uint32_t round = 0; round < kDelaunayRoundsPerBatch; ++round) {
         const DelaunayPush push{edges, 0, round, 0};
         for (VkPipeline kernel : {mark, select, flip})
-            layout.dispatchPerEdgeIndirect(batch.buffer(), kernel, push, args, (round % 2) * dispatches);
+            layout.dispatchPerEdge(batch.buffer(), kernel, push, &args, (round % 2) * dispatches);
         layout.bindKernel(batch.buffer(), gate, &push);
         vkCmdDispatch(batch.buffer(), 1, 1, 1);
         computeBarrier(batch.buffer());

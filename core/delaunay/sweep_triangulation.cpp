@@ -237,18 +237,19 @@ void Sweep::addPoint(uint32_t p) {
     on_front_[p] = true;
 }
 
-// A front vertex near p in x: the first hint still on the front in p's bucket or the nearest
-// ones either side, else the previous point.
+// A front vertex near p in x: the hint of p's bucket or else of the nearest bucket either side
+// whose hint is still on the front. There is one: the previous point is still its bucket's hint
+// (or, just after the start, that bucket holds another front vertex).
 uint32_t Sweep::nearbyFrontVertex(uint32_t p) const {
     const size_t bucket = bucketOf(p), buckets = hint_.size();
-    for (size_t distance = 0; distance < buckets; ++distance) {
+    for (size_t distance = 0;; ++distance) {
+        assert(distance < buckets);
         for (const size_t b : {bucket - distance, bucket + distance}) {  // wraps past 0: too large
             if (b >= buckets) continue;
             const uint32_t v = hint_[b];
             if (v != kNone && on_front_[v]) return v;
         }
     }
-    return p - 1;
 }
 
 // The front vertex l with l.x ≤ p.x < r.x for r = previous_[l] (the first from R at or left
