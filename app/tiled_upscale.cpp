@@ -173,7 +173,7 @@ OptimizeStats shapeTile(Job& job, Backend& backend, const Tile& tile, uint32_t i
         job.strip_mesh->add(mesh, tile.crop, tile.core);
     }
     // The model follows the whole image's factors; each crop is reconstructed on its own, and
-    // the overlap keeps the crop's border out of the core's output (test/test_tiling.cpp).
+    // the overlap keeps the crop's border out of the core's output (test/image/test_tiling.cpp).
     if (job.reconstruct) {
         job.step(index, total, TilePhase::Reconstruct);
         backend.reconstruct(

@@ -18,7 +18,7 @@ namespace ddt {
 // Input pixels a tile's crop reaches beyond its core on each side. A flip depends on a
 // neighbourhood a few pixels wide, and Lawson's flips cascade a little further; the mesh a
 // crop converges to differs from the untiled one only near the crop's border. Measured
-// (test/test_tiling.cpp: 300×200 photo, edge and noise images, ×2, 64-pixel tiles, both
+// (test/image/test_tiling.cpp: 300×200 photo, edge and noise images, ×2, 64-pixel tiles, both
 // backends): overlap 4 leaves differences up to 142/255 on 0.03 % of samples, overlap 8
 // and more gives outputs equal to the untiled ones, bit for bit. 16 doubles that margin for
 // (1 + 32 / side)² more work: 3 % for 2048-pixel tiles.

@@ -2,7 +2,7 @@
 // partition it; each tile's mesh is built and optimised on its crop (the core grown by an
 // overlap, clamped to the input) and renders only the output pixels whose samples lie in its
 // core. The overlap lets the flips near a core's border see the same neighbourhood as in the
-// untiled mesh, so seams vanish (the agreement per overlap is measured in test/test_tiling.cpp).
+// untiled mesh, so seams vanish (the agreement per overlap is measured in test/image/test_tiling.cpp).
 //
 // Ownership of output pixels uses the renderer's exact sampling (glsl/raster.h): output
 // column X belongs to the core [x0, x1) whose columns hold its clamped sample, i.e.

@@ -2,7 +2,7 @@
 // OpenImageIO spec (the input's attributes that copyMetadata kept). They are the chunks
 // OpenImageIO 2.4's PNG writer wrote from the same spec, in libpng's order, with the same
 // contents (read from its source, png_pvt.h, and checked chunk by chunk in
-// test/test_png_encoder.cpp): gAMA, sRGB and cHRM from the colour space, iCCP, oFFs, pHYs from
+// test/io/test_png_encoder.cpp): gAMA, sRGB and cHRM from the colour space, iCCP, oFFs, pHYs from
 // the resolution, tIME from DateTime, and a tEXt chunk for every other string attribute. Where
 // libpng refused the spec and OpenImageIO then wrote no file at all (an ICC profile that is
 // not one, or one for the wrong colour model; a gamma or a text key libpng cannot store),

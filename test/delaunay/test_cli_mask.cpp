@@ -40,7 +40,7 @@ Image maskImage(uint32_t width, uint32_t height, Known known) {
 
 }  // namespace
 
-TEST_CASE("cli mask: a linear field comes back from a fifth of its pixels on both backends", "[delaunay]") {
+TEST_CASE("cli mask: a linear field comes back from a fifth of its pixels on both backends", "[delaunay][vulkan]") {
     TempFolder work;
     const uint32_t w = 20, h = 15;
     const std::string input = work / "ramp.tif", mask = work / "mask.png";
@@ -77,7 +77,7 @@ TEST_CASE("cli mask: with every pixel known the output is the grid's, bit for bi
     CHECK(readImage(work / "plain.png").pixels == readImage(work / "masked.png").pixels);
 }
 
-TEST_CASE("cli mask: holes are filled from around them, the known pixels kept", "[delaunay]") {
+TEST_CASE("cli mask: holes are filled from around them, the known pixels kept", "[delaunay][vulkan]") {
     TempFolder work;
     const std::string input = test::testDataPath("crop32_astronaut.png"), mask = work / "holes.png";
     // Two round holes and a dead column; the rest known.

@@ -25,7 +25,7 @@ void writeText(const std::string& path, const std::string& text) { std::ofstream
 
 }  // namespace
 
-TEST_CASE("cli points: a plane comes back from scattered points on both backends", "[delaunay]") {
+TEST_CASE("cli points: a plane comes back from scattered points on both backends", "[delaunay][vulkan]") {
     TempFolder work;
     const uint32_t w = 20, h = 15;
     // The frame's corners, and 60 points at random multiples of 1/1024 pixel (so that rounding
@@ -58,7 +58,7 @@ TEST_CASE("cli points: a plane comes back from scattered points on both backends
     }
 }
 
-TEST_CASE("cli points: every pixel of an image as a point renders as the image, bit for bit", "[delaunay]") {
+TEST_CASE("cli points: every pixel of an image as a point renders as the image, bit for bit", "[delaunay][vulkan]") {
     TempFolder work;
     const std::string input = test::testDataPath("crop32_astronaut.png");
     const Image image = readImage(input);

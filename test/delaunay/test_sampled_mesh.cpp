@@ -69,7 +69,7 @@ TEST_CASE("sampled mesh: the serial optimizer keeps the hull and reaches a local
     }
 }
 
-TEST_CASE("sampled mesh: Vulkan's flips on a mesh of known pixels equal core's, step by step", "[delaunay]") {
+TEST_CASE("sampled mesh: Vulkan's flips on a mesh of known pixels equal core's, step by step", "[delaunay][vulkan]") {
     std::mt19937 rng(6);
     const Image image = test::randomImage(rng, 26, 19, 3);
     for (CostFunction cost : {CostFunction::sederberg, CostFunction::variance, CostFunction::face_scf}) {
@@ -78,7 +78,7 @@ TEST_CASE("sampled mesh: Vulkan's flips on a mesh of known pixels equal core's, 
     }
 }
 
-TEST_CASE("sampled mesh: every pixel known gives the grid's optimization on both backends", "[delaunay]") {
+TEST_CASE("sampled mesh: every pixel known gives the grid's optimization on both backends", "[delaunay][vulkan]") {
     std::mt19937 rng(8);
     const Image image = test::randomImage(rng, 21, 16, 1);
     std::vector<uint32_t> all(21 * 16);

@@ -260,7 +260,7 @@ TEST_CASE("volume cli: --stack refuses what is not a stack of grey slices") {
     CHECK(!std::filesystem::exists(work / "v.nrrd"));
 }
 
-TEST_CASE("volume cli: --backend vulkan flips on the device by the parallel rule") {
+TEST_CASE("volume cli: --backend vulkan flips on the device by the parallel rule", "[heavy][vulkan]") {
     TempFolder work;
     const std::array<uint32_t, 3> size = {9, 8, 9};
     writeFloatNrrd(work / "ball.nrrd", size, ball(size), kLpsGeometry);

@@ -79,7 +79,7 @@ TEST_CASE("tet lawson: a sharp slanted plane lowers both costs", "[tet]") {
     }
 }
 
-TEST_CASE("tet lawson: a sphere; a second run does nothing; runs are deterministic", "[tet]") {
+TEST_CASE("tet lawson: a sphere: a second run does nothing, and runs are deterministic", "[tet]") {
     const ddt::TetCostField field = sphereField(6, 2.0);
     for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
         INFO(ddt::tetWeightName(weight));

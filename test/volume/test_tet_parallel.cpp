@@ -135,7 +135,7 @@ TEST_CASE("tet parallel: a sphere and a slanted plane: valid rounds, falling cos
         }
 }
 
-TEST_CASE("tet parallel: random values: 2-3 flips take free slots from the top, then append; 3-2 flips free them", "[tet-parallel]") {
+TEST_CASE("tet parallel: random values: 2-3 flips take free slots from the top, then append, and 3-2 flips free them", "[tet-parallel]") {
     // The mesh of one random field, compacted (no free slots), optimized for another: its first
     // rounds have 2–3 flips and no free slot, so slots are appended; 3–2 flips free slots that
     // later 2–3 flips take.

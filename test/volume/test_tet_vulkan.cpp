@@ -69,7 +69,7 @@ ddt::TetDeviceReport compareWithCore(ddt::VulkanContext& context, const ddt::Tet
 
 }  // namespace
 
-TEST_CASE("tet vulkan: a sphere and a slanted plane equal core's parallel rule bit for bit", "[tet-vulkan]") {
+TEST_CASE("tet vulkan: a sphere and a slanted plane equal core's parallel rule bit for bit", "[tet-vulkan][vulkan]") {
     std::unique_ptr<ddt::VulkanContext> context = validatedContext();
     for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
         compareWithCore(*context, sphereField(9, 3.0), weight);
@@ -78,7 +78,7 @@ TEST_CASE("tet vulkan: a sphere and a slanted plane equal core's parallel rule b
     CHECK(context->validation_messages == 0);
 }
 
-TEST_CASE("tet vulkan: random values, round by round: many 2-3 and 3-2 flips take and free slots alike", "[tet-vulkan]") {
+TEST_CASE("tet vulkan: random values, round by round: many 2-3 and 3-2 flips take and free slots alike", "[tet-vulkan][vulkan]") {
     std::unique_ptr<ddt::VulkanContext> context = validatedContext();
     const ddt::TetCostField field = randomField({7, 6, 5}, 11, 1000);
     for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
@@ -92,7 +92,7 @@ TEST_CASE("tet vulkan: random values, round by round: many 2-3 and 3-2 flips tak
     CHECK(context->validation_messages == 0);
 }
 
-TEST_CASE("tet vulkan: slots appended beyond the arrays: they grow mid-round to the same result", "[tet-vulkan]") {
+TEST_CASE("tet vulkan: slots appended beyond the arrays: they grow mid-round to the same result", "[tet-vulkan][vulkan]") {
     // The mesh of one random field, compacted (no free slots), optimized for another: its first
     // rounds append slots. With no slack the arrays must grow, in the middle of a round.
     std::unique_ptr<ddt::VulkanContext> context = validatedContext();
@@ -111,7 +111,7 @@ TEST_CASE("tet vulkan: slots appended beyond the arrays: they grow mid-round to 
     CHECK(context->validation_messages == 0);
 }
 
-TEST_CASE("tet vulkan: a flat volume and a mesh with free slots", "[tet-vulkan]") {
+TEST_CASE("tet vulkan: a flat volume and a mesh with free slots", "[tet-vulkan][vulkan]") {
     std::unique_ptr<ddt::VulkanContext> context = validatedContext();
     const ddt::TetCostField flat = fieldOf({4, 3, 5}, [](uint32_t, uint32_t, uint32_t) { return 7.0; });
     for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) compareWithCore(*context, flat, weight);

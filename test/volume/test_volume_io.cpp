@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "../temp_folder.h"
+#include "temp_folder.h"
 #include "user_error.h"
 #include "volume.h"
 #include "volume_file.h"

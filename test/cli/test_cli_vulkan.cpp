@@ -66,7 +66,7 @@ TEST_CASE("cli: --backend vulkan without a usable Vulkan device is an error that
     CHECK(folder.names().empty());
 }
 
-TEST_CASE("cli: a CPU Vulkan device is announced once, and -q silences it") {
+TEST_CASE("cli: a CPU Vulkan device is announced once, and -q silences it", "[vulkan]") {
     TempFolder folder;
     const Run loud = runDdtup({fixture("crop32_astronaut.png"), folder / "out.png", "--backend", "vulkan"});
     CHECK(loud.exit_code == 0);
@@ -77,7 +77,7 @@ TEST_CASE("cli: a CPU Vulkan device is announced once, and -q silences it") {
     CHECK(quiet.err.empty());
 }
 
-TEST_CASE("cli: --list-devices shows lavapipe as a CPU device") {
+TEST_CASE("cli: --list-devices shows lavapipe as a CPU device", "[vulkan]") {
     const Run run = runDdtup({"--list-devices"});
     CHECK(run.exit_code == 0);
     CHECK_THAT(run.out, Catch::StartsWith("0: "));
@@ -85,7 +85,7 @@ TEST_CASE("cli: --list-devices shows lavapipe as a CPU device") {
     CHECK_THAT(run.out, Catch::Contains("(CPU,"));
 }
 
-TEST_CASE("cli: --stats reports the same figures for both backends") {
+TEST_CASE("cli: --stats reports the same figures for both backends", "[vulkan]") {
     TempFolder folder;
     for (const char* backend : {"cpu", "vulkan"}) {
         INFO(backend);
@@ -106,7 +106,7 @@ TEST_CASE("cli: an unknown --variant is a usage error") {
     CHECK(folder.names().empty());
 }
 
-TEST_CASE("cli: the output does not depend on lavapipe's thread count") {
+TEST_CASE("cli: the output does not depend on lavapipe's thread count", "[vulkan]") {
     TempFolder folder;
     for (const char* variant : {"localmax", "basic"}) {
         INFO(variant);
@@ -120,7 +120,7 @@ TEST_CASE("cli: the output does not depend on lavapipe's thread count") {
     }
 }
 
-TEST_CASE("cli: --backend auto on a machine without a GPU device node does not load Vulkan drivers") {
+TEST_CASE("cli: --backend auto on a machine without a GPU device node does not load Vulkan drivers", "[vulkan]") {
     std::error_code error;
     const bool gpu_nodes = std::filesystem::exists("/dev/dri", error) || std::filesystem::exists("/dev/nvidiactl", error);
     if (gpu_nodes) {

@@ -31,7 +31,7 @@ std::vector<int> visits(size_t count, size_t grain) {
 
 }  // namespace
 
-TEST_CASE("parallel: every item is visited exactly once, whatever the count, grain and threads") {
+TEST_CASE("parallel: every item is visited exactly once, whatever the count, grain and threads", "[threads]") {
     for (unsigned threads : {1u, 2u, 5u}) {
         ScopedThreadCount scoped(threads);
         for (size_t count : {size_t(0), size_t(1), size_t(7), size_t(1000), size_t(100003)})
@@ -42,7 +42,7 @@ TEST_CASE("parallel: every item is visited exactly once, whatever the count, gra
     }
 }
 
-TEST_CASE("parallel: a chunk's exception reaches the caller, and the pool keeps working") {
+TEST_CASE("parallel: a chunk's exception reaches the caller, and the pool keeps working", "[threads]") {
     ScopedThreadCount scoped(3);
     CHECK_THROWS_WITH(ddt::parallelFor(1000, 1,
                                        [](size_t begin, size_t end) {
@@ -52,7 +52,7 @@ TEST_CASE("parallel: a chunk's exception reaches the caller, and the pool keeps 
     CHECK(visits(1000, 1) == std::vector<int>(1000, 1));
 }
 
-TEST_CASE("parallel: loops from several threads and loops inside loops all finish") {
+TEST_CASE("parallel: loops from several threads and loops inside loops all finish", "[threads]") {
     ScopedThreadCount scoped(2);
     std::atomic<size_t> total = 0;
     auto nested = [&] {
@@ -67,7 +67,7 @@ TEST_CASE("parallel: loops from several threads and loops inside loops all finis
     CHECK(total == 3 * 16 * 100);
 }
 
-TEST_CASE("parallel: the thread count is what was set, and 0 means the default") {
+TEST_CASE("parallel: the thread count is what was set, and 0 means the default", "[threads]") {
     ScopedThreadCount scoped(3);
     CHECK(ddt::threadCount() == 3);
     ddt::setThreadCount(0);

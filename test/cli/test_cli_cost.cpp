@@ -18,7 +18,7 @@ double statOf(const Run& run, const std::string& label) {
 
 }  // namespace
 
-TEST_CASE("cli cost: each cost reaches the CPU and the Vulkan optimizer") {
+TEST_CASE("cli cost: each cost reaches the CPU and the Vulkan optimizer", "[vulkan]") {
     TempFolder work;
     const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
     for (const std::string backend : {"cpu", "vulkan"}) {

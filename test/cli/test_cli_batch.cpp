@@ -46,7 +46,7 @@ size_t countOf(const std::string& text, const std::string& part) {
 
 }  // namespace
 
-TEST_CASE("batch: several inputs into a folder, a bad one reported at the end") {
+TEST_CASE("batch: several inputs into a folder, a bad one reported at the end", "[threads]") {
     TempFolder folder;
     const std::string good1 = folder / "a.png", good2 = folder / "b ü 名前.png", bad = folder / "bad.png";
     fs::copy_file(kSample, good1);
@@ -65,7 +65,7 @@ TEST_CASE("batch: several inputs into a folder, a bad one reported at the end") 
     requireImage(out + "/b ü 名前.png", 64, 64);
 }
 
-TEST_CASE("batch: a last argument that is a folder, or ends in /, is the output folder, as with cp") {
+TEST_CASE("batch: a last argument that is a folder, or ends in /, is the output folder, as with cp", "[threads]") {
     TempFolder folder;
     const std::string a = folder / "a.png", b = folder / "b.png";
     fs::copy_file(kSample, a);
@@ -89,7 +89,7 @@ TEST_CASE("batch: a last argument that is a folder, or ends in /, is the output 
     CHECK_THAT(own.err, Catch::Contains("output is the input file; refusing to overwrite it"));
 }
 
-TEST_CASE("batch: a folder into a folder, -r keeps the sub-folders") {
+TEST_CASE("batch: a folder into a folder, -r keeps the sub-folders", "[threads]") {
     TempFolder folder;
     const fs::path in = folder.path() / "in";
     fs::create_directories(in / "sub" / "deeper");
@@ -111,7 +111,7 @@ TEST_CASE("batch: a folder into a folder, -r keeps the sub-folders") {
     requireImage(folder / "deep/sub/deeper/low.tif", 64, 64);
 }
 
-TEST_CASE("batch: an output folder inside the input folder is not read back") {
+TEST_CASE("batch: an output folder inside the input folder is not read back", "[threads]") {
     TempFolder folder;
     fs::copy_file(kSample, folder / "a.png");
     const std::string out = folder / "x2";
@@ -123,7 +123,7 @@ TEST_CASE("batch: an output folder inside the input folder is not read back") {
     CHECK(filesUnder(folder.path()) == std::set<std::string>{"a.png", "x2/a.png"});
 }
 
-TEST_CASE("batch: -f picks the format, and two inputs with one output name are a clash") {
+TEST_CASE("batch: -f picks the format, and two inputs with one output name are a clash", "[threads]") {
     TempFolder folder;
     fs::copy_file(kSample, folder / "a.png");
     fs::copy_file(kSample, folder / "b.png");
@@ -140,7 +140,7 @@ TEST_CASE("batch: -f picks the format, and two inputs with one output name are a
     CHECK(ddt::ImageReader(out + "/a.jpg").header().channels == 3);
 }
 
-TEST_CASE("batch: --skip-existing resumes without touching finished outputs") {
+TEST_CASE("batch: --skip-existing resumes without touching finished outputs", "[threads]") {
     TempFolder folder;
     const fs::path in = folder.path() / "in";
     fs::create_directory(in);
@@ -165,7 +165,7 @@ TEST_CASE("batch: --skip-existing resumes without touching finished outputs") {
     CHECK_THAT(second.err, !Catch::Contains("Vulkan device"));
 }
 
-TEST_CASE("batch: an output folder equal to the input folder refuses every image") {
+TEST_CASE("batch: an output folder equal to the input folder refuses every image", "[threads]") {
     TempFolder folder;
     fs::copy_file(kSample, folder / "a.png");
     const std::string before = readFile(folder / "a.png");
@@ -177,7 +177,7 @@ TEST_CASE("batch: an output folder equal to the input folder refuses every image
     CHECK(folder.names() == std::set<std::string>{"a.png"});
 }
 
-TEST_CASE("batch: the device is started once for the whole batch") {
+TEST_CASE("batch: the device is started once for the whole batch", "[vulkan]") {
     TempFolder folder;
     std::vector<std::string> args;
     for (const char* name : {"a.png", "b.png", "c.png", "d.png"}) {
@@ -192,7 +192,7 @@ TEST_CASE("batch: the device is started once for the whole batch") {
     CHECK(countOf(run.err, " -> ") == 4);  // -v: one line per image
 }
 
-TEST_CASE("batch: the batch forms' usage errors") {
+TEST_CASE("batch: the batch forms' usage errors", "[threads]") {
     TempFolder folder;
     fs::copy_file(kSample, folder / "a.png");
     const std::string a = folder / "a.png";
@@ -219,7 +219,7 @@ TEST_CASE("batch: the batch forms' usage errors") {
     CHECK(folder.names() == std::set<std::string>{"a.png"});
 }
 
-TEST_CASE("batch: a missing input folder is one error") {
+TEST_CASE("batch: a missing input folder is one error", "[threads]") {
     TempFolder folder;
     const Run run = runDdtup({"-i", folder / "nope", "-o", folder / "out"});
     requireOneLineError(run, 1, folder / "nope", "no such folder");

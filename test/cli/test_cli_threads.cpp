@@ -6,7 +6,7 @@
 #include "temp_folder.h"
 #include "test_support.h"
 
-TEST_CASE("threads: --threads 1 writes the same bytes as the default, on both backends' paths") {
+TEST_CASE("threads: --threads 1 writes the same bytes as the default, on both backends' paths", "[threads]") {
     TempFolder folder;
     const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
     for (const char* mode : {"consistent", "plain"}) {
@@ -24,7 +24,7 @@ TEST_CASE("threads: --threads 1 writes the same bytes as the default, on both ba
     }
 }
 
-TEST_CASE("threads: the default thread count follows the CPU affinity") {
+TEST_CASE("threads: the default thread count follows the CPU affinity", "[threads]") {
     TempFolder folder;
     // taskset (util-linux, in every Debian) pins ddtup to one processor; -v names the count.
     const Run run = runShell("taskset -c 0 \"$DDTUP\" " + shellQuoted(ddt::test::testDataPath("crop32_astronaut.png")) +
@@ -34,11 +34,11 @@ TEST_CASE("threads: the default thread count follows the CPU affinity") {
     CHECK_THAT(run.err, Catch::Contains("the CPU backend (1 thread)"));
 }
 
-TEST_CASE("threads: --threads must be a positive count") {
+TEST_CASE("threads: --threads must be a positive count", "[threads]") {
     requireOneLineError(runDdtup({"a.png", "b.png", "--threads", "0"}), 2, "--threads", "not in range");
 }
 
-TEST_CASE("threads: tiles in parallel write the same bytes as tiles one after another") {
+TEST_CASE("threads: tiles in parallel write the same bytes as tiles one after another", "[threads]") {
     TempFolder folder;
     const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
     // A 200-pixel photo crop in 64-pixel tiles: four strips of four tiles, each strip's tiles

@@ -88,7 +88,7 @@ struct Case {
 
 }  // namespace
 
-TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh") {
+TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh", "[vulkan]") {
     VulkanBackend backend = makeBackend();
     const std::vector<Case> cases = {
         {1, SampleType::UInt8, 2.0, 2.0},   {2, SampleType::UInt8, 2.5, 2.5},   {3, SampleType::UInt8, 3.7, 3.7},
@@ -124,7 +124,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh") {
     CHECK(backend.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan reconstruct: the same output on every run") {
+TEST_CASE("vulkan reconstruct: the same output on every run", "[vulkan]") {
     VulkanBackend backend = makeBackend();
     const Image photo = test::photoCrop();
     const OutputSize out = scaledOutputSize(photo.width, photo.height, 2.5);
@@ -136,7 +136,7 @@ TEST_CASE("vulkan reconstruct: the same output on every run") {
     CHECK(other.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan reconstruct: the same file whatever lavapipe's thread count") {
+TEST_CASE("vulkan reconstruct: the same file whatever lavapipe's thread count", "[vulkan]") {
     TempFolder folder;
     const std::string input = test::testDataPath("crop32_astronaut.png");
     std::string previous;
@@ -152,7 +152,7 @@ TEST_CASE("vulkan reconstruct: the same file whatever lavapipe's thread count") 
     }
 }
 
-TEST_CASE("vulkan reconstruct: tiles agree with the untiled upscale") {
+TEST_CASE("vulkan reconstruct: tiles agree with the untiled upscale", "[vulkan]") {
     VulkanBackend backend = makeBackend();
     const Image photo = test::photoCrop();
     const OutputSize out = scaledOutputSize(photo.width, photo.height, 2.0);
@@ -175,7 +175,7 @@ TEST_CASE("vulkan reconstruct: tiles agree with the untiled upscale") {
     CHECK(backend.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan reconstruct: premultiplied colour stays at most alpha") {
+TEST_CASE("vulkan reconstruct: premultiplied colour stays at most alpha", "[vulkan]") {
     VulkanBackend backend = makeBackend();
     for (uint32_t channels : {2u, 4u}) {
         const Image image = sampleImage(29, 21, channels, SampleType::Float, 40 + channels);
@@ -187,7 +187,7 @@ TEST_CASE("vulkan reconstruct: premultiplied colour stays at most alpha") {
     CHECK(backend.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan reconstruct: -s 1 returns the input exactly") {
+TEST_CASE("vulkan reconstruct: -s 1 returns the input exactly", "[vulkan]") {
     VulkanBackend backend = makeBackend();
     for (uint32_t channels : {1u, 3u, 4u}) {
         const Image image = sampleImage(19, 13, channels, SampleType::UInt8, 50 + channels);

@@ -152,7 +152,7 @@ TEST_CASE("tiling: strips restart anywhere and never exceed the side") {
 
 // On the unoptimised grid, a crop's mesh is the whole mesh restricted to the crop: the
 // window it renders must equal the whole render bit for bit (same integers, same weights).
-TEST_CASE("tiling: a crop's grid mesh renders exactly the whole grid's pixels") {
+TEST_CASE("tiling: a crop's grid mesh renders exactly the whole grid's pixels", "[vulkan]") {
     const Image image = edgeImage(57, 43);
     const OutputSize out = scaledOutputSize(image.width, image.height, 2.3);
     for (const char* name : {"cpu", "vulkan"}) {
@@ -185,7 +185,7 @@ TEST_CASE("tiling: a crop's grid mesh renders exactly the whole grid's pixels") 
     }
 }
 
-TEST_CASE("tiling: tiled and untiled upscales agree within 1/255 on 99.9 % of samples") {
+TEST_CASE("tiling: tiled and untiled upscales agree within 1/255 on 99.9 % of samples", "[vulkan]") {
     struct Case {
         const char* label;
         Image image;
@@ -224,7 +224,7 @@ namespace {
 // The injected limits fail the untiled job in prepare (its 2.9 MB edge arrays) or, past
 // prepare and optimize, in render (its 3.8 MB band of rendered rows); halving the tile side
 // (300 → 150) gets crops whose buffers fit. The result is the untiled image.
-TEST_CASE("tiling: an injected device out-of-memory error retries with smaller tiles, never a partial image") {
+TEST_CASE("tiling: an injected device out-of-memory error retries with smaller tiles, never a partial image", "[vulkan]") {
     const Image image = test::photoCrop();
     const OutputSize out = scaledOutputSize(image.width, image.height, 2.0);
     std::unique_ptr<Backend> backend = makeBackendNamed("vulkan");
@@ -252,7 +252,7 @@ TEST_CASE("tiling: an injected device out-of-memory error retries with smaller t
 
 // A narrow, tall input streams strip by strip: the first strip's crop fits the limit, the
 // second's (overlap on both sides) does not. The retry must not resend the first strip's rows.
-TEST_CASE("tiling: a retry after rows were sent resends none of them") {
+TEST_CASE("tiling: a retry after rows were sent resends none of them", "[vulkan]") {
     const Image image = edgeImage(60, 300);
     const OutputSize out = scaledOutputSize(image.width, image.height, 1.5);
     const uint64_t first_strip = gridEdgeCount(60, 100 + kDefaultOverlap) * 16;
@@ -270,7 +270,7 @@ TEST_CASE("tiling: a retry after rows were sent resends none of them") {
     CHECK(validationMessages(*backend) == 0);
 }
 
-TEST_CASE("tiling: when even the smallest tiles fail, one error, and the backend stays usable") {
+TEST_CASE("tiling: when even the smallest tiles fail, one error, and the backend stays usable", "[vulkan]") {
     const Image image = edgeImage(100, 80);
     const OutputSize out = scaledOutputSize(image.width, image.height, 2.0);
     std::unique_ptr<Backend> backend = makeBackendNamed("vulkan");
@@ -336,7 +336,7 @@ void checkLargeUpscale(uint32_t side_px) {
 
 // lavapipe's 2 GiB heap holds about 2900² pixels of DDT's arrays: a 4096² input (4.1 GB
 // untiled) must be tiled automatically. About 50 s on lavapipe with two threads.
-TEST_CASE("tiling: a 4096x4096 input upscales on lavapipe in automatic tiles") { checkLargeUpscale(4096); }
+TEST_CASE("tiling: a 4096x4096 input upscales on lavapipe in automatic tiles", "[heavy][vulkan]") { checkLargeUpscale(4096); }
 
 // 8192²: beyond lavapipe's texel-buffer elements and largest allocation too. Minutes: run by hand.
 TEST_CASE("tiling: an 8192x8192 input upscales on lavapipe in automatic tiles", "[.][large]") {

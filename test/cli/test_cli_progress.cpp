@@ -76,7 +76,7 @@ TEST_CASE("progress: json mode writes only JSON events, errors and notes among t
     CHECK(progress.back().at("total") == "3");
 }
 
-TEST_CASE("progress: a usage error in json mode is a JSON event too") {
+TEST_CASE("progress: a usage error in json mode is a JSON event too", "[threads]") {
     const Run run = runDdtup({"--progress=json", "--scale", "0", "a.png", "b.png"});
     CHECK(run.exit_code == 2);
     const std::vector<Event> events = parseJsonLines(run.err);
@@ -90,7 +90,7 @@ TEST_CASE("progress: a usage error in json mode is a JSON event too") {
     CHECK_THAT(unknown[0].at("message"), Catch::Contains("--frobnicate"));
 }
 
-TEST_CASE("progress: a forced progress line names the image and stage, and is off without a terminal") {
+TEST_CASE("progress: a forced progress line names the image and stage, and is off without a terminal", "[threads]") {
     TempFolder folder;
     fs::copy_file(kSample, folder / "a.png");
     fs::copy_file(kSample, folder / "b.png");

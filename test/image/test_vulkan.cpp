@@ -65,7 +65,7 @@ double largestGain(const Mesh& mesh, const CostField& field) {
 
 }  // namespace
 
-TEST_CASE("vulkan: every rule yields a valid, locally optimal mesh") {
+TEST_CASE("vulkan: every rule yields a valid, locally optimal mesh", "[vulkan]") {
     const std::vector<TestImage> images = testImages();
     for (const std::string& rule : tableFlipRules()) {
         VulkanBackend backend = makeBackend(rule);
@@ -88,7 +88,7 @@ TEST_CASE("vulkan: every rule yields a valid, locally optimal mesh") {
     }
 }
 
-TEST_CASE("vulkan: the kernels' edge costs equal core's") {
+TEST_CASE("vulkan: the kernels' edge costs equal core's", "[vulkan]") {
     VulkanBackend backend = makeBackend("localmax");
     for (const TestImage& test : testImages()) {
         INFO(test.label);
@@ -107,7 +107,7 @@ TEST_CASE("vulkan: the kernels' edge costs equal core's") {
     CHECK(backend.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains are exact") {
+TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains are exact", "[vulkan]") {
     const std::vector<TestImage> images = testImages();
     for (const char* rule : {"basic", "exproi", "maxgain", "exproi2-maxgain", "localmax"}) {
         const FlipRule flip_rule = *parseFlipRule(rule);
@@ -153,7 +153,7 @@ TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains
     }
 }
 
-TEST_CASE("vulkan: the active set changes nothing but the work") {
+TEST_CASE("vulkan: the active set changes nothing but the work", "[vulkan]") {
     const std::vector<TestImage> images = testImages();
     for (const std::string& rule : tableFlipRules()) {
         VulkanBackend with = makeBackend(rule, true);
@@ -174,7 +174,7 @@ TEST_CASE("vulkan: the active set changes nothing but the work") {
     }
 }
 
-TEST_CASE("vulkan: batched submits give the mesh of one step per submit") {
+TEST_CASE("vulkan: batched submits give the mesh of one step per submit", "[vulkan]") {
     // optimize() records many iterations and rounds per submit and lets the device's plan
     // kernel skip what is not needed; iterations that need more rounds than a submit holds
     // continue in the next one. The result must equal stepping one round at a time.
@@ -197,7 +197,7 @@ TEST_CASE("vulkan: batched submits give the mesh of one step per submit") {
     }
 }
 
-TEST_CASE("vulkan: ExpROI with N = 0 is basic") {
+TEST_CASE("vulkan: ExpROI with N = 0 is basic", "[vulkan]") {
     VulkanBackend basic = makeBackend("basic");
     VulkanBackend exproi0 = makeBackend("exproi-0-maxgain");
     VulkanBackend maxgain = makeBackend("maxgain");
@@ -228,7 +228,7 @@ TEST_CASE("vulkan: ExpROI with N = 0 is basic") {
 //     |     \   |
 //     +---------+---------+
 //   (0,2)    (1,2)   f    (2,2)
-TEST_CASE("vulkan: MaxGain and local-max prefer the larger gain over the lower id") {
+TEST_CASE("vulkan: MaxGain and local-max prefer the larger gain over the lower id", "[vulkan]") {
     Image image;
     image.width = 4;
     image.height = 4;
@@ -268,7 +268,7 @@ TEST_CASE("vulkan: MaxGain and local-max prefer the larger gain over the lower i
     CHECK(localmax.rounds == 1);
 }
 
-TEST_CASE("vulkan: results are the same on every run and with one or two lavapipe threads") {
+TEST_CASE("vulkan: results are the same on every run and with one or two lavapipe threads", "[heavy][vulkan]") {
     const Image image = fixture("crop32_astronaut.png");
     const OutputSize out = scaledOutputSize(image.width, image.height, 2.5);
     const char* saved = std::getenv("LP_NUM_THREADS");
@@ -308,7 +308,7 @@ static void checkMatchesCore(const std::vector<float>& rows, const Image& refere
     CHECK(worst <= 1e-5);
 }
 
-TEST_CASE("vulkan: the device renderer matches core's on the same mesh") {
+TEST_CASE("vulkan: the device renderer matches core's on the same mesh", "[vulkan]") {
     struct Case {
         Image image;
         double scale;
@@ -347,7 +347,7 @@ TEST_CASE("vulkan: no invocation is given more items than lavapipe's loop budget
     }
 }
 
-TEST_CASE("vulkan: huge magnifications render in loop-bounded bands, equal to core") {
+TEST_CASE("vulkan: huge magnifications render in loop-bounded bands, equal to core", "[vulkan]") {
     // At ×150 one triangle covers hundreds of output columns, so a band holds only a few dozen
     // rows (the render loop budget); the result must still match core everywhere.
     const Image image = randomImage(9, 7, 3, 11);
@@ -362,7 +362,7 @@ TEST_CASE("vulkan: huge magnifications render in loop-bounded bands, equal to co
     CHECK(backend.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan: the validation messenger reports a deliberate error") {
+TEST_CASE("vulkan: the validation messenger reports a deliberate error", "[vulkan]") {
     // Shows the zero-message checks above can fail: an invalid call must be counted.
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
     REQUIRE(context->validation_messages == 0);
@@ -372,7 +372,7 @@ TEST_CASE("vulkan: the validation messenger reports a deliberate error") {
     CHECK(context->validation_messages > 0);
 }
 
-TEST_CASE("vulkan: an input whose edge arrays exceed a 128 MiB binding runs and stays valid") {
+TEST_CASE("vulkan: an input whose edge arrays exceed a 128 MiB binding runs and stays valid", "[vulkan]") {
     // 2100² has 13.2 M edges: 211 MB per edge array. A few flat regions keep flips, and the
     // test's time, small.
     const uint32_t side = 2100;

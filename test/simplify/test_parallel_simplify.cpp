@@ -27,7 +27,7 @@ double psnrOf(const Mesh& mesh, const Image& values, const Image& original) {
 
 }  // namespace
 
-TEST_CASE("parallel simplify: the target with a valid mesh, the same on 1, 2 and 3 threads") {
+TEST_CASE("parallel simplify: the target with a valid mesh, the same on 1, 2 and 3 threads", "[threads]") {
     const Image photo = photoPiece();
     const Mesh optimised = optimisedGridMesh(photo);
     const uint32_t target = photo.width * photo.height / 10;
@@ -53,7 +53,7 @@ TEST_CASE("parallel simplify: the target with a valid mesh, the same on 1, 2 and
     CHECK(samePixels(values[0].pixels, values[2].pixels));
 }
 
-TEST_CASE("parallel simplify: close to the serial reference, in about as few rounds as the cap allows") {
+TEST_CASE("parallel simplify: close to the serial reference, in about as few rounds as the cap allows", "[threads]") {
     // The 300 × 200 crop at 20 % and the 100 × 70 piece at 5 %. Over the bench's 12
     // photographs the rule ends at most 0.11 dB below the serial reference at any share; 0.3 dB
     // is the alarm. Rules that failed it: local minima over all keys, on the crop 2.5 dB below
@@ -83,7 +83,7 @@ TEST_CASE("parallel simplify: close to the serial reference, in about as few rou
     }
 }
 
-TEST_CASE("parallel simplify: the cheapest keys' bins take part, each pass's winners hold their regions' least key") {
+TEST_CASE("parallel simplify: the cheapest keys' bins take part, each pass's winners hold their regions' least key", "[threads]") {
     const Image photo = photoPiece();
     for (double share : {1.0, 0.2}) {
         Mesh mesh = optimisedGridMesh(photo);
@@ -212,7 +212,7 @@ ParallelSimplifyStats simplifyByTheRule(Mesh& mesh, Image& values, uint32_t targ
 
 }  // namespace
 
-TEST_CASE("parallel simplify: equal to the rule with every candidate found anew each round") {
+TEST_CASE("parallel simplify: equal to the rule with every candidate found anew each round", "[threads]") {
     std::mt19937 rng(11);
     struct Case {
         Image image;

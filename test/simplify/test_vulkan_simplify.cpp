@@ -68,7 +68,7 @@ DeviceSelection selectOnDevice(VulkanContext& context, const Mesh& mesh, const S
 
 }  // namespace
 
-TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's, on meshes part way simplified") {
+TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's, on meshes part way simplified", "[vulkan]") {
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
     const Image photo = photoPiece();
     const Mesh optimised = optimisedGridMesh(photo);
@@ -112,7 +112,7 @@ TEST_CASE("vulkan simplify: every edge's candidate and the winners equal core's,
     CHECK(context->validation_messages == 0);
 }
 
-TEST_CASE("vulkan simplify: grey, grey + alpha and RGBA values cost as in core") {
+TEST_CASE("vulkan simplify: grey, grey + alpha and RGBA values cost as in core", "[vulkan]") {
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
     std::mt19937 rng(7);
     for (uint32_t channels : {1u, 2u, 4u}) {
@@ -131,7 +131,7 @@ TEST_CASE("vulkan simplify: grey, grey + alpha and RGBA values cost as in core")
     CHECK(context->validation_messages == 0);
 }
 
-TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in core") {
+TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in core", "[vulkan]") {
     // The centre of a fan just below kMaxCollapseValence edges: collapses into it are refused
     // by the bound alone, those away from it are legal.
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
@@ -155,7 +155,7 @@ TEST_CASE("vulkan simplify: the valence bound refuses the same collapses as in c
     CHECK(context->validation_messages == 0);
 }
 
-TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core") {
+TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core", "[vulkan]") {
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
     const Image photo = photoPiece();
     const Mesh optimised = optimisedGridMesh(photo);
@@ -204,7 +204,7 @@ TEST_CASE("vulkan simplify: a round's winners collapse on the device as in core"
     CHECK(context->validation_messages == 0);
 }
 
-TEST_CASE("vulkan simplify: simplifyOnDevice gives simplifyParallel's mesh and colours") {
+TEST_CASE("vulkan simplify: simplifyOnDevice gives simplifyParallel's mesh and colours", "[vulkan]") {
     std::unique_ptr<VulkanContext> context = createContext({-1, true});
     const Image photo = photoPiece();
     const Mesh optimised = optimisedGridMesh(photo);
@@ -234,7 +234,7 @@ TEST_CASE("vulkan simplify: simplifyOnDevice gives simplifyParallel's mesh and c
 }
 
 
-TEST_CASE("vulkan simplify: the Vulkan backend simplifies by the parallel rule, the CPU backend by the serial one") {
+TEST_CASE("vulkan simplify: the Vulkan backend simplifies by the parallel rule, the CPU backend by the serial one", "[vulkan]") {
     const Image photo = photoPiece();
     const uint32_t target = photo.width * photo.height / 5;
     VulkanOptions options;

@@ -86,14 +86,14 @@ bool canMountTmpfs() { return std::system("unshare -rm sh -c 'mount -t tmpfs -o 
 
 }  // namespace
 
-TEST_CASE("bad input: a folder given as the input file") {
+TEST_CASE("bad input: a folder given as the input file", "[threads]") {
     Workspace work;
     fs::create_directory(work.inputs / "photos.png");
     requireExactError(work.upscale(work.inputs / "photos.png"), 1, work.inputs / "photos.png" + ": is a folder, not an image file");
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: a PNG with bytes flipped in its image data") {
+TEST_CASE("bad input: a PNG with bytes flipped in its image data", "[threads]") {
     Workspace work;
     const std::string good = readFile(ddt::test::testDataPath("crop32_astronaut.png"));
     const size_t data = ddt::test::pngChunkData(good, "IDAT");
@@ -121,14 +121,14 @@ TEST_CASE("bad input: a PNG with bytes flipped in its image data") {
     }
 }
 
-TEST_CASE("bad input: a zero-byte file") {
+TEST_CASE("bad input: a zero-byte file", "[threads]") {
     Workspace work;
     writeBytes(work.inputs / "empty.png", "");
     requireExactError(work.upscale(work.inputs / "empty.png"), 1, work.inputs / "empty.png" + ": empty file (0 bytes)");
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: 0×0 and 1×N images") {
+TEST_CASE("bad input: 0×0 and 1×N images", "[threads]") {
     Workspace work;
     // libpng refuses a 0×0 header itself ("Invalid IHDR data").
     writeBytes(work.inputs / "zero.png", ddt::test::pngClaiming(0, 0));
@@ -139,7 +139,7 @@ TEST_CASE("bad input: 0×0 and 1×N images") {
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: a header claiming 100000×100000 pixels is refused before allocating") {
+TEST_CASE("bad input: a header claiming 100000×100000 pixels is refused before allocating", "[threads]") {
     Workspace work;
     writeBytes(work.inputs / "huge.png", ddt::test::pngClaiming(100000, 100000));
     requireExactError(work.upscale(work.inputs / "huge.png"), 1,
@@ -147,7 +147,7 @@ TEST_CASE("bad input: a header claiming 100000×100000 pixels is refused before 
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: 5-channel TIFF and EXR files") {
+TEST_CASE("bad input: 5-channel TIFF and EXR files", "[threads]") {
     Workspace work;
     writeChannels(work.inputs / "five.tif", 5, OIIO::TypeDesc::UINT8);
     writeChannels(work.inputs / "five.exr", 5, OIIO::TypeDesc::HALF);
@@ -159,7 +159,7 @@ TEST_CASE("bad input: 5-channel TIFF and EXR files") {
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: NaN or infinite samples in a float EXR") {
+TEST_CASE("bad input: NaN or infinite samples in a float EXR", "[threads]") {
     Workspace work;
     for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
                       -std::numeric_limits<float>::infinity()}) {
@@ -174,7 +174,7 @@ TEST_CASE("bad input: NaN or infinite samples in a float EXR") {
 }
 
 // The app's limit on output pixels decides the message; here only that it is one line.
-TEST_CASE("bad input: an absurd scale is refused with one line") {
+TEST_CASE("bad input: an absurd scale is refused with one line", "[threads]") {
     Workspace work;
     // 32 · 1e9 pixels a side: beyond the documented limit of 2^32 output pixels.
     const Run run = runDdtup({ddt::test::testDataPath("crop32_astronaut.png"), "-s", "1e9", work.out});
@@ -183,7 +183,7 @@ TEST_CASE("bad input: an absurd scale is refused with one line") {
 }
 
 // The real thing: a 64 KiB tmpfs in a private mount namespace, where the machine allows one.
-TEST_CASE("bad input: the disk fills up while writing (a full tmpfs)") {
+TEST_CASE("bad input: the disk fills up while writing (a full tmpfs)", "[threads]") {
     if (!canMountTmpfs()) {
         WARN("unshare -rm cannot mount a tmpfs here; the injected failure below still runs");
         return;
@@ -203,7 +203,7 @@ TEST_CASE("bad input: the disk fills up while writing (a full tmpfs)") {
 
 // Injected through the writer's test hook DDTUP_TEST_WRITE_LIMIT (a write past that many bytes
 // fails with ENOSPC), so that every machine runs this one.
-TEST_CASE("bad input: the disk fills up while writing (injected)") {
+TEST_CASE("bad input: the disk fills up while writing (injected)", "[threads]") {
     Workspace work;
     const Run run = work.upscale(ddt::test::testDataPath("crop32_astronaut.png"), {"--backend", "cpu", "-q"},
                                  {"DDTUP_TEST_WRITE_LIMIT=1000"});
@@ -219,7 +219,7 @@ TEST_CASE("bad input: no Vulkan device for --backend vulkan") {
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: standard input that is not an image") {
+TEST_CASE("bad input: standard input that is not an image", "[threads]") {
     Workspace work;
     writeBytes(work.inputs / "text", "not an image\n");
     requireExactError(runDdtup({"-", "-s", "2", work.out}, {}, work.inputs / "text"), 1,
@@ -228,7 +228,7 @@ TEST_CASE("bad input: standard input that is not an image") {
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("cli: an image on standard input is recognised by its content") {
+TEST_CASE("cli: an image on standard input is recognised by its content", "[threads]") {
     Workspace work;
     const Run run = runDdtup({"-", "-s", "2", work.out, "-q", "--backend", "cpu"}, {},
                              ddt::test::testDataPath("crop32_astronaut.png"));
@@ -239,7 +239,7 @@ TEST_CASE("cli: an image on standard input is recognised by its content") {
 
 // 1500×1500 noise at -s 4 keeps the CPU backend busy for many seconds; the writer's
 // temporary file appears in the output folder before the input is decoded.
-TEST_CASE("cli: SIGINT and SIGTERM remove the temporary output and end by the signal") {
+TEST_CASE("cli: SIGINT and SIGTERM remove the temporary output and end by the signal", "[threads]") {
     Workspace work;
     ddt::writeImage(work.inputs / "noise.png", noiseImage(1500, 1500));
     for (int number : {SIGINT, SIGTERM}) {
@@ -255,7 +255,7 @@ TEST_CASE("cli: SIGINT and SIGTERM remove the temporary output and end by the si
 }
 
 // The copy of standard input is a temporary file too.
-TEST_CASE("cli: SIGINT while standard input is copied removes the copy") {
+TEST_CASE("cli: SIGINT while standard input is copied removes the copy", "[threads]") {
     Workspace work;
     TempFolder temp;
     const std::string fifo = work.inputs / "fifo";
@@ -275,7 +275,7 @@ TEST_CASE("cli: SIGINT while standard input is copied removes the copy") {
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: in a batch every bad file fails alone, with its own line, and the good ones are done") {
+TEST_CASE("bad input: in a batch every bad file fails alone, with its own line, and the good ones are done", "[threads]") {
     Workspace work;
     const auto in = [&](const std::string& name) { return work.inputs / name; };
     ddt::writeImage(in("good1.png"), noiseImage(8, 8));
@@ -319,7 +319,7 @@ TEST_CASE("bad input: in a batch every bad file fails alone, with its own line, 
     CHECK(ddt::ImageReader(work.outputs / "good2.png").header().width == 18);
 }
 
-TEST_CASE("bad input: a format OpenImageIO reads but ddtup does not is refused by its content") {
+TEST_CASE("bad input: a format OpenImageIO reads but ddtup does not is refused by its content", "[threads]") {
     Workspace work;
     // SGI and FITS: Debian's OIIO reads and writes both; ddtup hands them to no reader.
     writeChannels(work.inputs / "a.sgi", 3, OIIO::TypeDesc::UINT8);
@@ -331,7 +331,7 @@ TEST_CASE("bad input: a format OpenImageIO reads but ddtup does not is refused b
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: a PNG named .tga or .sgi is read as the PNG it is") {
+TEST_CASE("bad input: a PNG named .tga or .sgi is read as the PNG it is", "[threads]") {
     Workspace work;
     const ddt::Image image = noiseImage(6, 5);
     ddt::writeImage(work.inputs / "real.png", image);
@@ -345,7 +345,7 @@ TEST_CASE("bad input: a PNG named .tga or .sgi is read as the PNG it is") {
     }
 }
 
-TEST_CASE("bad input: an output format ddtup does not write is refused before any work") {
+TEST_CASE("bad input: an output format ddtup does not write is refused before any work", "[threads]") {
     Workspace work;
     ddt::writeImage(work.inputs / "a.png", noiseImage(6, 5));
     requireExactError(runDdtup({work.inputs / "a.png", "-s", "2", work.outputs / "a.sgi"}), 1,
@@ -355,7 +355,7 @@ TEST_CASE("bad input: an output format ddtup does not write is refused before an
     CHECK(work.outputs.names().empty());
 }
 
-TEST_CASE("bad input: a folder walk takes the files with the extensions of ddtup's formats only") {
+TEST_CASE("bad input: a folder walk takes the files with the extensions of ddtup's formats only", "[threads]") {
     Workspace work;
     ddt::writeImage(work.inputs / "a.png", noiseImage(6, 5));
     ddt::writeImage(work.inputs / "b.ppm", noiseImage(5, 4));

@@ -11,7 +11,7 @@
 #include "temp_folder.h"
 #include "test_support.h"
 
-TEST_CASE("cli: --reconstruct consistent and plain on 8-bit, 16-bit and float inputs, at exact sizes") {
+TEST_CASE("cli: --reconstruct consistent and plain on 8-bit, 16-bit and float inputs, at exact sizes", "[vulkan]") {
     TempFolder folder;
     ddt::Image image = ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png"));
     ddt::writeImage(folder / "in8.png", image);

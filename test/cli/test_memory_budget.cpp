@@ -31,13 +31,13 @@ bool waitsFor(MemoryBudget& budget, std::optional<MemoryBudget::Lease>& held, ui
 
 }  // namespace
 
-TEST_CASE("memory budget: an acquire waits until a lease ends") {
+TEST_CASE("memory budget: an acquire waits until a lease ends", "[threads]") {
     MemoryBudget budget(100);
     std::optional<MemoryBudget::Lease> first = budget.acquire(60);
     CHECK(waitsFor(budget, first, 60));  // 60 + 60 > 100
 }
 
-TEST_CASE("memory budget: an image larger than the budget runs alone") {
+TEST_CASE("memory budget: an image larger than the budget runs alone", "[threads]") {
     MemoryBudget budget(100);
     { MemoryBudget::Lease huge = budget.acquire(1000); }  // alone: it does not wait
     std::optional<MemoryBudget::Lease> small = budget.acquire(10);

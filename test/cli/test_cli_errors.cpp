@@ -184,7 +184,7 @@ TEST_CASE("cli: an output with an unknown extension is refused") {
     CHECK(work.folder.names() == before);
 }
 
-TEST_CASE("cli: -s 1 reproduces RGB, grey, 16-bit and RGBA images exactly") {
+TEST_CASE("cli: -s 1 reproduces RGB, grey, 16-bit and RGBA images exactly", "[vulkan]") {
     Workspace work;
     ddt::Image deep = ddt::readImage(work.input);
     deep.sample_type = ddt::SampleType::UInt16;

@@ -44,7 +44,7 @@ TEST_CASE("cli mesh: PLY and OBJ files that assimp reads, with the grid, its rin
     CHECK(work.names() == std::set<std::string>{"mesh.obj", "mesh.ply", "out.png"});
 }
 
-TEST_CASE("cli mesh: the Vulkan backend's mesh file has the CPU backend's layout") {
+TEST_CASE("cli mesh: the Vulkan backend's mesh file has the CPU backend's layout", "[vulkan]") {
     // The serial and the parallel flip orders may end in different meshes, so only the layout
     // is compared: same size, same header. (Every file's mesh is checked to tile the image
     // before it is written: core/stitched_mesh.h.)
@@ -121,7 +121,7 @@ TEST_CASE("cli mesh: --simplify keeps the fraction of the vertices asked for, an
     CHECK(out.height == 64);
 }
 
-TEST_CASE("cli mesh: --stats names the simplifier: the parallel rule on Vulkan, the serial one on the CPU") {
+TEST_CASE("cli mesh: --stats names the simplifier: the parallel rule on Vulkan, the serial one on the CPU", "[vulkan]") {
     TempFolder work;
     const Run device = runDdtup({kInput, work / "out.png", "--simplify", "0.5", "--backend", "vulkan", "--stats"});
     REQUIRE(device.exit_code == 0);
@@ -132,7 +132,7 @@ TEST_CASE("cli mesh: --stats names the simplifier: the parallel rule on Vulkan, 
     CHECK_THAT(cpu.out, Catch::Contains("vertices       1024 -> 512  (the serial greedy simplifier)"));
 }
 
-TEST_CASE("cli mesh: on Vulkan, --simplify writes the same mesh and image whatever lavapipe's thread count") {
+TEST_CASE("cli mesh: on Vulkan, --simplify writes the same mesh and image whatever lavapipe's thread count", "[heavy][vulkan]") {
     TempFolder work;
     std::string meshes[2], images[2];
     int i = 0;

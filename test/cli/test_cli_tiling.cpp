@@ -33,7 +33,7 @@ ddt::test::Agreement compareFiles(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the tiles and the time left") {
+TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the tiles and the time left", "[vulkan]") {
     TempFolder folder;
     const std::string input = writePhotoCrop(folder);
     for (const char* backend : {"vulkan", "cpu"}) {
@@ -61,7 +61,7 @@ TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the
     }
 }
 
-TEST_CASE("tiling cli: a device out of memory leads to smaller tiles, never a partial image") {
+TEST_CASE("tiling cli: a device out of memory leads to smaller tiles, never a partial image", "[vulkan]") {
     TempFolder folder;
     const std::string input = writePhotoCrop(folder);
     const std::string whole = folder / "whole.png", retried = folder / "retried.png";

@@ -399,7 +399,7 @@ TEST_CASE("png: the bytes do not depend on the number of threads") {
 }
 
 // Only a batch of pieces is held: nearly all of a tall image is out before finish().
-TEST_CASE("png: rows are written as they arrive; the memory held does not grow with the height") {
+TEST_CASE("png: rows are written as they arrive, and the memory held does not grow with the height") {
     ThreadCount threads(2);
     const Samples samples = makeSamples(64, 4000, 3, 8, Content::Noise);
     PngEncoder::Options options;

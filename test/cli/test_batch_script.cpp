@@ -132,7 +132,7 @@ bool haveCommand(const std::string& name) { return std::system(("command -v " + 
 
 }  // namespace
 
-TEST_CASE("ddtup-batch: GNU parallel upscales the tree, reports the bad file and resumes") {
+TEST_CASE("ddtup-batch: GNU parallel upscales the tree, reports the bad file and resumes", "[threads]") {
     if (!haveCommand("parallel")) {
         WARN("GNU parallel is not installed (scripts/setup installs it): parallel path not tested");
         return;
@@ -143,7 +143,7 @@ TEST_CASE("ddtup-batch: GNU parallel upscales the tree, reports the bad file and
     requireResumedRun(work, args, {});
 }
 
-TEST_CASE("ddtup-batch: without GNU parallel, xargs does the same") {
+TEST_CASE("ddtup-batch: without GNU parallel, xargs does the same", "[threads]") {
     Workspace work;
     const std::vector<std::string> args = {"-j", "2", work.in, work.out, "--", "-s", "2", "--backend", "cpu"};
     requireFirstRun(work, work.batch(args, {"DDTUP_BATCH_NO_PARALLEL=1"}));
@@ -152,7 +152,7 @@ TEST_CASE("ddtup-batch: without GNU parallel, xargs does the same") {
 
 // Real remote machines cannot be reached in CI. ":" is GNU parallel's name for this machine,
 // so this runs the --sshloginfile command line and the job's local branch.
-TEST_CASE("ddtup-batch: --sshloginfile with the local machine") {
+TEST_CASE("ddtup-batch: --sshloginfile with the local machine", "[threads]") {
     if (!haveCommand("parallel")) {
         WARN("GNU parallel is not installed: --sshloginfile not tested");
         return;
@@ -165,7 +165,7 @@ TEST_CASE("ddtup-batch: --sshloginfile with the local machine") {
 // Injected remote machine: an "ssh" that runs the command here, in a folder standing for the
 // other machine's home. GNU parallel and rsync really copy each input there, the job runs on
 // the copy, the output comes back and the copies are removed; only the network is missing.
-TEST_CASE("ddtup-batch: --sshloginfile copies to a machine and back, and cleans up there") {
+TEST_CASE("ddtup-batch: --sshloginfile copies to a machine and back, and cleans up there", "[threads]") {
     if (!haveCommand("parallel") || !haveCommand("rsync")) {
         WARN("GNU parallel or rsync is not installed: transfers to other machines not tested");
         return;
@@ -189,7 +189,7 @@ TEST_CASE("ddtup-batch: --sshloginfile copies to a machine and back, and cleans 
     CHECK(tree(remote_home).empty());
 }
 
-TEST_CASE("ddtup-batch: -f names the outputs and refuses two inputs for one output") {
+TEST_CASE("ddtup-batch: -f names the outputs and refuses two inputs for one output", "[threads]") {
     Workspace work;
     fs::copy_file(ddt::test::testDataPath("step8_gray.png"), fs::path(work.in) / "sub dir/c.tif");
     const Run run = work.batch({"-f", "png", work.in, work.out, "--", "--backend", "cpu"}, {"DDTUP_BATCH_NO_PARALLEL=1"});
@@ -201,7 +201,7 @@ TEST_CASE("ddtup-batch: -f names the outputs and refuses two inputs for one outp
     CHECK_THAT(run.err, Catch::Contains("3 done, 0 skipped, 2 failed"));
 }
 
-TEST_CASE("ddtup-batch: options ddtup refuses stop the batch with ddtup's exit code") {
+TEST_CASE("ddtup-batch: options ddtup refuses stop the batch with ddtup's exit code", "[threads]") {
     Workspace work;
     std::vector<std::vector<std::string>> environments = {{"DDTUP_BATCH_NO_PARALLEL=1"}};
     if (haveCommand("parallel")) environments.push_back({});
@@ -216,7 +216,7 @@ TEST_CASE("ddtup-batch: options ddtup refuses stop the batch with ddtup's exit c
     }
 }
 
-TEST_CASE("ddtup-batch: bad usage exits 2 and does nothing") {
+TEST_CASE("ddtup-batch: bad usage exits 2 and does nothing", "[threads]") {
     Workspace work;
     for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
              {},
@@ -242,7 +242,7 @@ TEST_CASE("ddtup-batch: bad usage exits 2 and does nothing") {
 
 // A stand-in ddtup that records its arguments, one per line, and copies its input to its
 // output, so the arguments the script gives each process can be read back.
-TEST_CASE("ddtup-batch: -j N gives each process its share of the processors, and --threads wins") {
+TEST_CASE("ddtup-batch: -j N gives each process its share of the processors, and --threads wins", "[threads]") {
     // What the script divides: the processors nproc counts.
     unsigned cores = 0;
     if (FILE* nproc = ::popen("nproc", "r")) {

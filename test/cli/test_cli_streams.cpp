@@ -21,7 +21,7 @@ const std::string kSample = ddt::test::testDataPath("crop32_astronaut.png");  //
 
 }  // namespace
 
-TEST_CASE("streams: an image piped through - in and - out equals the file-to-file result") {
+TEST_CASE("streams: an image piped through - in and - out equals the file-to-file result", "[threads]") {
     TempFolder folder;
     const std::string piped = folder / "piped.png", direct = folder / "direct.png";
     const Run pipe = runShell("\"$DDTUP\" - -s 2 - -f png -q < " + shellQuoted(kSample) + " > " + shellQuoted(piped));
@@ -39,12 +39,12 @@ TEST_CASE("streams: an image piped through - in and - out equals the file-to-fil
     CHECK(ddt::readImage(folder / "follow.png").pixels == b.pixels);
 }
 
-TEST_CASE("streams: a full standard output is one error line") {
+TEST_CASE("streams: a full standard output is one error line", "[threads]") {
     const Run run = runShell("\"$DDTUP\" " + shellQuoted(kSample) + " - -f png -q > /dev/full");
     requireExactError(run, 1, "standard output: No space left on device");
 }
 
-TEST_CASE("streams: a standard input that cannot be copied is one error line, and leaves no copy") {
+TEST_CASE("streams: a standard input that cannot be copied is one error line, and leaves no copy", "[threads]") {
     // The copy goes to $TMPDIR; a full disk there is injected (DDTUP_TEST_WRITE_LIMIT): the
     // 100 bytes allowed are fewer than the sample's, so the copy fails before any decoding.
     TempFolder temp;
@@ -56,7 +56,7 @@ TEST_CASE("streams: a standard input that cannot be copied is one error line, an
     CHECK(temp.names().empty());
 }
 
-TEST_CASE("streams: standard output from standard input needs -f") {
+TEST_CASE("streams: standard output from standard input needs -f", "[threads]") {
     const Run run = runDdtup({"-", "-"}, {}, kSample);
     requireOneLineError(run, 2, "standard output", "-f FORMAT");
 }
