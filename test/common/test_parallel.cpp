@@ -18,15 +18,26 @@ struct ScopedThreadCount {
     unsigned before;
 };
 
-// Runs a loop over `count` items and counts how often each was visited.
+// Runs a loop over `count` items and counts how often each was visited; one more count at the
+// end holds the chunks that were empty or ran past the last item. The workers only count:
+// Catch2's assertions are not thread-safe (ThreadSanitizer reports them from the pool).
 std::vector<int> visits(size_t count, size_t grain) {
-    std::vector<std::atomic<int>> seen(count);
+    std::vector<std::atomic<int>> seen(count + 1);
     ddt::parallelFor(count, grain, [&](size_t begin, size_t end) {
-        REQUIRE(begin < end);
-        REQUIRE(end <= count);
+        if (begin >= end || end > count) {
+            ++seen[count];
+            return;
+        }
         for (size_t i = begin; i < end; ++i) ++seen[i];
     });
     return std::vector<int>(seen.begin(), seen.end());
+}
+
+// What visits() gives when each item is visited once by a sound chunk.
+std::vector<int> onceEach(size_t count) {
+    std::vector<int> expected(count, 1);
+    expected.push_back(0);
+    return expected;
 }
 
 }  // namespace
@@ -37,7 +48,7 @@ TEST_CASE("parallel: every item is visited exactly once, whatever the count, gra
         for (size_t count : {size_t(0), size_t(1), size_t(7), size_t(1000), size_t(100003)})
             for (size_t grain : {size_t(1), size_t(8), size_t(5000)}) {
                 INFO(threads << " threads, " << count << " items, grain " << grain);
-                CHECK(visits(count, grain) == std::vector<int>(count, 1));
+                CHECK(visits(count, grain) == onceEach(count));
             }
     }
 }
@@ -49,7 +60,7 @@ TEST_CASE("parallel: a chunk's exception reaches the caller, and the pool keeps 
                                            if (begin <= 500 && 500 < end) throw std::runtime_error("item 500");
                                        }),
                       "item 500");
-    CHECK(visits(1000, 1) == std::vector<int>(1000, 1));
+    CHECK(visits(1000, 1) == onceEach(1000));
 }
 
 TEST_CASE("parallel: loops from several threads and loops inside loops all finish", "[threads]") {
