@@ -106,7 +106,7 @@ TEST_CASE("cli: an unknown --variant is a usage error") {
     CHECK(folder.names().empty());
 }
 
-TEST_CASE("cli: the output does not depend on lavapipe's thread count", "[vulkan]") {
+TEST_CASE("cli: the output does not depend on lavapipe's thread count", "[vulkan][heavy]") {
     TempFolder folder;
     for (const char* variant : {"localmax", "basic"}) {
         INFO(variant);

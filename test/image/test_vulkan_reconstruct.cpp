@@ -124,7 +124,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh", "[vulk
     CHECK(backend.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan reconstruct: the same output on every run", "[vulkan]") {
+TEST_CASE("vulkan reconstruct: the same output on every run", "[vulkan][heavy]") {
     VulkanBackend backend = makeBackend();
     const Image photo = test::photoCrop();
     const OutputSize out = scaledOutputSize(photo.width, photo.height, 2.5);
@@ -136,7 +136,7 @@ TEST_CASE("vulkan reconstruct: the same output on every run", "[vulkan]") {
     CHECK(other.validationMessages() == 0);
 }
 
-TEST_CASE("vulkan reconstruct: the same file whatever lavapipe's thread count", "[vulkan]") {
+TEST_CASE("vulkan reconstruct: the same file whatever lavapipe's thread count", "[vulkan][heavy]") {
     TempFolder folder;
     const std::string input = test::testDataPath("crop32_astronaut.png");
     std::string previous;

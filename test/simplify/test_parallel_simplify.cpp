@@ -53,7 +53,7 @@ TEST_CASE("parallel simplify: the target with a valid mesh, the same on 1, 2 and
     CHECK(samePixels(values[0].pixels, values[2].pixels));
 }
 
-TEST_CASE("parallel simplify: close to the serial reference, in about as few rounds as the cap allows", "[threads]") {
+TEST_CASE("parallel simplify: close to the serial reference, in about as few rounds as the cap allows") {
     // The 300 × 200 crop at 20 % and the 100 × 70 piece at 5 %. Over the bench's 12
     // photographs the rule ends at most 0.11 dB below the serial reference at any share; 0.3 dB
     // is the alarm. Rules that failed it: local minima over all keys, on the crop 2.5 dB below
@@ -212,7 +212,7 @@ ParallelSimplifyStats simplifyByTheRule(Mesh& mesh, Image& values, uint32_t targ
 
 }  // namespace
 
-TEST_CASE("parallel simplify: equal to the rule with every candidate found anew each round", "[threads]") {
+TEST_CASE("parallel simplify: equal to the rule with every candidate found anew each round") {
     std::mt19937 rng(11);
     struct Case {
         Image image;
