@@ -50,6 +50,7 @@ struct Settings {
     unsigned threads = 0;          // CPU threads for the whole process; 0 = the processors it may use
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
     std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/reconstruct.h)
+    std::string assume = "footprint";        // the downscale filter the consistent surface assumes (core/assumed_kernel.h)
     int device = -1;           // Vulkan device index; -1 = choose
     bool active_set = true;    // Vulkan: re-test only edges a flip may have changed
     bool list_devices = false;

@@ -147,6 +147,7 @@ struct Job {
     const Image& image;
     OutputSize out;
     bool reconstruct;
+    AssumedKernel kernel;
     const TileStepCallback& on_step;
     RowEmitter& rows;
     StitchedMesh* strip_mesh;  // the current strip's tiles' meshes, if the caller wants them
@@ -176,8 +177,8 @@ OptimizeStats shapeTile(Job& job, Backend& backend, const Tile& tile, uint32_t i
     // the overlap keeps the crop's border out of the core's output (test/image/test_tiling.cpp).
     if (job.reconstruct) {
         job.step(index, total, TilePhase::Reconstruct);
-        backend.reconstruct(
-            degradationFor(double(job.out.width) / job.image.width, double(job.out.height) / job.image.height));
+        backend.reconstruct(degradationFor(double(job.out.width) / job.image.width,
+                                           double(job.out.height) / job.image.height, job.kernel));
     }
     return stats;
 }
@@ -339,7 +340,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
     BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
-    Job job{backends, image, out, options.reconstruct, on_step, rows, nullptr, {}, {}};
+    Job job{backends, image, out, options.reconstruct, options.kernel, on_step, rows, nullptr, {}, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

@@ -232,6 +232,7 @@ void ImageJob::render(Backend& backend) {
         TileOptions options;
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
+        options.kernel = *parseAssumedKernel(settings_.assume);  // checked by the command line
         options.mesh = mesh ? &*mesh : nullptr;
         if (state_->samples) {
             report_.stats = upscaleFromSamples(backend, state_->image, std::move(*state_->samples), out, sink, on_step);

@@ -18,10 +18,10 @@ struct DdtOutputs {
 };
 
 // `low` magnified to width × height by `backend`: the plain surface if `plain`, the
-// consistent one if `consistent`. A backend whose reconstruct throws UserError leaves
-// `consistent` empty with the message.
+// consistent one assuming `assume` if `consistent`. A backend whose reconstruct throws
+// UserError leaves `consistent` empty with the message.
 DdtOutputs magnifyWithDdt(ddt::Backend& backend, const ddt::Image& low, uint32_t width, uint32_t height, bool plain,
-                          bool consistent);
+                          bool consistent, ddt::AssumedKernel assume = ddt::AssumedKernel::footprint);
 
 // "" when `method`'s backend can reconstruct (tried on a small image), else the reason.
 std::string consistentUnavailableReason(const DdtMethod& method);

@@ -4,6 +4,9 @@
 //   source pixels when shrinking, as one halving does).
 // - B: exact area averaging (area_average.h), the model of a camera pixel or a box filter.
 // - JPEG: A's image, then stored as JPEG of quality 85 and read back (jpeg_roundtrip.h).
+// - bicubic: one OIIO `catmull-rom` resize by 1/f (Keys' cubic, a = −0.5: editors' bicubic).
+// - camera: a Gaussian blur of σ = 0.4·f sampled at the pixels' centres, then noise of
+//   σ = 1/255 (camera_model.h).
 // - a held-back filter (--protocol-filter NAME): one OIIO resize by 1/f with that filter.
 // Every variant computes in float and rounds to 8 bits once; originals are cropped (centred)
 // to a multiple of the factor's numerator, so the low-resolution size is exact (5 for ×2.5).
@@ -17,10 +20,10 @@
 
 namespace bench {
 
-enum class ProtocolKind { Halvings, AreaAverage, Jpeg, HeldBackFilter };
+enum class ProtocolKind { Halvings, AreaAverage, Jpeg, Bicubic, Camera, HeldBackFilter };
 
 struct Protocol {
-    std::string key;    // "A", "B", "A+JPEG85", "C"
+    std::string key;    // "A", "B", "A+JPEG85", "bicubic", "camera", "C"
     std::string label;  // for the report
     ProtocolKind kind = ProtocolKind::Halvings;
     std::string filter;  // HeldBackFilter: the OIIO filter name
@@ -30,8 +33,9 @@ struct Protocol {
 // The JPEG quality of protocol A+JPEG.
 constexpr int kProtocolJpegQuality = 85;
 
-// The protocols and their factors: A and B at ×2, ×2.5, ×4, ×8, A+JPEG at ×2, ×4, ×8, and C
-// with `held_back_filter` at A's factors when it is not empty. --quick: fewer factors.
+// The protocols and their factors: A and B at ×2, ×2.5, ×4, ×8, A+JPEG, bicubic and camera at
+// ×2, ×4, ×8, and C with `held_back_filter` at A's factors when it is not empty. --quick: fewer
+// factors.
 std::vector<Protocol> benchProtocols(const std::string& held_back_filter, bool quick);
 
 // One sentence per protocol for the report.

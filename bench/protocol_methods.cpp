@@ -21,9 +21,12 @@ Upscaler filter(const char* name, const char* label) {
     return u;
 }
 
-Upscaler ddtColumn(const DdtMethod& method, const std::string& label, bool consistent) {
+Upscaler ddtColumn(const DdtMethod& method, const std::string& label, bool consistent,
+                   ddt::AssumedKernel assume = ddt::AssumedKernel::footprint) {
     Upscaler u;
     u.key = method.key + (consistent ? "+consistent" : "");
+    if (assume != ddt::AssumedKernel::footprint) u.key += std::string("/assume-") + ddt::assumedKernelName(assume);
+    u.assume = assume;
     u.label = label;
     u.kind = UpscalerKind::Ddt;
     u.ddt = method;
@@ -71,6 +74,8 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
         ddtColumn(gpu, "GPU DDT", false),
         ddtColumn(gpu, "GPU DDT consistent", true),
     };
+    for (ddt::AssumedKernel kernel : {ddt::AssumedKernel::box, ddt::AssumedKernel::bicubic, ddt::AssumedKernel::lanczos3})
+        setup.upscalers.push_back(ddtColumn(cpu, std::string("CPU consistent, ") + ddt::assumedKernelName(kernel), true, kernel));
     return setup;
 }
 

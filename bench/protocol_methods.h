@@ -1,12 +1,13 @@
 // The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peer libvips'
 // Nohalo, and DDT plain and consistent on the CPU and on the Vulkan backend's default
-// variant. Availability is probed once, up front: a column that cannot run here (no Vulkan
+// variant, and the CPU's consistent surface assuming each named resize filter (`--assume`). Availability is probed once, up front: a column that cannot run here (no Vulkan
 // device, libvips misaligned) keeps its place as "n/a" with the reason.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "assumed_kernel.h"
 #include "methods.h"
 
 namespace bench {
@@ -20,6 +21,7 @@ struct Upscaler {
     std::string oiio_filter;  // OiioFilter
     DdtMethod ddt;            // Ddt
     bool consistent = false;  // Ddt: the consistent reconstruction instead of the plain surface
+    ddt::AssumedKernel assume = ddt::AssumedKernel::footprint;  // Ddt, consistent: the filter it assumes
     std::string unavailable;  // "" if it runs here
 };
 

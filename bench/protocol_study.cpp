@@ -41,10 +41,10 @@ std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends&
                                              uint32_t width, uint32_t height,
                                              const std::string& where) {
     std::map<std::string, ddt::Image> outputs;
-    std::set<std::string> ddt_methods_run;
+    std::set<std::string> ddt_runs;  // method and assumed filter
+    auto runKey = [](const Upscaler& u) { return u.ddt.key + "/" + ddt::assumedKernelName(u.assume); };
     for (const Upscaler& u : results.upscalers) {
-        if (!u.unavailable.empty() || (u.kind == UpscalerKind::Ddt && !ddt_methods_run.insert(u.ddt.key).second))
-            continue;
+        if (!u.unavailable.empty() || (u.kind == UpscalerKind::Ddt && !ddt_runs.insert(runKey(u)).second)) continue;
         try {
             switch (u.kind) {
             case UpscalerKind::OiioFilter:
@@ -54,14 +54,15 @@ std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends&
                 outputs[u.key] = magnifyWithNohalo(low, width, height);
                 break;
             case UpscalerKind::Ddt: {
-                // Plain and consistent share one optimisation of the same method.
+                // Plain and consistent share one optimisation of the same method (each other
+                // assumed filter has its own: a reconstruction may give up the backend's mesh).
                 const Upscaler* plain = nullptr;
                 const Upscaler* consistent = nullptr;
                 for (const Upscaler& v : results.upscalers)
-                    if (v.kind == UpscalerKind::Ddt && v.ddt.key == u.ddt.key && v.unavailable.empty())
+                    if (v.kind == UpscalerKind::Ddt && runKey(v) == runKey(u) && v.unavailable.empty())
                         (v.consistent ? consistent : plain) = &v;
                 DdtOutputs ddt = magnifyWithDdt(backends.forMethod(u.ddt), low, width, height, plain != nullptr,
-                                                consistent != nullptr);
+                                                consistent != nullptr, u.assume);
                 if (plain) outputs[plain->key] = std::move(*ddt.plain);
                 if (ddt.consistent) outputs[consistent->key] = std::move(*ddt.consistent);
                 if (!ddt.consistent_error.empty())

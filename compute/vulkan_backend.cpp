@@ -671,7 +671,8 @@ void VulkanBackend::reconstruct(const DegradationModel& model) {
     s.checkMemory(s.width, s.height, true);
     if (s.spans.empty()) s.computeRowSpans();
     // The taps are a few numbers from core's own formula: computed here and uploaded.
-    const std::vector<float> taps_x = degradationTaps(model.sigma_x), taps_y = degradationTaps(model.sigma_y);
+    const std::vector<float> taps_x = degradationTaps(model.kernel, model.width_x),
+                             taps_y = degradationTaps(model.kernel, model.width_y);
     std::vector<float> taps = taps_x;
     taps.insert(taps.end(), taps_y.begin(), taps_y.end());
     destroySurfaceBuffers(c, s.surface);

@@ -105,7 +105,8 @@ uint32_t widestSpan(const AxisTaps& taps) {
 
 Degradation::Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model)
     : w_(width), h_(height), c_(channels), sub_w_(width * kSupersampling), sub_h_(height * kSupersampling),
-      apply_x_(applyTaps(width, degradationTaps(model.sigma_x))), apply_y_(applyTaps(height, degradationTaps(model.sigma_y))),
+      apply_x_(applyTaps(width, degradationTaps(model.kernel, model.width_x))),
+      apply_y_(applyTaps(height, degradationTaps(model.kernel, model.width_y))),
       transpose_x_(transposeTaps(apply_x_, sub_w_)), transpose_y_(transposeTaps(apply_y_, sub_h_)),
       transpose_rows_(widestSpan(transpose_y_)) {}
 

@@ -21,7 +21,10 @@ uint32_t trianglesPerRun(size_t triangles) {
     return uint32_t(std::clamp<size_t>(triangles / (4 * threadCount()), 4096, 65536));
 }
 
-double sigmaFor(double scale) { return scale <= 1.0 ? 0.0 : kFootprintSigma * std::sqrt(1.0 - 1.0 / (scale * scale)); }
+double widthFor(AssumedKernel kernel, double scale) {
+    if (scale <= 1.0) return 0.0;
+    return kernel == AssumedKernel::footprint ? std::sqrt(1.0 - 1.0 / (scale * scale)) : 1.0;
+}
 
 int clampIndex(int i, int size) { return std::clamp(i, 0, size - 1); }
 
@@ -313,17 +316,32 @@ float quantisationTolerance(SampleType type) {
     return 0.0f;
 }
 
-DegradationModel degradationFor(double scale_x, double scale_y) { return {sigmaFor(scale_x), sigmaFor(scale_y)}; }
+DegradationModel degradationFor(double scale_x, double scale_y, AssumedKernel kernel) {
+    return {kernel, widthFor(kernel, scale_x), widthFor(kernel, scale_y)};
+}
 
-std::vector<float> degradationTaps(double sigma) {
-    if (sigma == 0.0) return {1.0f};
-    const int radius = int(std::ceil(3.0 * sigma * kSupersampling));
-    std::vector<double> weights(2 * radius + 1);
-    double total = 0.0;
-    for (int t = -radius; t <= radius; ++t) {
-        const double d = double(t) / kSupersampling;
-        total += weights[t + radius] = std::exp(-d * d / (2.0 * sigma * sigma));
+std::vector<float> degradationTaps(AssumedKernel kernel, double width) {
+    if (width == 0.0) return {1.0f};
+    std::vector<double> weights;
+    if (kernel == AssumedKernel::footprint) {
+        // The Gaussian's own formula in σ, as before the other kernels, so its taps stay bit for bit.
+        const double sigma = kFootprintSigma * width;
+        const int radius = int(std::ceil(3.0 * sigma * kSupersampling));
+        for (int t = -radius; t <= radius; ++t) {
+            const double d = double(t) / kSupersampling;
+            weights.push_back(std::exp(-d * d / (2.0 * sigma * sigma)));
+        }
+    } else {
+        const int radius = int(std::ceil(kernelSupport(kernel) * width * kSupersampling));
+        for (int t = -radius; t <= radius; ++t) weights.push_back(kernelWeight(kernel, double(t) / kSupersampling / width));
+        // Zero taps at the ends (a kernel's support falling on a tap) only cost work.
+        while (weights.size() > 1 && weights.front() == 0.0) {
+            weights.erase(weights.begin());
+            weights.pop_back();
+        }
     }
+    double total = 0.0;
+    for (double w : weights) total += w;
     std::vector<float> taps(weights.size());
     for (size_t i = 0; i < taps.size(); ++i) taps[i] = float(weights[i] / total);
     return taps;

@@ -31,18 +31,21 @@
 //   0.35–0.83 levels on average, more than Lanczos3's 0.13–0.25, and scored 0.05–0.17 dB
 //   lower than no margin (0.01–0.03 levels).
 //
-// The degradation model D, in input-pixel units, is one generic footprint:
+// The degradation model D, in input-pixel units: the assumed downscale filter K
+// (core/assumed_kernel.h, `--assume`; by default a generic footprint) on the supersampling.
 //   D(S)(x) = Σ_d g(d) S(x + d), d on a fixed kSupersampling × kSupersampling grid per input
-//   pixel (offsets −1/3, 0, +1/3), g a separable Gaussian of standard deviation
-//   σ(s) = kFootprintSigma · √(1 − 1/s²) per axis, truncated at 3σ, normalised; the samples
-//   near the border are clamped into the image.
-// - kFootprintSigma, the footprint as s → ∞, is 0.4 input pixels: a box of one pixel (area
-//   averaging) has σ = 0.29, repeated bilinear halvings about 0.45, and a camera's pixel
-//   aperture with its optics lies between.
-// - √(1 − 1/s²) is the spread of s point samples spaced 1/s across one input pixel, which is
-//   what averaging the s output pixels over an input pixel means. It is 0 at s = 1, where D is
-//   the identity, the residual is zero and the output is the input exactly, and it grows
-//   continuously with s.
+//   pixel (offsets −1/3, 0, +1/3), g(d) = K(d / w) separable, truncated at K's support,
+//   normalised, with a width w per axis; the samples near the border are clamped into the
+//   image. At s = 1, w = 0: D is the identity, the residual is zero and the output is the input.
+// - The footprint, the default, is a Gaussian of standard deviation kFootprintSigma = 0.4 input
+//   pixels as s → ∞: a box of one pixel (area averaging) has σ = 0.29, repeated bilinear
+//   halvings about 0.45, and a camera's pixel aperture with its optics lies between. Its
+//   w(s) = √(1 − 1/s²) is the spread of s point samples spaced 1/s across one input pixel,
+//   which is what averaging the s output pixels over an input pixel means; it grows
+//   continuously from 0 (0.87 at ×2, 0.97 at ×4).
+// - A named resize filter (box, bicubic, lanczos3) has w = 1 for every s > 1: a resize to 1/s
+//   stretches the filter to the small image's pixels, whatever s. (The footprint's w(s) on
+//   them scored 0.1–0.4 dB lower at ×2 on the outside photographs, bench/README.md.)
 // - The surface is evaluated on the fixed supersampling whatever the output size: the final
 //   render at the requested size is the only step whose cost grows with the scale.
 #pragma once
@@ -50,24 +53,25 @@
 #include <cstdint>
 #include <vector>
 
+#include "assumed_kernel.h"
 #include "image.h"
 #include "mesh.h"
 #include "render.h"
 
 namespace ddt {
 
-constexpr double kFootprintSigma = 0.4;       // input pixels
 constexpr uint32_t kReconstructIterations = 3;
 constexpr float kRelaxation = 1.5f;           // SART's relaxation, in (0, 2)
 constexpr uint32_t kSupersampling = 3;        // odd, so each pixel's centre is a sample
 
-// The degradation's Gaussian per axis for realised factors sx, sy (output / input size).
+// The degradation per axis for realised factors sx, sy (output / input size).
 struct DegradationModel {
-    double sigma_x = 0.0, sigma_y = 0.0;  // input pixels; 0: no blur on that axis
+    AssumedKernel kernel = AssumedKernel::footprint;
+    double width_x = 0.0, width_y = 0.0;  // w per axis, a fraction of K's full width; 0: no blur
 
-    bool identity() const { return sigma_x == 0.0 && sigma_y == 0.0; }
+    bool identity() const { return width_x == 0.0 && width_y == 0.0; }
 };
-DegradationModel degradationFor(double scale_x, double scale_y);
+DegradationModel degradationFor(double scale_x, double scale_y, AssumedKernel kernel = AssumedKernel::footprint);
 
 // Whether stored values of the sample type are limited to [0, 1] (8 and 16 bits), so that the
 // reconstruction's values are too.
@@ -77,9 +81,9 @@ bool boundedToUnit(SampleType type);
 // stands for (float samples are taken as exact). Residuals count only beyond it.
 float quantisationTolerance(SampleType type);
 
-// The model's taps on the supersampling: weight of offset t / kSupersampling for t in
-// [−radius, radius], normalised; {1} for sigma 0.
-std::vector<float> degradationTaps(double sigma);
+// The model's taps along one axis on the supersampling: weight of offset t / kSupersampling
+// for t in [−radius, radius], normalised; {1} for width 0.
+std::vector<float> degradationTaps(AssumedKernel kernel, double width);
 
 // A quadratic surface on a mesh: vertex values and one bubble per edge (render.h).
 struct Surface {

@@ -53,3 +53,38 @@ TEST_CASE("cli: an unknown --reconstruct mode is refused with one line") {
     requireOneLineError(run, 2, "--reconstruct", "sharp");
     CHECK(folder.names() == before);
 }
+
+TEST_CASE("cli: --assume sets the consistent surface's filter: footprint by default, each named filter its own picture") {
+    TempFolder folder;
+    const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
+    const std::vector<std::string> kernels = {"", "footprint", "box", "bicubic", "lanczos3"};
+    std::vector<ddt::Image> outputs;
+    for (const std::string& kernel : kernels) {
+        const std::string output = folder / ("out-" + (kernel.empty() ? "default" : kernel) + ".png");
+        std::vector<std::string> args = {input, output, "-s", "3", "--backend", "cpu", "-q"};
+        if (!kernel.empty()) args.insert(args.end(), {"--assume", kernel});
+        const Run run = runDdtup(args);
+        INFO(kernel << ": " << run.err);
+        REQUIRE(run.exit_code == 0);
+        outputs.push_back(ddt::readImage(output));
+    }
+    CHECK(outputs[0].pixels == outputs[1].pixels);
+    for (size_t a = 1; a < outputs.size(); ++a)
+        for (size_t b = a + 1; b < outputs.size(); ++b) {
+            INFO(kernels[a] << " against " << kernels[b]);
+            CHECK(outputs[a].pixels != outputs[b].pixels);
+        }
+}
+
+TEST_CASE("cli: --assume is refused with one line when unknown or where no surface assumes a filter") {
+    TempFolder folder;
+    const std::string input = folder / "in.png";
+    std::filesystem::copy_file(ddt::test::testDataPath("crop32_astronaut.png"), input);
+    const auto before = folder.names();
+    requireOneLineError(runDdtup({input, folder / "out.png", "--assume", "gaussian"}), 2, "--assume", "gaussian");
+    requireOneLineError(runDdtup({input, folder / "out.png", "--assume", "box", "--reconstruct", "plain"}), 2,
+                        "--assume box", "--reconstruct plain");
+    requireOneLineError(runDdtup({input, folder / "out.png", "--assume", "bicubic", "--simplify", "0.5"}), 2,
+                        "--assume bicubic", "simplification");
+    CHECK(folder.names() == before);
+}

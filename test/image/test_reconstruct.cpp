@@ -41,11 +41,37 @@ std::vector<double> modelTaps(double scale) {
     return taps;
 }
 
-// D(surface) at every input pixel, for a grey image.
-std::vector<double> degraded(const Mesh& mesh, const Surface& surface, double scale) {
+// A named resize filter's taps as core/reconstruct.h documents them (at any factor above 1),
+// written here from the filters' textbook formulas: weight(t/3) for |t/3| < support (the
+// support's own taps weigh 0), normalised.
+std::vector<double> filterTaps(AssumedKernel kernel) {
+    const double pi = 3.14159265358979323846;
+    auto sinc = [&](double x) { return x == 0.0 ? 1.0 : std::sin(pi * x) / (pi * x); };
+    auto weight = [&](double x) {
+        const double a = std::abs(x);
+        switch (kernel) {
+        case AssumedKernel::box: return a < 0.5 ? 1.0 : 0.0;  // no tap at ±0.5 on the thirds
+        case AssumedKernel::bicubic:  // Keys, a = −0.5
+            return a < 1 ? 1.5 * a * a * a - 2.5 * a * a + 1 : a < 2 ? -0.5 * a * a * a + 2.5 * a * a - 4 * a + 2 : 0.0;
+        case AssumedKernel::lanczos3: return a < 3 ? sinc(x) * sinc(x / 3) : 0.0;
+        case AssumedKernel::footprint: break;
+        }
+        return 0.0;
+    };
+    const double support = kernel == AssumedKernel::box ? 0.5 : kernel == AssumedKernel::bicubic ? 2.0 : 3.0;
+    std::vector<double> taps;
+    for (int t = -9; t <= 9; ++t)
+        if (std::abs(t / 3.0) < support) taps.push_back(weight(t / 3.0));
+    double total = 0.0;
+    for (double tap : taps) total += tap;
+    for (double& tap : taps) tap /= total;
+    return taps;
+}
+
+// D(surface) at every input pixel, for a grey image, with these taps per axis.
+std::vector<double> degraded(const Mesh& mesh, const Surface& surface, const std::vector<double>& taps) {
     const uint32_t w = mesh.width, h = mesh.height;
     const Image sub = renderImage(mesh, surface.values, {3 * w, 3 * h}, &surface.bubbles);
-    const std::vector<double> taps = modelTaps(scale);
     const int r = int(taps.size() / 2);
     std::vector<double> result(size_t(w) * h, 0.0);
     for (uint32_t y = 0; y < h; ++y)
@@ -57,6 +83,10 @@ std::vector<double> degraded(const Mesh& mesh, const Surface& surface, double sc
                     result[size_t(y) * w + x] += taps[tx + r] * taps[ty + r] * sub.pixels[size_t(sy) * 3 * w + sx];
                 }
     return result;
+}
+
+std::vector<double> degraded(const Mesh& mesh, const Surface& surface, double scale) {
+    return degraded(mesh, surface, modelTaps(scale));
 }
 
 struct Residual {
@@ -105,6 +135,42 @@ TEST_CASE("reconstruct: on a smooth input the output, degraded by the model, giv
         // residuals within it are not chased) plus a quarter level that three SART steps may
         // leave. Measured: at most 0.0020 against 0.0029 allowed.
         CHECK(consistent.largest <= (0.5 + 0.25) / 255);
+    }
+}
+
+TEST_CASE("reconstruct: a named resize filter's taps are the filter's weights on the thirds, at every factor above 1") {
+    for (AssumedKernel kernel : {AssumedKernel::box, AssumedKernel::bicubic, AssumedKernel::lanczos3}) {
+        const std::vector<double> expected = filterTaps(kernel);
+        for (double scale : {1.25, 2.0, 8.0}) {
+            const std::vector<float> taps = degradationTaps(kernel, degradationFor(scale, scale, kernel).width_x);
+            CAPTURE(assumedKernelName(kernel), scale);
+            REQUIRE(taps.size() == expected.size());
+            for (size_t i = 0; i < taps.size(); ++i) CHECK(taps[i] == Approx(expected[i]).margin(1e-7));  // float rounding
+        }
+        CHECK(degradationFor(1.0, 1.0, kernel).identity());
+    }
+    // The footprint's stay the Gaussian of σ = 0.4·√(1 − 1/s²).
+    const std::vector<float> footprint = degradationTaps(AssumedKernel::footprint, degradationFor(2.0, 2.0).width_x);
+    const std::vector<double> expected = modelTaps(2.0);
+    REQUIRE(footprint.size() == expected.size());
+    for (size_t i = 0; i < footprint.size(); ++i) CHECK(footprint[i] == Approx(expected[i]).margin(1e-7));
+}
+
+TEST_CASE("reconstruct: the surface assuming a filter is more consistent with that filter than the footprint's") {
+    std::vector<float> pixels;
+    for (uint32_t y = 0; y < 30; ++y)
+        for (uint32_t x = 0; x < 40; ++x)
+            pixels.push_back(float(0.5 + 0.15 * std::sin(0.9 * x + 0.4 * y) + 0.15 * std::cos(0.6 * y - 0.2 * x)));
+    const Image input = test::makeImage(40, 30, 1, pixels);
+    const Mesh mesh = optimisedMesh(input);
+    const Surface footprint = reconstructSurface(mesh, input, degradationFor(4.0, 4.0));
+    for (AssumedKernel kernel : {AssumedKernel::box, AssumedKernel::bicubic, AssumedKernel::lanczos3}) {
+        const std::vector<double> taps = filterTaps(kernel);
+        const Residual right =
+            interiorResidualOf(input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(4.0, 4.0, kernel)), taps));
+        const Residual wrong = interiorResidualOf(input, degraded(mesh, footprint, taps));
+        CAPTURE(assumedKernelName(kernel), right.rms, wrong.rms);
+        CHECK(right.rms < wrong.rms);
     }
 }
 
