@@ -44,8 +44,8 @@ std::optional<BenchOptions> parseBenchCommandLine(int argc, char** argv, int& ex
     app.add_option("--scaling-repeats", options.scaling_repeats, "Timed runs per size in Fig. 13 (--quick: 1)")
         ->capture_default_str();
     app.add_option("--tables", options.tables,
-                   "Which tables: paper (Tables 1-3 and Fig. 13), protocols (protocols A, B and JPEG at x2, x2.5, "
-                   "x4, x8 with the peers and consistent DDT), or all")
+                   "Which tables: paper (Tables 1-3 and Fig. 13), protocols (protocols A, B, JPEG, bicubic and "
+                   "camera at x2 to x8 with the peers and consistent DDT under each assumed filter), or all")
         ->check(CLI::IsMember({"paper", "protocols", "all"}))
         ->capture_default_str();
     app.add_option("--protocol-filter", options.protocol_filter,
