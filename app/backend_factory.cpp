@@ -80,7 +80,9 @@ ChosenBackend makeBackend(const Settings& settings) {
     if (settings.backend == "cpu") return cpuBackend(settings, "");
     if (settings.backend == "vulkan" || settings.device >= 0) return vulkanBackend(settings, settings.device, "");
     const AutomaticDevice device = automaticDevice();
-    if (device.index < 0) return cpuBackend(settings, device.cpu_reason);
+    if (device.index < 0)
+        return cpuBackend(settings, device.cpu_reason + (settings.active_set ? "" : "; --no-active-set, which applies "
+                                                                                    "to the Vulkan flips, does nothing"));
     return vulkanBackend(settings, device.index, "");
 }
 

@@ -195,6 +195,9 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (!settings.variant.empty() && !parseFlipRule(settings.variant))
         return "--variant " + settings.variant + ": unknown flip rule (see --help)";
     if (!settings.variant.empty() && settings.backend != "vulkan") return "--variant needs --backend vulkan";
+    if (settings.backend == "cpu" && app.count("--device")) return "--device picks a Vulkan device; --backend cpu uses none";
+    if (settings.backend == "cpu" && !settings.active_set)
+        return "--no-active-set applies to the Vulkan backend's parallel flips; --backend cpu flips serially";
     if (settings.tile && settings.tile < kMinTileSide)
         return "--tile must be 0 (automatic) or at least " + std::to_string(kMinTileSide) + " pixels";
     if (!settings.depth.empty() && !parseSampleType(settings.depth))

@@ -234,6 +234,12 @@ void ImageJob::render(Backend& backend) {
         options.reconstruct = settings_.reconstruct == "consistent";
         options.kernel = *parseAssumedKernel(settings_.assume);  // checked by the command line
         options.mesh = mesh ? &*mesh : nullptr;
+        // The default surface is the consistent one; where it cannot apply, say so rather than
+        // change it without a word (a --reconstruct consistent given here was refused).
+        if (options.reconstruct && (state_->samples || settings_.simplifies()))
+            reporter_.notice(task_.input, inputName(task_.input) + ": rendered with the linear surface (the consistent "
+                                              "one, the default, needs " +
+                                              (state_->samples ? "every pixel's value)" : "the full mesh)"));
         if (state_->samples) {
             report_.stats = upscaleFromSamples(backend, state_->image, std::move(*state_->samples), out, sink, on_step);
             state_->samples.reset();
