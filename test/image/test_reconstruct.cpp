@@ -315,23 +315,32 @@ TEST_CASE("reconstruct: tiled and untiled consistent upscales agree (CPU)") {
     const Image input = test::photoCrop();
     const OutputSize out = scaledOutputSize(input.width, input.height, 2.5);
     std::unique_ptr<Backend> backend = makeCpuBackend();
-    auto upscale = [&](uint32_t tile) {
-        std::vector<float> result(size_t(out.width) * out.height * input.channels);
-        TileOptions options;
-        options.tile = tile;
-        options.reconstruct = true;
-        upscaleRows(*backend, input, out, options, [&](OutputRows&& rows) {
-            std::copy_n(rows.floats.get(), size_t(rows.rows()) * out.width * input.channels,
-                        result.begin() + size_t(rows.y_begin) * out.width * input.channels);
-        });
-        return result;
-    };
-    const test::Agreement a = test::compareSamples(upscale(64), upscale(0));
-    std::printf("reconstruct: tiled (64, overlap %u) vs untiled, x2.5: max difference %.5f (%.2f/255), %.4f %% within 1/255\n",
-                kDefaultOverlap, a.max_difference, a.max_difference * 255.0f, 100.0 * a.within_one_level);
-    // Each crop is reconstructed on its own, but the corrections' reach (about a pixel per
-    // step) ends far inside the 16-pixel overlap: what is left is float summation order in the
-    // sums around each vertex, whose triangles are listed from other edge ids. Measured: at
-    // most 4e-5; 1e-4 is a fortieth of an 8-bit level, while a seam moves samples by 1e-2.
-    CHECK(a.max_difference <= 1e-4f);
+    // The footprint, and lanczos3: the widest taps, which reach furthest.
+    for (AssumedKernel kernel : {AssumedKernel::footprint, AssumedKernel::lanczos3}) {
+        auto upscale = [&](uint32_t tile) {
+            std::vector<float> result(size_t(out.width) * out.height * input.channels);
+            TileOptions options;
+            options.tile = tile;
+            options.reconstruct = true;
+            options.kernel = kernel;
+            upscaleRows(*backend, input, out, options, [&](OutputRows&& rows) {
+                std::copy_n(rows.floats.get(), size_t(rows.rows()) * out.width * input.channels,
+                            result.begin() + size_t(rows.y_begin) * out.width * input.channels);
+            });
+            return result;
+        };
+        const test::Agreement a = test::compareSamples(upscale(64), upscale(0));
+        std::printf("reconstruct: %s, tiled (64, overlap %u) vs untiled, x2.5: max difference %.5f (%.2f/255), %.4f %% "
+                    "within 1/255\n",
+                    assumedKernelName(kernel), kDefaultOverlap, a.max_difference, a.max_difference * 255.0f,
+                    100.0 * a.within_one_level);
+        CAPTURE(assumedKernelName(kernel));
+        // Each crop is reconstructed on its own, but the corrections' reach (about a pixel per
+        // step with the footprint, a few with lanczos3's six-pixel taps) ends inside the
+        // 16-pixel overlap: what is left is float summation order in the sums around each
+        // vertex, whose triangles are listed from other edge ids. Measured: at most 4e-5 (the
+        // footprint) and 7e-5 (lanczos3); 1e-4 is a fortieth of an 8-bit level, while a seam
+        // moves samples by 1e-2.
+        CHECK(a.max_difference <= 1e-4f);
+    }
 }
