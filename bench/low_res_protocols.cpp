@@ -24,12 +24,12 @@ std::vector<Protocol> benchProtocols(const std::string& held_back_filter, bool q
         {"A", "bilinear halvings, the paper's", ProtocolKind::Halvings, "", all},
         {"B", "exact area averaging", ProtocolKind::AreaAverage, "", all},
         {"A+JPEG85", "A, then JPEG quality 85", ProtocolKind::Jpeg, "", jpeg},
-        {"bicubic", "one bicubic (Catmull-Rom) resize", ProtocolKind::Bicubic, "catmull-rom", jpeg},
+        {"bicubic", "one bicubic (Catmull-Rom) resize", ProtocolKind::OiioResize, "catmull-rom", jpeg},
         {"camera", "Gaussian blur 0.4·f, sampling, noise 1/255", ProtocolKind::Camera, "", jpeg},
     };
     if (!held_back_filter.empty())
         protocols.push_back({"C", "one OIIO " + held_back_filter + " resize, held back",
-                             ProtocolKind::HeldBackFilter, held_back_filter, all});
+                             ProtocolKind::OiioResize, held_back_filter, all});
     return protocols;
 }
 
@@ -45,13 +45,10 @@ std::string describeProtocol(const Protocol& p) {
     case ProtocolKind::Jpeg:
         return "protocol A's 8-bit image stored as JPEG of quality " + std::to_string(kProtocolJpegQuality) +
                " (core's writer through OIIO and libjpeg, their default chroma subsampling) and read back";
-    case ProtocolKind::Bicubic:
-        return "one OIIO `catmull-rom` resize by 1/f (Keys' cubic, a = −0.5: photo editors' bicubic), in float, "
-               "rounded to 8 bits once";
     case ProtocolKind::Camera:
         return "a Gaussian blur of σ = 0.4·f original pixels sampled at each low-resolution pixel's centre, then "
                "Gaussian noise of σ = 1/255 (fixed seed), in double, rounded to 8 bits once";
-    case ProtocolKind::HeldBackFilter:
+    case ProtocolKind::OiioResize:
         return "one OIIO `" + p.filter + "` resize by 1/f at the filter's default width, in float, rounded to 8 "
                "bits once";
     }
@@ -75,8 +72,7 @@ ddt::Image protocolLowRes(const Protocol& protocol, const ddt::Image& cropped, M
         halvings.kind = ProtocolKind::Halvings;
         return jpegRoundTrip(protocolLowRes(halvings, cropped, factor), kProtocolJpegQuality);
     }
-    case ProtocolKind::Bicubic:
-    case ProtocolKind::HeldBackFilter:
+    case ProtocolKind::OiioResize:
         return roundedTo8Bit(resizeWithFilter(cropped, protocol.filter, low_w, low_h));
     case ProtocolKind::Camera:
         return roundedTo8Bit(cameraCapture(cropped, factor));

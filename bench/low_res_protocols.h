@@ -20,13 +20,13 @@
 
 namespace bench {
 
-enum class ProtocolKind { Halvings, AreaAverage, Jpeg, Bicubic, Camera, HeldBackFilter };
+enum class ProtocolKind { Halvings, AreaAverage, Jpeg, OiioResize, Camera };
 
 struct Protocol {
     std::string key;    // "A", "B", "A+JPEG85", "bicubic", "camera", "C"
     std::string label;  // for the report
     ProtocolKind kind = ProtocolKind::Halvings;
-    std::string filter;  // HeldBackFilter: the OIIO filter name
+    std::string filter;  // OiioResize: the OIIO filter name
     std::vector<Magnification> factors;
 };
 

@@ -4,10 +4,10 @@
 // there to keep, and a reconstruction that assumes a blurrier filter than the real one
 // smooths detail that the input holds, one that assumes a sharper filter invents detail.
 //
-// Measured on 13 outside photographs (python3-skimage's data, 512² crops) against Lanczos3,
-// mean PSNR difference at ×2 / ×4, with the kernel that made the input and the default
-// (bench/README.md, "Assumed kernel"): the right kernel moves a Lanczos3-made input from
-// −0.51 / −0.46 dB to −0.05 / +0.01 and a bicubic-made one from −0.04 / −0.07 to +0.14 / +0.11.
+// Measured on 13 outside photographs (python3-skimage's data, centre crops of at most 512²)
+// against Lanczos3, mean PSNR difference at ×2 / ×4 (bench/README.md, "Assumed filter"): the
+// right filter moves a Lanczos3-made input from −0.51 / −0.46 dB to −0.05 / +0.00 and a
+// bicubic-made one from −0.04 / −0.07 to +0.14 / +0.11.
 #pragma once
 
 #include <optional>

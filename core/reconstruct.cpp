@@ -322,23 +322,13 @@ DegradationModel degradationFor(double scale_x, double scale_y, AssumedKernel ke
 
 std::vector<float> degradationTaps(AssumedKernel kernel, double width) {
     if (width == 0.0) return {1.0f};
+    const int radius = int(std::ceil(kernelSupport(kernel) * width * kSupersampling));
     std::vector<double> weights;
-    if (kernel == AssumedKernel::footprint) {
-        // The Gaussian's own formula in σ, as before the other kernels, so its taps stay bit for bit.
-        const double sigma = kFootprintSigma * width;
-        const int radius = int(std::ceil(3.0 * sigma * kSupersampling));
-        for (int t = -radius; t <= radius; ++t) {
-            const double d = double(t) / kSupersampling;
-            weights.push_back(std::exp(-d * d / (2.0 * sigma * sigma)));
-        }
-    } else {
-        const int radius = int(std::ceil(kernelSupport(kernel) * width * kSupersampling));
-        for (int t = -radius; t <= radius; ++t) weights.push_back(kernelWeight(kernel, double(t) / kSupersampling / width));
-        // Zero taps at the ends (a kernel's support falling on a tap) only cost work.
-        while (weights.size() > 1 && weights.front() == 0.0) {
-            weights.erase(weights.begin());
-            weights.pop_back();
-        }
+    for (int t = -radius; t <= radius; ++t) weights.push_back(kernelWeight(kernel, double(t) / kSupersampling / width));
+    // Zero taps at the ends (a kernel's support falling on a tap) only cost work.
+    while (weights.size() > 1 && weights.front() == 0.0) {
+        weights.erase(weights.begin());
+        weights.pop_back();
     }
     double total = 0.0;
     for (double w : weights) total += w;
