@@ -4,7 +4,7 @@
 // --backend auto (the default) takes Vulkan on a GPU (discrete, integrated or virtual) and
 // the CPU backend where the only Vulkan devices are CPU implementations (lavapipe,
 // SwiftShader) or there is none: on a CPU the serial C++ optimizer is 3-4 times faster than
-// the same flips run through a software Vulkan driver (README, "Performance"). A machine
+// the same flips run through a software Vulkan driver (docs/USAGE.md, "Backends"). A machine
 // without a GPU device node is not asked at all (backend_factory.cpp says why). --device
 // names a Vulkan device, and so asks for Vulkan.
 #pragma once

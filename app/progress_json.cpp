@@ -1,6 +1,6 @@
 // Progress as one JSON object per line on stderr (--progress=json), for scripts and GUIs.
 // Errors and notes are events too, so a reader never has to parse free text. The events and
-// their fields are listed in the README.
+// their fields are listed in docs/USAGE.md ("Progress") and the man page.
 #include <unistd.h>
 
 #include "checked_file.h"

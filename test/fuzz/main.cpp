@@ -1,5 +1,5 @@
 // ddtup_fuzz: damaged images through the real ddtup executable, counted by format, damage
-// kind and outcome. See scripts/fuzz for how CI runs it, and README.md ("Fuzzing").
+// kind and outcome. See scripts/fuzz for how CI runs it, and docs/CI.md ("Fuzzing").
 //
 //   ddtup_fuzz [--count N] [--seed S] [--ddtup PATH] [--out DIR] [--batch N] [--jobs N]
 //              [--timeout S] [--work DIR]
