@@ -37,7 +37,7 @@ struct Settings {
     double scale = 0.0;       // 0: not given
     // Volumes only (core/volume/): -s FX,FY,FZ, a factor per axis; all 0 when -s gave one factor.
     std::array<double, 3> axis_scales{};
-    std::string cost;    // --cost: core/cost.h's names; "" = sederberg for images, variance for volumes (core/volume/tet_cost.h)
+    std::string cost;    // --cost: core/image/cost.h's names; "" = sederberg for images, variance for volumes (core/volume/tet_cost.h)
     std::string slices;  // --slices DIR: PNG slices through the middle of each output volume; "" = none
     bool stack = false;  // --stack: the input is a volume of 2-D slices (core/io/volume_stack.h)
     // The options given that mean nothing for volumes, as the user spelled them (--mesh, ...):
@@ -49,8 +49,8 @@ struct Settings {
     std::string backend = "auto";  // "auto", "vulkan" or "cpu" (app/backend_factory.h)
     unsigned threads = 0;          // CPU threads for the whole process; 0 = the processors it may use
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
-    std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/reconstruct.h)
-    std::string assume = "footprint";        // the downscale filter the consistent surface assumes (core/assumed_kernel.h)
+    std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/image/reconstruct.h)
+    std::string assume = "footprint";        // the downscale filter the consistent surface assumes (core/image/assumed_kernel.h)
     int device = -1;           // Vulkan device index; -1 = choose
     bool active_set = true;    // Vulkan: re-test only edges a flip may have changed
     bool list_devices = false;

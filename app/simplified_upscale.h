@@ -7,7 +7,7 @@
 // (PSNR against the original at ×4 from quarter size, 10 % of the vertices: astronaut 23.20 dB
 // without, 22.66 with the flips again; chelsea 27.51 / 26.84; building 23.39 / 22.86; at the
 // original's size, astronaut at 20 %: 41.01 / 39.04), also with the cost taken on the
-// vertices' best colours (22.72, 26.78, 22.90). The consistent reconstruction (core/reconstruct.h) does not fit coarse
+// vertices' best colours (22.72, 26.78, 22.90). The consistent reconstruction (core/image/reconstruct.h) does not fit coarse
 // meshes: it keeps each vertex within its 3 × 3 pixels' range, and measured on the astronaut
 // at ×4 (128² → 512², PSNR against the original) it scored 21.3 dB at 10 % of the vertices
 // where the linear surface scores 22.7 dB.

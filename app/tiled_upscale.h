@@ -1,5 +1,5 @@
 // Upscaling an image of any size on a backend of limited memory: untiled when the input
-// fits, else in tiles (core/tiling.h) whose seams do not show; when the device runs out of
+// fits, else in tiles (core/image/tiling.h) whose seams do not show; when the device runs out of
 // memory anyway, the tile side is halved and the failed strip redone, so the caller gets
 // every output row once, in order, or an error, never a partial image. A backend with twins
 // (the CPU) processes a strip's tiles in parallel, one per thread, each within its share of
@@ -39,7 +39,7 @@ using TileStepCallback = std::function<void(const TileStep&)>;
 struct TileOptions {
     uint32_t tile = 0;  // tile side in input pixels; 0 = automatic: tiles only when the input does not fit
     uint32_t overlap = kDefaultOverlap;  // 0 counts as 1
-    bool reconstruct = false;            // each tile's surface: consistent (core/reconstruct.h) or plain
+    bool reconstruct = false;            // each tile's surface: consistent (core/image/reconstruct.h) or plain
     AssumedKernel kernel = AssumedKernel::footprint;  // the consistent surface's assumed downscale filter
     StitchedMesh* mesh = nullptr;        // if set, gets every tile's optimised mesh (of the strips that succeed)
 };

@@ -1,5 +1,5 @@
 // DDT for the protocol tables: one prepare and optimize per input, then the plain surface
-// rendered, then the consistent reconstruction (core/reconstruct.h) under the degradation
+// rendered, then the consistent reconstruction (core/image/reconstruct.h) under the degradation
 // model of the realised factors rendered from the same mesh. Untimed: Tables 1–2 time DDT.
 #pragma once
 

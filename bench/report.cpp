@@ -104,7 +104,7 @@ std::string protocolSection(const BenchResults& r) {
     }
     text +=
         "\nMethods: OIIO `triangle` (bilinear) and `lanczos3`; libvips Nohalo (vips_affine, output pixel X samples "
-        "input (X + 0.5)/s − 0.5 as ddtup does); DDT plain and consistent (core/reconstruct.h, "
+        "input (X + 0.5)/s − 0.5 as ddtup does); DDT plain and consistent (core/image/reconstruct.h, "
         "`Backend::reconstruct(degradationFor(sx, sy))` after `optimize`) on the CPU and on the Vulkan backend's "
         "default variant. Plain and consistent DDT share one optimisation per input.\n\n";
     text +=

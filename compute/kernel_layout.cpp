@@ -1,6 +1,6 @@
 #include "kernel_layout.h"
 
-#include "kernels.h"
+#include "compute_pipeline.h"
 #include "vulkan_error.h"
 
 namespace ddt {

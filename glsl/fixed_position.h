@@ -1,4 +1,4 @@
-// Explicit vertex positions (core/mesh.h's general mesh) in fixed point, and the exact
+// Explicit vertex positions (core/image/mesh.h's general mesh) in fixed point, and the exact
 // orientation test on them, written once in the common subset of C++ and GLSL (GLSL needs
 // GL_EXT_shader_explicit_arithmetic_types_int64 before including it).
 //
@@ -21,13 +21,13 @@ typedef uint32_t uint;
 #endif
 
 // Fraction bits: a position resolves 1/1024 pixel. Rendering samples are snapped to the same
-// grid (core/render.h), moving a sample by at most 1/2048 pixel.
+// grid (core/image/render.h), moving a sample by at most 1/2048 pixel.
 const int kPositionBits = 10;
 const int kPositionOne = 1 << kPositionBits;
 // The widest and tallest input whose mesh can hold explicit positions (2^20 = 1 048 576 pixels).
 const uint kMaxPositionedSide = 1u << 20;
 
-// A vertex's place in input pixels × kPositionOne (core/mesh.h's explicit positions; in the
+// A vertex's place in input pixels × kPositionOne (core/image/mesh.h's explicit positions; in the
 // kernels an rg32i texel).
 struct Position {
     int x;
@@ -37,7 +37,7 @@ struct Position {
 #endif
 };
 
-// Twice the signed area of (p, q, r): positive for positive (core/mesh.h) triangles. Exact.
+// Twice the signed area of (p, q, r): positive for positive (core/image/mesh.h) triangles. Exact.
 DDT_FN int64_t positionOrient(int px, int py, int qx, int qy, int rx, int ry) {
     return int64_t(qx - px) * int64_t(ry - py) - int64_t(qy - py) * int64_t(rx - px);
 }

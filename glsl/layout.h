@@ -31,9 +31,9 @@ const uint kMaxGroups = 65535;
 // 823 items per invocation lost decisions and corrupted the mesh.
 const uint kItemsPerInvocation = 16;
 // Pixels are supersampled kSupersampling × kSupersampling by the reconstruction (as
-// core/reconstruct.h, which the host checks against).
+// core/image/reconstruct.h, which the host checks against).
 const uint kSupersamplingFactor = 3;
-// core/reconstruct.h's kRelaxation: SART's step factor.
+// core/image/reconstruct.h's kRelaxation: SART's step factor.
 #ifdef __cplusplus
 constexpr  // a float const is not a C++ constant expression
 #else
@@ -49,7 +49,7 @@ const uint kStatusRejected = 3;
 // A round-list entry with this bit only copies its decision into the other status array.
 const uint kCopyEntry = 0x80000000u;
 
-// Phase of the optimisation state machine kept on the device (see glsl/plan.comp).
+// Phase of the optimisation state machine kept on the device (see glsl/image/plan.comp).
 const uint kPhaseCandidates = 0;  // next: evaluate candidates of a new iteration
 const uint kPhaseRounds = 1;      // next: accept/reject rounds, then the flip
 const uint kPhaseDone = 2;        // converged (or stopped by a safety cap)
@@ -64,7 +64,7 @@ const uint kArgsCount = 3;
 // spans r32ui; doubles (gains, partial sums) rg32ui holding the two halves of the double;
 // luma and alpha r32f; pixels rgba32f, one texel per vertex; the rendered band rgba32f, one
 // texel per output pixel (one store per pixel: lavapipe stores lane by lane).
-const uint kBindingEdgeVertices = 0;    // per edge (a, b, l, r), see core/mesh.h
+const uint kBindingEdgeVertices = 0;    // per edge (a, b, l, r), see core/image/mesh.h
 const uint kBindingEdgeNeighbours = 1;  // per edge (bl, la, ar, rb)
 const uint kBindingLuma = 2;            // per vertex
 const uint kBindingAlpha = 3;           // per vertex, read only when has_alpha
@@ -83,7 +83,7 @@ const uint kBindingRowSpans = 15;       // per edge row: first and last vertex r
 const uint kBindingPartialSums = 16;    // per workgroup of edge_cost
 const uint kBindingControl = 17;        // storage buffer: Control
 const uint kBindingArgs = 18;           // storage buffer: kArgsCount indirect dispatch arguments
-// The consistent reconstruction (glsl/reconstruct/). Supersamples: kSupersampling² per input
+// The consistent reconstruction (glsl/image/reconstruct/). Supersamples: kSupersampling² per input
 // pixel, (3w) × (3h) row-major. A half-edge 2e + side is edge e seen from its left (0) or
 // right (1) triangle; each triangle owns the three half-edges facing it.
 const uint kBindingHits = 19;               // per supersample, rgba32ui: triangle slot, then λ0..λ2 as float bits
@@ -100,7 +100,7 @@ const uint kBindingValueWeights = 29;       // per vertex: SART's normaliser ⟨
 const uint kBindingBubbles = 30;            // per edge
 const uint kBindingBubbleWeights = 31;      // per edge: ⟨φ, Dᵀ1⟩
 const uint kBindingStarStart = 32;          // r32ui per vertex: its lowest-id edge, where its star walk starts
-// Explicit positions (core/mesh.h), read by the kernels that evaluate costs when kPositioned.
+// Explicit positions (core/image/mesh.h), read by the kernels that evaluate costs when kPositioned.
 const uint kBindingPositions = 33;          // rg32i per vertex: its Position (glsl/fixed_position.h)
 const uint kBindingCount = 34;
 
@@ -152,7 +152,7 @@ struct PushConstants {
     uint taps_x_radius;        // reconstruction: the degradation's taps per axis, 2r + 1 each
     uint taps_y_radius;
     uint integer_samples;      // reconstruction: 1 bounds the values to [0, 1] (8- and 16-bit input)
-    float quantisation_tolerance;  // reconstruction: residuals count beyond this (core/reconstruct.h)
+    float quantisation_tolerance;  // reconstruction: residuals count beyond this (core/image/reconstruct.h)
 };
 
 // Workgroups for `count` items: kItemsPerInvocation per invocation, more only past

@@ -1,4 +1,4 @@
-// Exact sampling of the mesh at output pixels, shared by core/render.cpp and the render
+// Exact sampling of the mesh at output pixels, shared by core/image/render.cpp and the render
 // kernel (GLSL needs GL_EXT_shader_explicit_arithmetic_types_int64 before including it).
 //
 // Output pixel X (of out_size) samples the input at u = (X + 0.5) / s − 0.5 with the realised

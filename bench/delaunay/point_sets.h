@@ -1,5 +1,5 @@
 // The point sets of the Delaunay table (bench/README.md, ddtup-bench-delaunay): fixed-point
-// positions (core/mesh.h, 1/1024 pixel) in a frame of at most kMaxDelaunaySide pixels a side,
+// positions (core/image/mesh.h, 1/1024 pixel) in a frame of at most kMaxDelaunaySide pixels a side,
 // distinct and in row-major order (y, then x), as delaunayOfPoints wants them.
 #pragma once
 

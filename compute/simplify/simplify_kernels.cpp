@@ -1,6 +1,6 @@
 #include "simplify_kernels.h"
 
-#include "kernels.h"
+#include "compute_pipeline.h"
 #include "layout.h"
 #include "vulkan_error.h"
 

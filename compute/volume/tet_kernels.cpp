@@ -1,7 +1,7 @@
 #include "tet_kernels.h"
 
 #include "commands.h"
-#include "kernels.h"
+#include "compute_pipeline.h"
 #include "vulkan_error.h"
 
 // SPIR-V written by glslangValidator at build time (see CMakeLists.txt).

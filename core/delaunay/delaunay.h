@@ -1,5 +1,5 @@
 // The Delaunay triangulation of samples: known pixels of a masked image, or points anywhere in
-// the frame, as a core/mesh.h Mesh over the convex hull of its vertices. Exact (the integer
+// the frame, as a core/image/mesh.h Mesh over the convex hull of its vertices. Exact (the integer
 // predicates of predicates.h) and unique: four cocircular points are decided by a symbolic
 // tie-break that cuts every unit grid cell along (x, y)–(x + 1, y + 1), so the full grid's
 // triangulation is buildGridMesh's, record for record. Serial: the CPU reference of a GPU

@@ -15,7 +15,7 @@
 
 namespace ddt {
 
-// Twice the signed area of (p, q, r): > 0 for a positive triangle (core/mesh.h). Exact in int64.
+// Twice the signed area of (p, q, r): > 0 for a positive triangle (core/image/mesh.h). Exact in int64.
 inline int64_t orient(Position p, Position q, Position r) { return positionOrient(p.x, p.y, q.x, q.y, r.x, r.y); }
 
 // The symbolic priority of the tie-break: larger x − y first, then larger x. A total order on

@@ -11,7 +11,7 @@ namespace ddt {
 
 namespace {
 
-// Sample coordinates along one axis, as the renderer tests them (core/render.cpp): in raster.h's
+// Sample coordinates along one axis, as the renderer tests them (core/image/render.cpp): in raster.h's
 // exact units for vertices at pixel centres, snapped to the 1/kPositionOne grid of explicit
 // positions. Non-decreasing in the output index.
 std::vector<int64_t> sampleAxis(uint32_t in_size, uint32_t out_size, bool snapped) {

@@ -1,5 +1,5 @@
 // Rendering a triangulation of samples (core/delaunay/delaunay.h): inside the hull of its
-// vertices, the plain DDT surface of core/render.h (exact coverage, each output pixel once);
+// vertices, the plain DDT surface of core/image/render.h (exact coverage, each output pixel once);
 // outside it, where the grid's mesh would still reach (the hull need not be the image's
 // rectangle), the value of the nearest rendered pixel (core/delaunay/nearest_fill.h).
 #pragma once

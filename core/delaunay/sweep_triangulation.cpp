@@ -2,7 +2,7 @@
 // advancing front, the upper side of the triangulated region, as Žalik's sweep-line
 // triangulation does; at the end the front's pockets are filled so the region is the hull.
 //
-// The region's boundary is a ring of vertices in positive order (core/mesh.h: the inside on
+// The region's boundary is a ring of vertices in positive order (core/image/mesh.h: the inside on
 // the left of each edge v → next), with the id of the edge v → next. Two of its vertices
 // split it: L, the leftmost point (the highest of those), and R, the rightmost (likewise).
 // From R the ring runs to L along the front, whose x never grows, and from L back to R along
@@ -125,7 +125,7 @@ uint32_t Sweep::newEdge(uint32_t p, uint32_t q) {
 }
 
 // The positive triangle (x, y, z) on edge g = x–y, whose other edges are e_yz and e_zx: g's
-// left side if g runs x → y, else its right (core/mesh.h's record order either way).
+// left side if g runs x → y, else its right (core/image/mesh.h's record order either way).
 void Sweep::attachSide(uint32_t g, uint32_t x, uint32_t z, uint32_t e_yz, uint32_t e_zx) {
     EdgeVertices& v = mesh_.vertices[g];
     EdgeNeighbours& n = mesh_.neighbours[g];

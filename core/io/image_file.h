@@ -1,5 +1,6 @@
-// Image files: reading and writing through OpenImageIO (PNG through ddtup's own parallel
-// encoder). Kept apart from core/image.h so that code without file I/O does not link OIIO.
+// Image files: reading (image_reader.cpp) and writing (image_writer.cpp) through OpenImageIO,
+// PNG through ddtup's own parallel encoder. Kept apart from core/image.h so that code without
+// file I/O does not link OIIO.
 #pragma once
 
 #include <memory>

@@ -1,6 +1,6 @@
 // Mesh files (`--mesh`): the optimised mesh as PLY or OBJ, written like images are, through a
 // temporary file beside the output that is renamed into place once every byte is on disk.
-// core/indexed_mesh.h says what the vertices, colours and triangles mean.
+// core/image/indexed_mesh.h says what the vertices, colours and triangles mean.
 #pragma once
 
 #include <optional>

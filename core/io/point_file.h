@@ -3,7 +3,7 @@
 //
 // Conventions, the same for both formats:
 // - Positions in input pixels: x right, y DOWN, pixel centres at integers, as an image's pixel
-//   (x, y) lies (core/indexed_mesh.h). Coordinates must be finite and >= 0: points lie in the
+//   (x, y) lies (core/image/indexed_mesh.h). Coordinates must be finite and >= 0: points lie in the
 //   frame that starts at pixel centre 0; the app checks the upper bound against its frame.
 // - Colours as images store them: sRGB-encoded values, straight (not premultiplied) alpha.
 //   Every value must be finite; integer types are scaled to [0, 1], float ones must lie in it.

@@ -25,7 +25,7 @@ std::string lowercase(std::string text) {
     return text;
 }
 
-// "" when `path` is a file the readers may open, else the reason (as image_file.cpp words it).
+// "" when `path` is a file the readers may open, else the reason (as image_reader.cpp words it).
 std::string inputFileProblem(const std::string& path) {
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);

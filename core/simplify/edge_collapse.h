@@ -1,4 +1,4 @@
-// Half-edge collapses on the edge-centric mesh (core/mesh.h), the step of simplification.
+// Half-edge collapses on the edge-centric mesh (core/image/mesh.h), the step of simplification.
 //
 // Collapsing vertex `from` into its neighbour `to` along edge e = (a, b) removes `from`, e, the
 // triangles (a, b, l) and (b, a, r) and, of each, the edge from–l (from–r), whose outer side

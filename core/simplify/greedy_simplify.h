@@ -1,10 +1,10 @@
 // Serial greedy simplification, the quality reference for the parallel rule (as
-// core/lawson.h is for the flips): Garland and Heckbert's loop — always the legal collapse of
+// core/image/lawson.h is for the flips): Garland and Heckbert's loop — always the legal collapse of
 // least quadric error next (core/simplify/quadric.h), ties by edge id and then b into a first —
 // until at most the target count of vertices is left. Each vertex starts with the quadric of
 // its triangles; a collapse adds `from`'s quadric to `to`'s. The merged vertex goes where the
 // summed quadric is least, if that is legal, else stays at `to`'s place (placement.h); the
-// cost is the summed quadric there. The mesh's positions become explicit (core/mesh.h).
+// cost is the summed quadric there. The mesh's positions become explicit (core/image/mesh.h).
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // Where a collapse puts the merged vertex, and what it costs there: Garland and Heckbert's
-// optimal placement, on a mesh with explicit positions (core/mesh.h).
+// optimal placement, on a mesh with explicit positions (core/image/mesh.h).
 //
 // The merged quadric (the sum of the two vertices') is least at one point of position and
 // colour when it is regular. Its place is used where the rectangle allows it:

@@ -17,7 +17,7 @@
 //             interpolant on a tet in the physical frame; w(t) = (Σ over t's 4 faces scf) / 4.
 //             A boundary face (one tet, on the box's sides) costs 0: it has no second plane
 //             to bend against, and the box's sides are planes that no flip moves (the 2-D
-//             cost treats boundary edges the same way, core/cost.h).
+//             cost treats boundary edges the same way, core/image/cost.h).
 //   Since w(t) averages face costs, face_scf's total is also Σ over interior faces f of
 //   scf(f) · (content(t) + content(n)) / 4, the form the flips' gains use (tet_flips.h).
 #pragma once

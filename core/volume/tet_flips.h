@@ -44,7 +44,7 @@ constexpr uint32_t kFlipKindCount = 4;
 const char* flipKindName(FlipKind kind);  // "2-3", "3-2", "4-4", "2-2"
 
 // A flip is worth applying when gain > kTetFlipGainThreshold · gain_scale. The 2-D rule's
-// reason (glsl/sederberg.h, kFlipGainThreshold = 1e-12): a bare "gain > 0" flips on fp64
+// reason (glsl/image/sederberg.h, kFlipGainThreshold = 1e-12): a bare "gain > 0" flips on fp64
 // rounding noise, e.g. on a linear field where every exact gain is 0, and can cycle. Here the
 // costs are content-weighted and physical (a gain in mm³ of one CT, µm³ of another; face_scf
 // also scales with 1 / spacing²), so an absolute threshold would mean something else for each

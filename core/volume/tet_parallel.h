@@ -1,7 +1,7 @@
 // The parallel flip rule for tetrahedral meshes: the serial generalized Lawson's flips
 // (core/volume/tet_lawson.h, the quality reference) decided in rounds, each a step that a
 // device runs with one invocation per tet or per candidate, in three steps as the 2-D kernels
-// (glsl/candidates.comp, select.comp, flip.comp): candidates, a conflict-free selection, flips.
+// (glsl/image/candidates.comp, select.comp, flip.comp): candidates, a conflict-free selection, flips.
 // This is the CPU version; the Vulkan kernels (glsl/volume/, compute/volume/tet_device.h)
 // compute the same rounds bit for bit.
 //

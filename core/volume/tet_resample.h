@@ -1,6 +1,6 @@
 // Resampling the piecewise-linear function of a tetrahedral mesh (core/volume/tet_mesh.h) to a
 // new grid: every output voxel takes the barycentric interpolation of the vertex values in the
-// one tet that owns its sample point. The 3-D counterpart of the 2-D renderer (core/render.h,
+// one tet that owns its sample point. The 3-D counterpart of the 2-D renderer (core/image/render.h,
 // glsl/raster.h), with the same sample positions, the same exactness and the same kind of tie
 // rule.
 //

@@ -3,7 +3,7 @@
 
 #include "../layout.h"
 #include "../fixed_position.h"
-#include "../sederberg.h"
+#include "../image/sederberg.h"
 #include "delaunay_layout.h"
 
 layout(local_size_x = kGroupSize) in;

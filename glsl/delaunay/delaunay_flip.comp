@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-// A round's last step: flip the chosen edges, as core/mesh.h's flipEdge does. The quadrilateral
+// A round's last step: flip the chosen edges, as core/image/mesh.h's flipEdge does. The quadrilateral
 // a, r, b, l gets the diagonal r → l: e's record turns to (r, l, a, b), (la, ar, rb, bl), and
 // its four neighbours each get their side facing e rewritten for the new triangles (r, l, a)
 // and (l, r, b). A neighbour's ends never change in this round (it shares a triangle with a

@@ -15,7 +15,7 @@ namespace ddt {
 typedef uint32_t uint;
 #endif
 
-const uint kDelaunayBindingEdgeVertices = 0u;    // r32ui, 4 per edge: a, b, l, r (core/mesh.h)
+const uint kDelaunayBindingEdgeVertices = 0u;    // r32ui, 4 per edge: a, b, l, r (core/image/mesh.h)
 const uint kDelaunayBindingEdgeNeighbours = 1u;  // r32ui, 4 per edge: bl, la, ar, rb
 const uint kDelaunayBindingPositions = 2u;       // rg32i per vertex: its position (fixed point)
 const uint kDelaunayBindingEdgeStates = 3u;      // r32ui per edge: kEdge… below

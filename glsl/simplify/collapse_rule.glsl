@@ -8,7 +8,7 @@
 #include "simplify_layout.h"
 #include "quadric_value.h"
 #include "../fixed_position.h"
-#include "../sederberg.h"
+#include "../image/sederberg.h"
 
 layout(local_size_x = kGroupSize) in;
 

@@ -19,7 +19,7 @@ const uint kCollapseValenceBound = 64u;
 // the area).
 const uint kQuadricDoubles = 29u;
 
-const uint kSimplifyBindingEdgeVertices = 0u;    // rgba32ui per edge: a, b, l, r (core/mesh.h)
+const uint kSimplifyBindingEdgeVertices = 0u;    // rgba32ui per edge: a, b, l, r (core/image/mesh.h)
 const uint kSimplifyBindingEdgeNeighbours = 1u;  // rgba32ui per edge: bl, la, ar, rb
 const uint kSimplifyBindingVertexFirst = 2u;     // r32ui per vertex: where its walk starts (VertexEdges)
 const uint kSimplifyBindingValues = 3u;          // rgba32f per vertex: its channels
@@ -34,7 +34,7 @@ const uint kSimplifyBindingTallies = 11u;        // r32ui: kCostBins keys per bi
 const uint kSimplifyBindingListed = 12u;         // r32ui per listed edge, in no order (gather_edges.comp)
 const uint kSimplifyBindingTaken = 13u;          // r32ui per vertex: 1 in a winner's region
 const uint kSimplifyBindingEdgeState = 14u;      // r32ui per edge in a selection: kEdgeUndecided, …
-const uint kSimplifyBindingPositions = 15u;      // rg32i per vertex: its position (core/mesh.h, explicit)
+const uint kSimplifyBindingPositions = 15u;      // rg32i per vertex: its position (core/image/mesh.h, explicit)
 const uint kSimplifyBindingTargets = 16u;        // rg32i per edge: its candidate's target, where it moves
 const uint kSimplifyBindingCount = 17u;
 // Bits of a candidate's third word: b into a; the merged vertex moves (to its target).

@@ -30,7 +30,7 @@ TEST_CASE("cli cost: each cost reaches the CPU and the Vulkan optimizer", "[vulk
             cost_init[cost] = statOf(run, "cost-init");
             CHECK(statOf(run, "cost-final") < cost_init[cost]);
         }
-        // On a mesh of the pixel grid every triangle has area 1/2 (core/cost.h), so face-SCF is
+        // On a mesh of the pixel grid every triangle has area 1/2 (core/image/cost.h), so face-SCF is
         // Sederberg's cost / 3 exactly; variance is another function altogether.
         // --stats prints costs to 6 decimals, so the ratio holds to that rounding, not exactly.
         CHECK(cost_init["face-scf"] == Approx(cost_init["sederberg"] / 3).epsilon(1e-6));

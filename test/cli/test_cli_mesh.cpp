@@ -47,7 +47,7 @@ TEST_CASE("cli mesh: PLY and OBJ files that assimp reads, with the grid, its rin
 TEST_CASE("cli mesh: the Vulkan backend's mesh file has the CPU backend's layout", "[vulkan]") {
     // The serial and the parallel flip orders may end in different meshes, so only the layout
     // is compared: same size, same header. (Every file's mesh is checked to tile the image
-    // before it is written: core/stitched_mesh.h.)
+    // before it is written: core/image/stitched_mesh.h.)
     TempFolder work;
     REQUIRE(runDdtup({kInput, work / "cpu.png", "--mesh", work / "cpu.ply", "--backend", "cpu", "-q"}).exit_code == 0);
     REQUIRE(runDdtup({kInput, work / "gpu.png", "--mesh", work / "gpu.ply", "--backend", "vulkan", "-q"}).exit_code == 0);

@@ -11,7 +11,7 @@ namespace ddt::test {
 
 // The largest |output − plane| over the pixels of `out`, a grey image of a width × height
 // frame magnified: output pixel X samples input x = (X + 0.5) · width / out.width − 0.5,
-// clamped into the frame (core/render.h), and y alike.
+// clamped into the frame (core/image/render.h), and y alike.
 template <typename Plane>
 double worstPlaneError(const Image& out, uint32_t width, uint32_t height, Plane plane) {
     double worst = 0.0;

@@ -8,7 +8,7 @@
 
 namespace ddt::test {
 
-// Gains are the same fp64 formula on both sides (glsl/sederberg.h, glsl/content_cost.h); a
+// Gains are the same fp64 formula on both sides (glsl/image/sederberg.h, glsl/image/content_cost.h); a
 // device may round a division or square root differently in the last bit, far below 1e-12 on
 // the gains of these tests' meshes (random values in [0, 1]; triangles at least ~0.1 px high,
 // so an SCF below ~200 and terms of a gain below ~1e3 · 1e-16).

@@ -51,7 +51,7 @@ TEST_CASE("cli points: a plane comes back from scattered points on both backends
         REQUIRE(out.height == 2 * h);
         CHECK(out.sample_type == SampleType::Float);  // values in [0, 1] with fractions: a float file
         // The renderer samples a mesh with explicit positions at the nearest 1/1024 pixel
-        // (core/render.h), up to 1/2048 pixel off on each axis: at most (0.02 + 0.03) / 2048
+        // (core/image/render.h), up to 1/2048 pixel off on each axis: at most (0.02 + 0.03) / 2048
         // = 2.4e-5 of the plane; 3e-5 leaves room for the float printing of the CSV's values
         // (6 significant digits, 5e-7 here) and float interpolation.
         CHECK(test::worstPlaneError(out, w, h, ramp) < 3e-5);

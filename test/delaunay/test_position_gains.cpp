@@ -1,5 +1,5 @@
-// The flip gains and costs on meshes with explicit vertex positions (core/mesh.h; the
-// formulas' Places, glsl/sederberg.h): positions at the pixel centres give the grid's numbers
+// The flip gains and costs on meshes with explicit vertex positions (core/image/mesh.h; the
+// formulas' Places, glsl/image/sederberg.h): positions at the pixel centres give the grid's numbers
 // bit for bit, a hand-made mesh off the grid gives the plane formulas' gain, the costs scale
 // with the positions as the formulas predict, and the Vulkan kernels follow core's gains and
 // flips step by step on a jittered grid.
@@ -93,7 +93,7 @@ bool shareSide(const Tri& s, const Tri& t) {
     return shared == 2;
 }
 
-// The cost of a triangulation, from the definitions (core/cost.h): Sederberg's the sum of the
+// The cost of a triangulation, from the definitions (core/image/cost.h): Sederberg's the sum of the
 // SCF over interior edges; face-SCF Σ area(T) · (Σ of T's edges' SCF, 0 on the hull) / 3;
 // variance Σ area(T) · (population variance of T's three values).
 double costOf(const std::vector<Tri>& mesh, CostFunction cost) {
@@ -189,7 +189,7 @@ TEST_CASE("positions: a mesh off the grid has the plane formulas' gain", "[posit
     for (CostFunction cost : kCosts) {
         INFO(costFunctionName(cost));
         // The two sides compute the same numbers by different formulas (Cramer's rule here,
-        // glsl/sederberg.h's one division per edge there): on values and slopes of order 1
+        // glsl/image/sederberg.h's one division per edge there): on values and slopes of order 1
         // they differ by rounding, ~1e-15.
         const double expected = costOf(before, cost) - costOf(after, cost);
         CHECK(std::abs(expected) > 0.01);  // a gain, or a loss, that matters

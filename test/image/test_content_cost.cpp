@@ -1,4 +1,4 @@
-// Tóth et al.'s content-weighted costs (glsl/content_cost.h): Σ over triangles of area × weight,
+// Tóth et al.'s content-weighted costs (glsl/image/content_cost.h): Σ over triangles of area × weight,
 // the weight the variance of the triangle's three values or the mean over its three edges of
 // Sederberg's cost (face-SCF). Hand-computed costs and gains, the serial optimizer with each
 // cost, and the Vulkan backend against it on lavapipe (with the validation layer, zero
@@ -281,7 +281,7 @@ TEST_CASE("content cost: meshCost equals the paper's sum over triangles on any t
 }
 
 TEST_CASE("content cost: every triangle has area 1/2, so face-SCF is a third of Sederberg's", "[content-cost]") {
-    // Pick's theorem (glsl/content_cost.h): a triangulation using every pixel centre has only
+    // Pick's theorem (glsl/image/content_cost.h): a triangulation using every pixel centre has only
     // empty lattice triangles. Edge by edge, face-SCF's share is SCF · 2 / 6: 2 · SCF is exact,
     // so it rounds exactly as SCF / 3 does (one channel: no alpha share added).
     std::mt19937 rng(5);
@@ -427,8 +427,8 @@ TEST_CASE("content cost: the CPU backend and its twins optimise for the cost the
 
 namespace {
 
-// As test_vulkan.cpp: gains are computed in fp64 by the same code (glsl/sederberg.h,
-// glsl/content_cost.h) on both sides, but a device may round division and square root
+// As test_vulkan.cpp: gains are computed in fp64 by the same code (glsl/image/sederberg.h,
+// glsl/image/content_cost.h) on both sides, but a device may round division and square root
 // differently in the last bit; a gain sums at most ten terms below ~8, so such differences
 // stay far below 1e-12.
 const double kGainTolerance = 1e-12;
@@ -494,7 +494,7 @@ TEST_CASE("content cost: the kernels' edge shares equal core's", "[content-cost]
 TEST_CASE("content cost: Vulkan's accepted flips never touch what another accepted gain read",
           "[content-cost][vulkan]") {
     // Each iteration: no accepted edge in another's conflict region (the 2-region, ExpROI the
-    // 3-region, for every cost: glsl/select.comp), and — the property itself — the accepted
+    // 3-region, for every cost: glsl/image/select.comp), and — the property itself — the accepted
     // edges flipped one after another on the host, each gain recomputed by core just before its
     // own flip, equal the candidate step's gains: no flip changed what another's gain read.
     const std::vector<TestImage> images = testImages();

@@ -1,4 +1,4 @@
-// The mesh as files hold it (core/indexed_mesh.h, core/stitched_mesh.h, core/io/mesh_file.h):
+// The mesh as files hold it (core/image/indexed_mesh.h, core/image/stitched_mesh.h, core/io/mesh_file.h):
 // the border ring, the y-up counter-clockwise convention, the surface it describes, the
 // stitching of tiles and the PLY and OBJ layouts.
 #include <catch2/catch.hpp>

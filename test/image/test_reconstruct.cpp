@@ -1,4 +1,4 @@
-// The consistent reconstruction (core/reconstruct.h) on the CPU reference: consistency with
+// The consistent reconstruction (core/image/reconstruct.h) on the CPU reference: consistency with
 // the documented footprint model on smooth inputs, bounded overshoot at steps, flat stays flat,
 // the identity at s = 1 and continuity near it, colour ≤ alpha, determinism, and tiles.
 #include <catch2/catch.hpp>
@@ -26,7 +26,7 @@ Mesh optimisedMesh(const Image& image) {
     return backend->mesh();
 }
 
-// The model as core/reconstruct.h documents it, written here independently: per axis a
+// The model as core/image/reconstruct.h documents it, written here independently: per axis a
 // Gaussian of σ = 0.4·√(1 − 1/s²) input pixels on offsets t/3, |t| ≤ ceil(9σ), normalised;
 // the surface sampled at the 3× supersampling (render.h's sampling at out = 3w × 3h), samples
 // past the border taken from the nearest one.
@@ -41,7 +41,7 @@ std::vector<double> modelTaps(double scale) {
     return taps;
 }
 
-// A named resize filter's taps as core/reconstruct.h documents them (at any factor above 1),
+// A named resize filter's taps as core/image/reconstruct.h documents them (at any factor above 1),
 // written here from the filters' textbook formulas: weight(t/3) for |t/3| < support (the
 // support's own taps weigh 0), normalised.
 std::vector<double> filterTaps(AssumedKernel kernel) {
@@ -278,7 +278,7 @@ TEST_CASE("reconstruct: the same surface on every run (no order-dependent sums)"
     CHECK(test::samePixels(a.bubbles, b.bubbles));
 }
 
-// The triangles are split into runs by the thread count (core/reconstruct.cpp), and the
+// The triangles are split into runs by the thread count (core/image/reconstruct.cpp), and the
 // vertices and edges on the runs' borders are summed apart from the rest: another split must
 // still give every sum in the same order. 300×200 pixels is 119 000 triangles: 4 runs on one
 // thread, 12 on three.
@@ -295,7 +295,7 @@ TEST_CASE("reconstruct: the same surface whatever the thread count splits the wo
     CHECK(test::samePixels(one.bubbles, three.bubbles));
 }
 
-// The CPU backend gives up its mesh in reconstruct (core/backend.h): what needs the mesh
+// The CPU backend gives up its mesh in reconstruct (core/backend/backend.h): what needs the mesh
 // afterwards is refused rather than run on an empty one.
 TEST_CASE("reconstruct: the CPU backend refuses optimize and mesh after reconstruct, until prepared again") {
     const Image input = test::photoCrop();

@@ -23,7 +23,7 @@ namespace {
 
 using namespace ddt;
 
-// Gains are computed in fp64 by the same code (glsl/sederberg.h) on both sides, but a
+// Gains are computed in fp64 by the same code (glsl/image/sederberg.h) on both sides, but a
 // device may round division and square root differently in the last bit; a gain sums ten
 // terms below ~8, so such differences stay far below 1e-12.
 const double kGainTolerance = 1e-12;

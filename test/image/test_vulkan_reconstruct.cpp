@@ -1,5 +1,5 @@
-// The consistent reconstruction on the Vulkan backend (glsl/reconstruct/), against core's
-// reference (core/reconstruct.h) on the same mesh, against itself (runs, thread counts,
+// The consistent reconstruction on the Vulkan backend (glsl/image/reconstruct/), against core's
+// reference (core/image/reconstruct.h) on the same mesh, against itself (runs, thread counts,
 // tiles), and its guarantees: colour ≤ alpha, -s 1 returns the input. Every backend runs
 // with the validation layer and synchronization validation; each test requires zero messages.
 #include <catch2/catch.hpp>

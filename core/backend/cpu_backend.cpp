@@ -1,0 +1,156 @@
+// The CPU backend: core's mesh and serial Lawson sweeps (the reference), the reconstruction
+// and the rasteriser on the host, the last two on the shared thread pool.
+#include <algorithm>
+#include <optional>
+#include <stdexcept>
+
+#include "backend.h"
+#include "parallel.h"
+#include "physical_memory.h"
+
+namespace ddt {
+
+namespace {
+
+// What the CPU backend may hold at once: by memoryNeeded's estimate enough for a 512² RGB
+// input's consistent reconstruction in one piece (about 141 MB, with the 1/8 that tiling keeps
+// spare), where tiles would cost a quarter more work. Larger inputs go in 256-pixel tiles, two
+// at a time on two threads: the e2e bench's jobs stay under 300 MB of peak resident size, an
+// idle process linked to OpenImageIO's libraries taking 125 MB of it.
+const uint64_t kWorkingMemory = uint64_t(160) << 20;
+
+// A surface taken out of the backend with its triangle tables: it owns what the renderer reads.
+class TakenSurface final : public HostSurface {
+public:
+    TakenSurface(Surface surface, MeshRenderer&& tables)
+        : surface_(std::move(surface)),
+          renderer_(std::move(tables), surface_.values, surface_.bubbles.empty() ? nullptr : &surface_.bubbles) {}
+    TakenSurface(const TakenSurface&) = delete;  // renderer_ refers to surface_
+    TakenSurface& operator=(const TakenSurface&) = delete;
+
+    void renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const override {
+        renderer_.renderWindow(window, rows, row_stride);
+    }
+
+private:
+    Surface surface_;
+    MeshRenderer renderer_;
+};
+
+class CpuBackend final : public Backend {
+public:
+    explicit CpuBackend(const LawsonOptions& options) : options_(options) {}
+
+    void prepare(const Image& image) override { prepareFrom(image, buildGridMesh(image.width, image.height)); }
+
+    // `image` is a point mesh's n × 1 values image, not a grid, where `initial` has positions.
+    void prepareFrom(const Image& image, Mesh initial) override {
+        image_ = &image;
+        renderer_.reset();
+        surface_.reset();
+        field_ = costFieldOf(image);
+        mesh_ = std::move(initial);
+        mesh_released_ = false;
+    }
+
+    OptimizeStats optimize() override {
+        requireMesh();
+        renderer_.reset();
+        surface_.reset();
+        return optimizeSerial(mesh_, field_, options_);
+    }
+
+    void reconstruct(const DegradationModel& model) override {
+        requireMesh();
+        // One set of triangle tables locates the supersamples, then renders the result.
+        MeshRenderer locator = renderer_ ? MeshRenderer(std::move(*renderer_), *image_) : MeshRenderer(mesh_, *image_);
+        renderer_.reset();
+        surface_.reset();
+        // The reconstruction is the mesh's last use: rendering reads the triangle tables.
+        surface_ = reconstructSurface(std::move(mesh_), *image_, model, locator);
+        mesh_released_ = true;
+        renderer_.emplace(std::move(locator), surface_->values, &surface_->bubbles);
+    }
+
+    void renderWindow(const RenderWindow& window, float* rows) override {
+        renderInParallel(renderer(), window, image_->channels, rows);
+    }
+
+    bool handsOverSurface() const override { return true; }
+
+    std::unique_ptr<HostSurface> takeSurface() override {
+        renderer();  // builds the triangle tables if reconstruct did not
+        // The plain surface is the prepared image's values, which its caller may drop: copied.
+        Surface surface = surface_ ? std::move(*surface_) : Surface{*image_, {}};
+        auto taken = std::make_unique<TakenSurface>(std::move(surface), std::move(*renderer_));
+        renderer_.reset();
+        surface_.reset();
+        mesh_ = {};
+        mesh_released_ = true;
+        field_ = {};
+        return taken;
+    }
+
+    Mesh mesh() override {
+        requireMesh();
+        return mesh_;
+    }
+    ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) override {
+        ParallelSimplifyStats stats;
+        static_cast<SimplifyStats&>(stats) = simplifySerial(mesh, values, target, max_error);
+        return stats;
+    }
+    std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(options_); }
+    const Image& preparedImage() const override { return *image_; }
+
+    // A rough count of the host arrays at their peak, per vertex. Optimizing: the mesh's two
+    // 32-byte records per edge and the sweeps' state (16 bytes per edge, about three edges per
+    // vertex), the renderer's triangle list (about two 24-byte triangles), the cost field (4)
+    // and the input (4 per channel). Reconstructing (core/image/reconstruct.cpp), after the sweeps
+    // and the mesh are released: the triangle list, the supersamples' indices and weights (9 ×
+    // 16 bytes) and their ends (8), the cost field, the normalisers (one float per vertex and
+    // per edge, 16), and per channel 84 bytes of floats (the supersamples' values, 36; the
+    // vertex values, bubbles, residuals and the projection's totals, 36; the bounds, 8; the
+    // input).
+    uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
+        const uint64_t vertices = uint64_t(width) * height;
+        const uint64_t optimizing = 3 * (32 + 16) + 2 * 24 + 4 + 4 * channels;
+        const uint64_t reconstructing = 2 * 24 + 9 * 16 + 8 + 4 + 16 + 84 * channels;
+        return vertices * (reconstruction ? std::max(optimizing, reconstructing) : optimizing);
+    }
+
+    // A fixed working set, at most half the machine's memory: larger inputs go in tiles
+    // (app/tiled_upscale.h), so the process's size does not grow with the input.
+    uint64_t memoryAvailable() const override { return std::min(kWorkingMemory, physicalMemory() / 2); }
+
+private:
+    void requireMesh() const {
+        if (mesh_released_) throw std::logic_error("CpuBackend: the mesh was given up (reconstruct, takeSurface); prepare again");
+    }
+
+    // The renderer of the current surface, built on first use.
+    const MeshRenderer& renderer() {
+        if (!renderer_) {
+            requireMesh();
+            if (surface_)
+                renderer_.emplace(mesh_, surface_->values, &surface_->bubbles);
+            else
+                renderer_.emplace(mesh_, *image_);
+        }
+        return *renderer_;
+    }
+
+    LawsonOptions options_;
+    const Image* image_ = nullptr;
+    CostField field_;
+    Mesh mesh_;
+    bool mesh_released_ = false;  // by reconstruct
+    std::optional<Surface> surface_;  // set by reconstruct
+    std::optional<MeshRenderer> renderer_;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> makeCpuBackend(const LawsonOptions& options) { return std::make_unique<CpuBackend>(options); }
+
+}  // namespace ddt

@@ -1,0 +1,78 @@
+#include "image_metadata.h"
+
+#include <set>
+
+namespace ddt {
+
+// ---- Alpha: what OIIO 2.4 actually does, measured per format (see test_image_io.cpp).
+// Asked with "oiio:UnassociatedAlpha", the PNG, Targa and TIFF (unassociated) readers return
+// straight colour and say so in that attribute. The BMP reader returns its straight colour as
+// stored without saying so. OpenEXR and associated TIFF come back as stored, premultiplied,
+// which is also OIIO's convention for every other reader.
+AlphaStorage inputAlphaStorage(const OIIO::ImageSpec& spec, const std::string& format) {
+    if (spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0) return AlphaStorage::Straight;
+    if (format == "bmp") return AlphaStorage::Straight;
+    return AlphaStorage::Premultiplied;
+}
+
+// Formats whose files hold straight colour: the PNG, Targa and WebP writers store straight
+// colour given with "oiio:UnassociatedAlpha" as is (without it they divide by alpha after
+// rounding to the file's depth, which loses precision); the BMP writer stores whatever it
+// gets. TIFF can hold either and keeps the input's choice, so -s 1 reproduces it. Every other
+// format gets premultiplied colour: OpenEXR requires it, and it is OIIO's convention for
+// formats that do not say.
+AlphaStorage outputAlphaStorage(const std::string& format, const Image& like) {
+    static const std::set<std::string> straight = {"png", "targa", "webp", "bmp"};
+    if (format == "tiff") return like.metadata ? like.metadata->alpha_storage : AlphaStorage::Straight;
+    return straight.count(format) ? AlphaStorage::Straight : AlphaStorage::Premultiplied;
+}
+
+void premultiply(std::vector<float>& pixels, uint32_t channels) {
+    for (size_t i = 0; i < pixels.size(); i += channels) {
+        float alpha = pixels[i + channels - 1];
+        for (uint32_t k = 0; k + 1 < channels; ++k) pixels[i + k] *= alpha;
+    }
+}
+
+// Attributes of the input that describe its old pixels, layout or file, not the new image.
+const char* const kStaleAttributes[] = {
+    "oiio:UnassociatedAlpha", "tiff:UnassociatedAlpha", "oiio:BitsPerSample", "Exif:PixelXDimension",
+    "Exif:PixelYDimension", "tiff:RowsPerStrip", "tiff:PhotometricInterpretation", "tiff:Compression",
+    "tiff:PlanarConfiguration", "planarconfig", "oiio:subimages", "thumbnail_width", "thumbnail_height",
+    "thumbnail_nchannels", "thumbnail_image",
+};
+
+// Copies the input's metadata. Resolution (dots per inch) scales with the magnification, so a
+// print keeps its size; compression settings are per format and copied only to the same one.
+void copyMetadata(const Image& like, uint32_t width, uint32_t height, const std::string& format,
+                  OIIO::ImageSpec& spec) {
+    const OIIO::ImageSpec& from = like.metadata->spec;
+    spec.extra_attribs = from.extra_attribs;
+    for (const char* stale : kStaleAttributes) spec.erase_attribute(stale);
+    if (like.metadata->format_name != format) {
+        spec.erase_attribute("compression");
+        spec.erase_attribute("CompressionQuality");
+    }
+    if (like.width && like.height) {
+        if (const OIIO::ParamValue* x = from.find_attribute("XResolution", OIIO::TypeDesc::FLOAT))
+            spec.attribute("XResolution", x->get_float() * float(width) / float(like.width));
+        if (const OIIO::ParamValue* y = from.find_attribute("YResolution", OIIO::TypeDesc::FLOAT))
+            spec.attribute("YResolution", y->get_float() * float(height) / float(like.height));
+    }
+}
+
+// Conventional names, so that OpenEXR readers find grey and alpha again.
+std::vector<std::string> channelNames(uint32_t channels) {
+    switch (channels) {
+        case 1:
+            return {"Y"};
+        case 2:
+            return {"Y", "A"};
+        case 3:
+            return {"R", "G", "B"};
+        default:
+            return {"R", "G", "B", "A"};
+    }
+}
+
+}  // namespace ddt

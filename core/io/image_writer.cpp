@@ -1,0 +1,334 @@
+// Writing image files: format limits checked first, a temporary file renamed over the output
+// on commit, PNG through ddtup's parallel encoder, every other format through OpenImageIO.
+#include "image_file.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <cassert>
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <filesystem>
+
+#include "checked_file.h"
+#include "image_formats.h"
+#include "image_metadata.h"
+#include "oiio_codec.h"
+#include "output_file.h"
+#include "parallel.h"
+#include "png_writer.h"
+#include "temp_files.h"
+
+namespace ddt {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The largest side a format can hold, for the formats where OIIO 2.4 does not refuse a larger
+// one cleanly when the output is opened (measured): libjpeg ends the whole process, libpng
+// prints its own error, GIF files come out corrupt, WebP fails only after all the work.
+struct SideLimit {
+    const char* format;
+    uint32_t max_side;
+};
+const SideLimit kSideLimits[] = {
+    {"jpeg", 65500},    // libjpeg's JPEG_MAX_DIMENSION (the format itself stops at 65535)
+    {"png", 1000000},   // libpng's default user limit (the format itself allows 2^31 - 1)
+    {"gif", 65535},     // 16-bit size fields
+    {"webp", 16383},    // 14-bit size fields
+};
+
+// OIIO keeps sizes in int.
+const uint32_t kMaxSide = INT_MAX;
+
+// Copies the finished temporary file to standard output.
+void copyToStandardOutput(const std::string& file) {
+    auto fail = [](int error) { return UserError(std::string("standard output: ") + std::strerror(error)); };
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw fail(errno);
+    const CopyFailure failure =
+        copyAll(fd, [](const char* data, size_t size) { return writeAll(STDOUT_FILENO, data, size); });
+    ::close(fd);
+    if (failure.read_error || failure.write_error) throw fail(failure.write_error ? failure.write_error : failure.read_error);
+}
+
+// The extension that names the output format: `format` if given, else the path's.
+std::string outputExtension(const std::string& path, const std::string& format) {
+    return format.empty() ? fs::path(path).extension().string() : format;
+}
+
+}  // namespace
+
+std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t height, const std::string& format) {
+    if (path == kStandardStream && format.empty()) return "the output format must be given (such as png)";
+    const std::string extension = outputExtension(path, format);
+    const ImageFormat* ours = formatOfExtension(extension);
+    if (!ours)
+        return (extension.empty() || extension == "." ? std::string("the output has no file extension")
+                                                      : "the extension " + extension + " is not a format ddtup writes") +
+               " (" + imageFormatTitles() + "; see --format)";
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(ours->oiio_name);
+    if (!output) return std::string("OpenImageIO has no ") + ours->title + " writer";
+    if (width < 1 || height < 1) return "an image needs at least 1×1 pixels";
+    uint32_t max_side = kMaxSide;
+    for (const SideLimit& limit : kSideLimits)
+        if (output->format_name() == std::string(limit.format)) max_side = limit.max_side;
+    if (width > max_side || height > max_side)
+        return std::string(output->format_name()) + " holds at most " + std::to_string(max_side) + " pixels a side; the output would be " +
+               std::to_string(width) + "×" + std::to_string(height);
+    return "";
+}
+
+namespace {
+
+// How the premultiplied rows the caller gives become the rows the file stores.
+struct OutputLayout {
+    uint32_t in_channels = 0;
+    uint32_t out_channels = 0;
+    bool in_alpha = false;
+    bool out_alpha = false;
+    bool straight = false;  // divide colour by alpha
+    bool flatten = false;   // composite onto white, drop alpha
+    bool grey_to_rgb = false;
+};
+
+bool needsConversion(const OutputLayout& layout) { return layout.straight || layout.flatten || layout.grey_to_rgb; }
+
+void expandGreyToRgb(OutputLayout& layout) {
+    layout.grey_to_rgb = true;
+    layout.out_channels += 2;
+}
+
+void closeQuietly(OIIO::ImageOutput& output) {
+    QuietStderr quiet;  // libpng complains about a file closed without pixels
+    output.close();
+}
+
+// One pixel from the premultiplied layout the caller gives to the stored layout.
+void convertRows(const OutputLayout& layout, const float* in, size_t count, float* out) {
+    const uint32_t in_colours = layout.in_channels - (layout.in_alpha ? 1 : 0);
+    const uint32_t out_colours = layout.out_channels - (layout.out_alpha ? 1 : 0);
+    for (size_t i = 0; i < count; ++i, in += layout.in_channels, out += layout.out_channels) {
+        // Colour under zero alpha is lost by premultiplication; it is written as 0.
+        const float alpha = layout.in_alpha ? in[layout.in_channels - 1] : 1.0f;
+        for (uint32_t k = 0; k < out_colours; ++k) {
+            float value = in[k < in_colours ? k : 0];
+            if (layout.flatten) value += 1.0f - alpha;
+            else if (layout.straight) value = alpha > 0.0f ? value / alpha : 0.0f;
+            out[k] = value;
+        }
+        if (layout.out_alpha) out[out_colours] = alpha;
+    }
+}
+
+// Whether the file system holding `path` has no space left, to name the cause of a failed
+// write by a codec that writes its file itself (TIFF) and reports it in its own words.
+bool noSpaceLeft(const std::string& path) {
+    struct statvfs status {};
+    return ::statvfs(path.c_str(), &status) == 0 && status.f_bavail == 0;
+}
+
+// The quality setting of the lossy formats, in OIIO's "compression" attribute.
+void setQuality(const std::string& format, int quality, OIIO::ImageSpec& spec) {
+    assert(quality >= 1 && quality <= 100);
+    if (format == "jpeg" || format == "webp") spec.attribute("compression", format + ":" + std::to_string(quality));
+}
+
+}  // namespace
+
+struct ImageWriter::State {
+    std::string path;
+    std::string name;  // for messages: the path, or "standard output"
+    std::unique_ptr<TempFile> temp;
+    std::unique_ptr<CheckedFile> file;  // null for the few codecs that cannot write through one
+    std::unique_ptr<OIIO::ImageOutput> output;  // OIIO's writer, for every format but PNG
+    std::unique_ptr<PngWriter> png;             // ddtup's own, for PNG
+    uint32_t width = 0, height = 0;
+    OutputLayout layout;
+    uint32_t next_row = 0;
+    std::vector<float> scratch;
+
+    // The reason a write failed: the file's own error where it saw one, since codecs that
+    // ignore failed writes report something vaguer or nothing.
+    UserError failure() {
+        std::string codec_reason = output ? firstLine(codecError(*output)) : "";  // read either way: it clears it
+        if (file && file->failure()) return UserError(name + ": " + std::strerror(file->failure()));
+        if (!file && noSpaceLeft(temp->path())) return UserError(name + ": " + std::strerror(ENOSPC));
+        return UserError(name + ": cannot write (" + codec_reason + ")");
+    }
+
+    // Opens the temporary file as a CheckedFile, empty.
+    void openCheckedFile() {
+        file.reset();
+        try {
+            file = std::make_unique<CheckedFile>(temp->path());
+        } catch (const std::system_error& error) {
+            throw UserError(name + ": cannot write (" + std::strerror(error.code().value()) + ")");
+        }
+    }
+
+    ~State() {
+        if (output) closeQuietly(*output);
+    }
+};
+
+ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like,
+                         const WriteOptions& options)
+    : state_(std::make_unique<State>()) {
+    State& s = *state_;
+    s.path = path;
+    s.name = outputName(path);
+    s.width = width;
+    s.height = height;
+    if (path != kStandardStream) checkOutputPath(path);
+    if (std::string problem = checkOutputFormat(path, width, height, options.format); !problem.empty())
+        throw UserError(s.name + ": " + problem);
+    s.output = OIIO::ImageOutput::create(formatOfExtension(outputExtension(path, options.format))->oiio_name);
+    const std::string format = s.output->format_name();
+    const SampleType wanted_type = options.depth.value_or(like.sample_type);
+
+    OutputLayout& layout = s.layout;
+    layout.in_channels = layout.out_channels = like.channels;
+    layout.in_alpha = layout.out_alpha = like.hasAlpha();
+    if (like.hasAlpha() && !s.output->supports("alpha")) {
+        // Dropping alpha would leave the premultiplied colour, i.e. black under transparent
+        // areas; image editors flatten onto white when exporting to such formats, so do we.
+        layout.flatten = true;
+        layout.out_alpha = false;
+        layout.out_channels = like.channels - 1;
+        notes_.push_back(s.name + ": " + format + " has no alpha channel; transparent areas are flattened onto white");
+    }
+    layout.straight = layout.out_alpha && outputAlphaStorage(format, like) == AlphaStorage::Straight;
+
+    s.temp = createTempFile(path);
+    // The spec OIIO's writer gets, or for PNG the one ddtup's encoder takes its metadata from.
+    auto specFor = [&](OIIO::TypeDesc type) {
+        OIIO::ImageSpec spec(int(width), int(height), int(layout.out_channels), type);
+        if (like.metadata) copyMetadata(like, width, height, format, spec);
+        spec.channelnames = channelNames(layout.out_channels);
+        spec.alpha_channel = layout.out_alpha ? int(layout.out_channels) - 1 : -1;
+        if (layout.straight) spec.attribute("oiio:UnassociatedAlpha", 1);
+        setQuality(format, options.quality, spec);
+        return spec;
+    };
+
+    if (format == "png") {
+        // PNG holds grey and alpha, 8 or 16 bits: wider samples are written as 16 bits.
+        const SampleType written = wanted_type == SampleType::UInt8 ? SampleType::UInt8 : SampleType::UInt16;
+        s.output.reset();
+        s.openCheckedFile();
+        State* state = &s;  // owns the writer, so outlives it
+        s.png = std::make_unique<PngWriter>(specFor(typeDescOf(written)), [state](const uint8_t* data, size_t size) {
+            if (state->file->write(data, size) != size) throw state->failure();
+        });
+        for (const std::string& missing : s.png->leftOut()) notes_.push_back(s.name + ": " + missing + " is left out");
+        if (written != wanted_type)
+            notes_.push_back(s.name + ": " + format + " cannot hold " + sampleTypeName(wanted_type) + " samples; written as " +
+                             sampleTypeName(written));
+        return;
+    }
+
+    // OIIO 2.4's TIFF writer loses the main directory when it writes EXIF data through a
+    // proxy (measured, with OIIO's own IOFile too); libtiff reports failed writes itself.
+    const bool checked = s.output->supports("ioproxy") && format != "tiff";
+    auto openAs = [&](OIIO::TypeDesc type) {
+        const OIIO::ImageSpec spec = specFor(type);
+        if (checked) {
+            // Each attempt starts an empty file: a refused one may have written a header.
+            s.openCheckedFile();
+            s.output->set_ioproxy(s.file.get());
+        }
+        QuietStderr quiet;
+        return s.output->open(s.temp->path(), spec);
+    };
+
+    const OIIO::TypeDesc wanted = typeDescOf(wanted_type);
+    if (!openAs(wanted)) {
+        // Some formats hold no grey (WebP, GIF, HDR) or no grey+alpha (BMP): try RGB(A).
+        if (layout.out_channels > 2 || layout.grey_to_rgb) throw s.failure();
+        UserError first_failure = s.failure();
+        expandGreyToRgb(layout);
+        if (!openAs(wanted)) {
+            codecError(*s.output);  // drop the second attempt's message, the first says more
+            throw first_failure;
+        }
+    }
+    if (layout.grey_to_rgb)
+        notes_.push_back(s.name + ": " + format + " cannot hold " + (layout.out_alpha ? "grey+alpha" : "grey") +
+                         " images; written as " + (layout.out_alpha ? "RGBA" : "RGB"));
+    // Formats that cannot hold a type fall back to 8 bits in OIIO 2.4 (PNG turns float into
+    // 8-bit), while 16 bits is nearer for anything wider: ask for it once.
+    if (sampleTypeOf(s.output->spec().format) == SampleType::UInt8 && wanted_type != SampleType::UInt8) {
+        closeQuietly(*s.output);
+        if (!openAs(OIIO::TypeDesc::UINT16)) {
+            codecError(*s.output);  // this format refuses 16 bits: back to its own choice
+            if (!openAs(wanted)) throw s.failure();
+        }
+    }
+    const SampleType written = sampleTypeOf(s.output->spec().format);
+    if (written != wanted_type)
+        notes_.push_back(s.name + ": " + format + " cannot hold " + sampleTypeName(wanted_type) +
+                         " samples; written as " + sampleTypeName(written));
+}
+
+ImageWriter::~ImageWriter() = default;
+
+void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows) {
+    State& s = *state_;
+    if (y_begin != s.next_row || y_end > s.height || y_begin >= y_end) throw std::logic_error("rows out of order");
+    const float* data = rows;
+    if (needsConversion(s.layout)) {
+        const size_t count = size_t(y_end - y_begin) * s.width;
+        s.scratch.resize(count * s.layout.out_channels);
+        parallelFor(count, 1 << 14, [&](size_t begin, size_t end) {
+            convertRows(s.layout, rows + begin * s.layout.in_channels, end - begin, s.scratch.data() + begin * s.layout.out_channels);
+        });
+        data = s.scratch.data();
+    }
+    if (s.png) {
+        s.png->writeRows(data, y_end - y_begin);  // throws at the first failed write
+        s.next_row = y_end;
+        return;
+    }
+    bool ok;
+    {
+        QuietStderr quiet;
+        ok = s.output->write_scanlines(int(y_begin), int(y_end), 0, OIIO::TypeDesc::FLOAT, data);
+    }
+    if (!ok || (s.file && s.file->failure())) throw s.failure();
+    s.next_row = y_end;
+}
+
+void ImageWriter::commit() {
+    State& s = *state_;
+    if (s.next_row != s.height) throw std::logic_error("commit before all rows were written");
+    bool ok = true;
+    if (s.png) {
+        s.png->finish();
+    } else {
+        QuietStderr quiet;
+        ok = s.output->close();
+    }
+    if (s.file) s.file->close();
+    if (!ok || (s.file && s.file->failure())) throw s.failure();
+    s.output.reset();
+    s.png.reset();
+    if (s.path == kStandardStream) {
+        copyToStandardOutput(s.temp->path());
+        return;
+    }
+    moveIntoPlace(*s.temp, s.path, s.name);
+}
+
+std::vector<std::string> writeImage(const std::string& path, const Image& image, const WriteOptions& options) {
+    ImageWriter writer(path, image.width, image.height, image, options);
+    writer.writeRows(0, image.height, image.pixels.data());
+    writer.commit();
+    return writer.notes();
+}
+
+}  // namespace ddt

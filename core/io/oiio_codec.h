@@ -1,0 +1,65 @@
+// Talking to OpenImageIO's codecs: their errors as one line for the user, stderr kept quiet
+// while they run, and ddtup's sample types in OIIO's terms. Shared by the reader and the writer.
+#pragma once
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <mutex>
+#include <string>
+
+#include "image.h"
+
+namespace ddt {
+
+// OIIO messages can span lines; the user gets one.
+std::string firstLine(std::string message);
+
+// OIIO's per-thread error, for failures that have no ImageInput/ImageOutput to ask.
+std::string globalError();
+
+template <class Codec>
+std::string codecError(const Codec& codec) {
+    return codec.has_error() ? codec.geterror() : globalError();
+}
+
+// OIIO 2.4's PNG plugin leaves libpng's default handlers installed, and they print
+// "libpng error: …" (and warnings) to stderr on top of the error OIIO returns to us; newer OIIO
+// installs its own handlers, 2.4 has no hook for them. The user must get one line, so stderr
+// points at /dev/null for the duration of each call into a codec, and only then. Batches read
+// and write on two threads at once: the first to enter redirects, the last to leave restores.
+class QuietStderr {
+public:
+    QuietStderr() {
+        std::lock_guard lock(mutex_);
+        if (users_++ > 0) return;
+        std::fflush(stderr);
+        int null_fd = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (null_fd < 0) return;
+        saved_fd_ = ::fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 0);
+        if (saved_fd_ >= 0) ::dup2(null_fd, STDERR_FILENO);
+        ::close(null_fd);
+    }
+    ~QuietStderr() {
+        std::lock_guard lock(mutex_);
+        if (--users_ > 0 || saved_fd_ < 0) return;
+        std::fflush(stderr);
+        ::dup2(saved_fd_, STDERR_FILENO);
+        ::close(saved_fd_);
+        saved_fd_ = -1;
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+
+private:
+    static inline std::mutex mutex_;
+    static inline int users_ = 0;
+    static inline int saved_fd_ = -1;
+};
+
+SampleType sampleTypeOf(OIIO::TypeDesc format);
+OIIO::TypeDesc typeDescOf(SampleType type);
+
+}  // namespace ddt
