@@ -23,9 +23,9 @@ namespace fs = std::filesystem;
 bool isHidden(const fs::path& path) { return path.filename().string().starts_with("."); }
 
 // The images and volumes under `folder`, relative to it and sorted. Hidden files and folders (ddtup's own
-// temporary files among them) are passed over, and so is `skip`, the output folder, when it
-// lies inside: its results must not become inputs.
-std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs::path& skip) {
+// temporary files among them) are passed over, and so are the folders in `skip` (the output
+// folder, the masks' folder) when they lie inside: results and masks must not become inputs.
+std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const std::vector<fs::path>& skip) {
     std::error_code error;
     if (!fs::is_directory(folder, error))
         throw UserError(folder.string() + (fs::exists(folder, error) ? ": not a folder" : ": no such folder"));
@@ -36,7 +36,10 @@ std::vector<fs::path> imagesIn(const fs::path& folder, bool recursive, const fs:
         if (error) throw UserError(it->path().string() + ": cannot list the folder: " + error.message());
         const fs::path& path = it->path();
         const bool folder_entry = it->is_directory(error);
-        if (isHidden(path) || (folder_entry && (!recursive || fs::equivalent(path, skip, error)))) {
+        const auto skipped = [&] {
+            return std::any_of(skip.begin(), skip.end(), [&](const fs::path& other) { return fs::equivalent(path, other, error); });
+        };
+        if (isHidden(path) || (folder_entry && (!recursive || skipped()))) {
             if (folder_entry) it.disable_recursion_pending();
             continue;
         }
@@ -67,6 +70,45 @@ std::string outputPathFor(const fs::path& output_folder, fs::path relative, cons
     else if (!relative.has_extension())
         relative += ".png";  // standard input, or a file without an extension
     return (output_folder / relative).string();
+}
+
+// The mask of the input at `relative` (to the input folder, or its file name): the one image
+// in mask_folder/<relative's folder> with the same stem, any format ddtup reads. Sets `reason`
+// when there is none or more than one.
+std::string maskFor(const fs::path& mask_folder, const fs::path& relative, std::string& reason) {
+    const fs::path folder = mask_folder / relative.parent_path();
+    std::vector<std::string> found;
+    std::error_code error;
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+        const fs::path& path = entry.path();
+        if (path.stem() == relative.stem() && formatOfExtension(path.extension().string()) && !entry.is_directory(error))
+            found.push_back(path.string());
+    }
+    std::sort(found.begin(), found.end());
+    const std::string wanted = (folder / relative.stem()).string() + ".*";
+    if (found.empty()) reason = "no mask " + wanted + " (--mask-dir)";
+    if (found.size() > 1) reason = "more than one mask matches " + wanted + ": " + found[0] + ", " + found[1];
+    return found.size() == 1 ? found.front() : "";
+}
+
+// Gives each image its mask: --mask's for the one input, or its namesake in --mask-dir; an
+// image without one, or whose mask is also an output, is refused.
+void assignMasks(std::vector<ImageTask>& tasks, const std::vector<fs::path>& relatives, const Settings& settings) {
+    for (size_t i = 0; i < tasks.size(); ++i) {
+        ImageTask& task = tasks[i];
+        if (task.volume || task.state != ImageTask::State::Ready) continue;
+        if (!settings.mask.empty()) task.mask = settings.mask;
+        if (settings.mask_folder.empty()) continue;
+        std::string reason;
+        if (task.input == kStandardStream) reason = "--mask-dir finds masks by the inputs' names; standard input has none";
+        else task.mask = maskFor(settings.mask_folder, relatives[i], reason);
+        if (reason.empty() && sameFile(task.mask, task.input)) reason = "its mask " + task.mask + " is the input itself";
+        if (reason.empty() && sameFile(task.mask, task.output)) reason = "its mask " + task.mask + " is also its output";
+        if (!reason.empty()) {
+            task.state = ImageTask::State::Refused;
+            task.reason = task.input + ": " + reason;
+        }
+    }
 }
 
 ImageTask readyTask(const std::string& input, const std::string& output) {
@@ -138,18 +180,29 @@ bool sameFile(const std::string& a, const std::string& b) {
 
 std::vector<ImageTask> planBatch(const Settings& settings) {
     std::vector<ImageTask> tasks;
+    std::vector<fs::path> relatives;  // each input's path relative to the input folder, or its name
+    if (!settings.mask_folder.empty() && !fs::is_directory(settings.mask_folder))
+        throw UserError(settings.mask_folder + ": --mask-dir needs a folder of masks" +
+                        (fs::exists(settings.mask_folder) ? "" : "; it does not exist"));
     if (settings.singleForm()) {
         tasks.push_back(readyTask(settings.inputs.front(), settings.output));
+        relatives.push_back(fs::path(settings.inputs.front()).filename());
     } else {
         const fs::path output_folder = settings.output_folder;
         prepareOutputFolder(output_folder);
         if (!settings.input_folder.empty()) {
             const fs::path input_folder = settings.input_folder;
-            for (const fs::path& relative : imagesIn(input_folder, settings.recursive, output_folder))
+            std::vector<fs::path> skip = {output_folder};
+            if (!settings.mask_folder.empty()) skip.push_back(settings.mask_folder);
+            for (const fs::path& relative : imagesIn(input_folder, settings.recursive, skip)) {
                 tasks.push_back(readyTask((input_folder / relative).string(), outputPathFor(output_folder, relative, settings.format)));
+                relatives.push_back(relative);
+            }
         } else {
-            for (const std::string& input : settings.inputs)
+            for (const std::string& input : settings.inputs) {
                 tasks.push_back(readyTask(input, outputPathFor(output_folder, fs::path(input).filename(), settings.format)));
+                relatives.push_back(fs::path(input).filename());
+            }
         }
     }
     // A batch's meshes go beside their outputs, named like them.
@@ -160,6 +213,7 @@ std::vector<ImageTask> planBatch(const Settings& settings) {
     if (settings.stack)
         for (ImageTask& task : tasks) task.volume = true;
     refuseMismatchedKinds(tasks, settings);
+    assignMasks(tasks, relatives, settings);
     decideStates(tasks, settings.skip_existing);
     return tasks;
 }

@@ -14,6 +14,7 @@ struct ImageTask {
     std::string input;   // as given, or found under the input folder; "-": standard input
     std::string output;  // "-": standard output
     std::string mesh;    // where the optimised mesh goes (--mesh); "" = nowhere
+    std::string mask;    // the image marking the input's known pixels (--mask, --mask-dir); "" = all known
     bool volume = false; // a volume file (core/io/volume_file.h), magnified by app/volume/
     enum class State { Ready, Skipped, Refused } state = State::Ready;
     std::string reason;  // why skipped or refused; a refusal names the file first

@@ -77,17 +77,22 @@ std::string validateMesh(const CLI::App& app, const Settings& settings) {
     return "";
 }
 
-// "" if --mask makes sense with the rest, else the message.
+// "" if --mask or --mask-dir makes sense with the rest, else the message.
 std::string validateMask(const CLI::App& app, const Settings& settings) {
+    if (!settings.masked()) return "";
+    if (!settings.mask.empty() && !settings.mask_folder.empty())
+        return "--mask gives one image's mask, --mask-dir a batch's: give one of them";
+    const std::string option = settings.mask.empty() ? "--mask-dir" : "--mask";
+    if (settings.simplifies()) return option + " and simplification (--simplify, --max-error) do not combine yet";
+    if (!settings.mesh.empty())
+        return option + " and --mesh do not combine yet (the mesh file's border ring assumes the image's rectangle)";
+    if (app.count("--reconstruct") && settings.reconstruct == "consistent")
+        return option + " renders the linear surface on the known pixels' triangulation; --reconstruct consistent needs "
+               "every pixel's value";
+    if (settings.tile) return option + " triangulates the known pixels in one piece; --tile does not apply";
     if (settings.mask.empty()) return "";
     if (!settings.singleForm() || settings.inputs.size() != 1)
-        return "--mask pairs one mask with one input: `ddtup IN --mask MASK OUT`";
-    if (settings.simplifies()) return "--mask and simplification (--simplify, --max-error) do not combine yet";
-    if (!settings.mesh.empty()) return "--mask and --mesh do not combine yet (the mesh file's border ring assumes the image's rectangle)";
-    if (app.count("--reconstruct") && settings.reconstruct == "consistent")
-        return "--mask renders the linear surface on the known pixels' triangulation; --reconstruct consistent needs every "
-               "pixel's value";
-    if (settings.tile) return "--mask triangulates the known pixels in one piece; --tile does not apply";
+        return "--mask pairs one mask with one input: `ddtup IN --mask MASK OUT`; a batch takes --mask-dir MASKS";
     if (sameFile(settings.mask, settings.inputs.front())) return "--mask " + settings.mask + ": is the input itself";
     if (settings.output != kStandardStream && sameFile(settings.mask, settings.output))
         return "--mask " + settings.mask + ": is also the output; refusing to overwrite it";
@@ -101,7 +106,7 @@ std::string validateAssume(const CLI::App& app, const Settings& settings) {
     const std::string given = "--assume " + settings.assume + ": ";
     if (settings.reconstruct != "consistent") return given + "only the consistent surface assumes a filter; --reconstruct plain does not";
     if (settings.simplifies()) return given + "simplification (--simplify, --max-error) renders the linear surface, which assumes no filter";
-    if (!settings.mask.empty()) return given + "--mask renders the linear surface, which assumes no filter";
+    if (settings.masked()) return given + "a mask renders the linear surface, which assumes no filter";
     if (std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath))
         return given + "a point file is rendered linearly, which assumes no filter";
     return "";
@@ -111,7 +116,7 @@ std::string validateAssume(const CLI::App& app, const Settings& settings) {
 std::string validatePoints(const CLI::App& app, const Settings& settings) {
     const bool any_points = std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath);
     if (!any_points) return app.count("--frame") ? "--frame applies to point files (.csv, .ply)" : "";
-    if (!settings.mask.empty()) return "--mask applies to images: a point file lists only known samples";
+    if (settings.masked()) return "--mask and --mask-dir apply to images: a point file lists only known samples";
     if (settings.simplifies()) return "point files and simplification (--simplify, --max-error) do not combine yet";
     if (!settings.mesh.empty()) return "point files and --mesh do not combine yet";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
@@ -180,7 +185,8 @@ bool perAxisScale(const Settings& settings) { return settings.axis_scales[0] > 0
 std::vector<std::string> imageOnlyOptions(const CLI::App& app, const Settings& settings) {
     std::vector<std::string> given;
     for (const char* name : {"--quality", "--mesh", "--mesh-height", "--simplify", "--max-error", "--reconstruct",
-                             "--assume", "--width", "--height", "--variant", "--no-active-set", "--mask", "--frame"})
+                             "--assume", "--width", "--height", "--variant", "--no-active-set", "--mask", "--mask-dir",
+                             "--frame"})
         if (app.count(name)) given.push_back(name);
     if (settings.depth == "half") given.push_back("--depth half");
     return given;
@@ -324,6 +330,11 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "outside their hull with the nearest value. One input; the image in one piece; alpha keeps its "
                    "meaning (transparency) and never marks unknown pixels")
         ->default_str("none: every pixel is known");
+    app.add_option("--mask-dir", settings.mask_folder,
+                   "--mask for a batch (-i DIR, or several inputs with -o): each input's mask is the image with the "
+                   "same name, any extension, in this folder (under the same sub-folder with -r). An input without "
+                   "exactly one mask there fails with a message; the others go on")
+        ->default_str("none");
     std::string frame_text;
     app.add_option("--frame", frame_text,
                    "For point files (.csv x,y,values or .ply with vertex colours): the frame the points lie in, "

@@ -31,6 +31,8 @@ struct Settings {
 
     bool simplifies() const { return simplify > 0.0 || max_error > 0.0; }
     std::string mask;          // --mask: the image whose non-black pixels mark the input's known ones; "" = all known
+    std::string mask_folder;   // --mask-dir: batches; each input's mask is the image of the same name in it
+    bool masked() const { return !mask.empty() || !mask_folder.empty(); }
     // --frame WxH: the frame of point-file inputs (core/delaunay/point_mesh.h); 0 = the points' own
     uint32_t frame_width = 0, frame_height = 0;
 

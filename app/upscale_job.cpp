@@ -178,7 +178,7 @@ void ImageJob::decode() {
     state_->image = state_->reader->read();
     for (const std::string& note : state_->reader->notes()) reporter_.notice(task_.input, note);
     state_->reader.reset();
-    if (!settings_.mask.empty()) state_->samples = triangulateKnown(settings_.mask, state_->image);
+    if (!task_.mask.empty()) state_->samples = triangulateKnown(task_.mask, state_->image);
     report_.times.init_s += secondsSince(start);
 }
 
