@@ -42,7 +42,7 @@ CostFunction costOf(const Settings& settings) {
 ChosenBackend cpuBackend(const Settings& settings, std::string reason) {
     LawsonOptions options;
     options.cost = costOf(settings);
-    return {makeCpuBackend(options), {"cpu", "", "", threadCount(), std::move(reason)}};
+    return {makeCpuBackend(options, settings.memory), {"cpu", "", "", threadCount(), std::move(reason)}};
 }
 
 ChosenBackend vulkanBackend(const Settings& settings, int device_index, std::string reason) {

@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -129,6 +131,29 @@ std::string validatePoints(const CLI::App& app, const Settings& settings) {
     return "";
 }
 
+// --memory's size: a number of bytes with an optional K, M, G or T (powers of 1024, "MiB" and
+// "MB" read alike), at least 16 MiB; "" if it parses, else the message.
+std::string parseMemory(const std::string& text, Settings& settings) {
+    const std::string bad = "--memory " + text + ": give a size such as 512M or 4G (at least 16M)";
+    size_t end = 0;
+    double number = 0.0;
+    try {
+        number = std::stod(text, &end);
+    } catch (const std::exception&) {
+        return bad;
+    }
+    std::string unit = text.substr(end);
+    for (const char* suffix : {"iB", "B"})
+        if (unit.size() > 1 && unit.ends_with(suffix)) unit.resize(unit.size() - std::strlen(suffix));
+    const std::string units = "KMGT";
+    const size_t power = unit.empty() ? 0 : units.find(char(std::toupper(unit[0]))) + 1;
+    if (unit.size() > 1 || (power == 0 && !unit.empty()) || !std::isfinite(number)) return bad;
+    const double bytes = number * std::pow(1024.0, double(power));
+    if (!(bytes >= double(uint64_t(16) << 20)) || bytes > 1e18) return bad;
+    settings.memory = uint64_t(bytes);
+    return "";
+}
+
 // --frame's "WxH" (or W×H): both sides at least 2; "" if it parses, else the message.
 std::string parseFrame(const std::string& text, Settings& settings) {
     const std::string bad = "--frame " + text + ": give the points' frame as WIDTHxHEIGHT in input pixels, each at least 2";
@@ -185,7 +210,7 @@ bool perAxisScale(const Settings& settings) { return settings.axis_scales[0] > 0
 std::vector<std::string> imageOnlyOptions(const CLI::App& app, const Settings& settings) {
     std::vector<std::string> given;
     for (const char* name : {"--quality", "--mesh", "--mesh-height", "--simplify", "--max-error", "--reconstruct",
-                             "--assume", "--width", "--height", "--variant", "--no-active-set", "--mask", "--mask-dir",
+                             "--assume", "--width", "--height", "--variant", "--no-active-set", "--mask", "--mask-dir", "--memory",
                              "--frame"})
         if (app.count(name)) given.push_back(name);
     if (settings.depth == "half") given.push_back("--depth half");
@@ -382,6 +407,11 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "CPU threads for everything the run does on the CPU: decoding, optimizing, rendering, encoding")
         ->check(CLI::Range(1u, 1024u))
         ->default_str("the processors ddtup may use (CPU affinity and cgroup quota)");
+    std::string memory_text;
+    app.add_option("--memory", memory_text,
+                   "Host memory the run may hold (512M, 4G …): the images in flight, and on the CPU backend a mask's "
+                   "or a simplification's mesh, which cannot be tiled; automatic tiles stay small within it for speed")
+        ->default_str("half the machine's memory");
     app.add_option("--variant", settings.variant,
                    "Vulkan flip rule: basic, exproi, exproi-N-maxgain, maxgain, exproi-maxgain, localmax, exproi-localmax")
         ->default_str(std::string(kDefaultFlipRule) + "; ignored when the CPU backend runs");
@@ -451,6 +481,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     }
     if (app.count("--frame"))
         if (std::string problem = parseFrame(frame_text, settings); !problem.empty()) return usageError(problem);
+    if (app.count("--memory"))
+        if (std::string problem = parseMemory(memory_text, settings); !problem.empty()) return usageError(problem);
     if (app.count("--scale"))
         if (std::string problem = parseScale(scale_text, settings); !problem.empty()) return usageError(problem);
     settings.image_only_options = imageOnlyOptions(app, settings);

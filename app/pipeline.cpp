@@ -39,7 +39,7 @@ void runPipeline(const std::vector<ImageTask>& tasks, const Settings& settings,
     BoundedQueue<std::unique_ptr<ImageJob>> decoded(1);
     BoundedQueue<std::shared_ptr<ImageJob>> processed(1);
     std::atomic<bool> stopped = false;
-    MemoryBudget budget(defaultHostBudget());
+    MemoryBudget budget(settings.memory ? settings.memory : defaultHostBudget());
     MemoryBudget bands(kBandBudgetBytes);
 
     std::thread reader([&] {

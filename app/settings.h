@@ -50,6 +50,7 @@ struct Settings {
     uint32_t tile = 0;        // tile side in input pixels; 0 = automatic
     std::string backend = "auto";  // "auto", "vulkan" or "cpu" (app/backend_factory.h)
     unsigned threads = 0;          // CPU threads for the whole process; 0 = the processors it may use
+    uint64_t memory = 0;           // --memory: host bytes the run may hold; 0 = half the machine's memory
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
     std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/image/reconstruct.h)
     std::string assume = "footprint";        // the downscale filter the consistent surface assumes (core/image/assumed_kernel.h)

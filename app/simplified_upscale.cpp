@@ -14,11 +14,11 @@ uint32_t simplifiedVertexCount(uint32_t width, uint32_t height, double fraction)
 SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, OutputSize out, double fraction, double max_error,
                                     const TileOptions& options, const std::function<void(OutputRows&& rows)>& sink,
                                     const TileStepCallback& on_step) {
-    if (options.tile ? options.tile < std::max(image.width, image.height)
-                     : automaticTileSide(backend, image.width, image.height, image.channels, options.overlap, false) != 0)
+    if (options.tile && options.tile < std::max(image.width, image.height))
         throw UserError("simplification needs the image in one piece, and " + std::to_string(image.width) + "×" +
-                        std::to_string(image.height) + (options.tile ? " is larger than --tile"
-                                                                     : " is larger than the backend's memory holds at once"));
+                        std::to_string(image.height) + " is larger than --tile");
+    if (std::string problem = untiledMemoryProblem(backend, image.width, image.height, image.channels); !problem.empty())
+        throw UserError("simplification needs the image in one piece: " + problem);
     if (image.width > kMaxPositionedSide || image.height > kMaxPositionedSide)
         throw UserError("simplification places vertices on a fixed-point grid for sides up to " +
                         std::to_string(kMaxPositionedSide) + " pixels, and " + std::to_string(image.width) + "×" +

@@ -82,6 +82,8 @@ bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t chan
     return needed != UINT64_MAX && needed <= available - available / 8;
 }
 
+std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
+
 // Tiles processed at once: one per thread where the backend has twins (the CPU), else one.
 uint32_t tilesAtOnce(const Backend& backend) { return backend.twin() ? std::max(1u, threadCount()) : 1; }
 
@@ -311,6 +313,17 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
 }
 
 }  // namespace
+
+std::string untiledMemoryProblem(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
+                                 uint64_t extra) {
+    const uint64_t needed = backend.memoryNeeded(width, height, channels, false);
+    const uint64_t limit = backend.memoryLimit();
+    if (needed != UINT64_MAX && needed + extra <= limit - limit / 8) return "";
+    const std::string size = std::to_string(width) + "×" + std::to_string(height);
+    if (needed == UINT64_MAX) return size + " is beyond what one piece of the device can hold";
+    return size + " needs about " + mebibytes(needed + extra) + ", more than the " +
+           mebibytes(limit - limit / 8) + " the backend may use (--memory sets it for the CPU backend)";
+}
 
 uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
                            uint32_t overlap, bool reconstruction) {

@@ -51,6 +51,12 @@ struct TileOptions {
 uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
                            uint32_t overlap, bool reconstruction);
 
+// "" if a width × height job that cannot be tiled (a mask's, a simplification's), holding
+// `extra` bytes beside the backend's, fits the backend's memoryLimit with 1/8 to spare; else
+// the reason, for "W×H: …".
+std::string untiledMemoryProblem(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels,
+                                 uint64_t extra = 0);
+
 // Upscales `image` to `out` and hands the output rows to `sink` in order, each row exactly
 // once, out.width × channels floats per row. `on_step` is
 // called before each tile is optimised and before it is rendered (the tile count may grow

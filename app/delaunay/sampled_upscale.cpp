@@ -21,9 +21,11 @@ std::vector<uint32_t> knownPixels(const Image& mask) {
 
 OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh initial, OutputSize out,
                                  const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step) {
-    if (automaticTileSide(backend, image.width, image.height, image.channels, 0, false) != 0)
-        throw UserError("a mask needs the image in one piece, and " + std::to_string(image.width) + "×" +
-                        std::to_string(image.height) + " is larger than the backend's memory holds at once");
+    // The output is rendered whole (the fill outside the hull reaches across it) beside the mesh.
+    const uint64_t output_bytes = uint64_t(out.width) * out.height * image.channels * sizeof(float);
+    if (std::string problem = untiledMemoryProblem(backend, image.width, image.height, image.channels, output_bytes);
+        !problem.empty())
+        throw UserError("the known samples are triangulated in one piece: " + problem);
     if (on_step) on_step({0, 1, TilePhase::Optimize});
     backend.prepareFrom(image, std::move(initial));
     const OptimizeStats stats = backend.optimize();

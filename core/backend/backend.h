@@ -68,6 +68,9 @@ public:
     // the device), and the bytes available.
     virtual uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const = 0;
     virtual uint64_t memoryAvailable() const = 0;
+    // The most a job that cannot be tiled (a mask's, a simplification's) may hold: the device's
+    // memory, or on the CPU backend the run's budget rather than the working set tiles are sized for.
+    virtual uint64_t memoryLimit() const { return memoryAvailable(); }
 
     // The image given to prepare.
     virtual const Image& preparedImage() const = 0;
@@ -84,6 +87,7 @@ public:
 };
 
 // The serial reference; `options` choose the cost (LawsonOptions::cost) and the sweep cap.
-std::unique_ptr<Backend> makeCpuBackend(const LawsonOptions& options = {});
+// `memory_limit`: the bytes it may hold at once (memoryLimit); 0 = half the machine's memory.
+std::unique_ptr<Backend> makeCpuBackend(const LawsonOptions& options = {}, uint64_t memory_limit = 0);
 
 }  // namespace ddt

@@ -39,7 +39,8 @@ private:
 
 class CpuBackend final : public Backend {
 public:
-    explicit CpuBackend(const LawsonOptions& options) : options_(options) {}
+    CpuBackend(const LawsonOptions& options, uint64_t memory_limit)
+        : options_(options), memory_limit_(memory_limit ? memory_limit : physicalMemory() / 2) {}
 
     void prepare(const Image& image) override { prepareFrom(image, buildGridMesh(image.width, image.height)); }
 
@@ -100,7 +101,7 @@ public:
         static_cast<SimplifyStats&>(stats) = simplifySerial(mesh, values, target, max_error);
         return stats;
     }
-    std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(options_); }
+    std::unique_ptr<Backend> twin() const override { return std::make_unique<CpuBackend>(options_, memory_limit_); }
     const Image& preparedImage() const override { return *image_; }
 
     // A rough count of the host arrays at their peak, per vertex. Optimizing: the mesh's two
@@ -119,9 +120,10 @@ public:
         return vertices * (reconstruction ? std::max(optimizing, reconstructing) : optimizing);
     }
 
-    // A fixed working set, at most half the machine's memory: larger inputs go in tiles
-    // (app/tiled_upscale.h), so the process's size does not grow with the input.
-    uint64_t memoryAvailable() const override { return std::min(kWorkingMemory, physicalMemory() / 2); }
+    // A fixed working set, within the limit: larger inputs go in tiles (app/tiled_upscale.h),
+    // so the process's size does not grow with the input.
+    uint64_t memoryAvailable() const override { return std::min(kWorkingMemory, memory_limit_); }
+    uint64_t memoryLimit() const override { return memory_limit_; }
 
 private:
     void requireMesh() const {
@@ -141,6 +143,7 @@ private:
     }
 
     LawsonOptions options_;
+    uint64_t memory_limit_;
     const Image* image_ = nullptr;
     CostField field_;
     Mesh mesh_;
@@ -151,6 +154,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Backend> makeCpuBackend(const LawsonOptions& options) { return std::make_unique<CpuBackend>(options); }
+std::unique_ptr<Backend> makeCpuBackend(const LawsonOptions& options, uint64_t memory_limit) {
+    return std::make_unique<CpuBackend>(options, memory_limit);
+}
 
 }  // namespace ddt

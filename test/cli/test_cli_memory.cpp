@@ -1,0 +1,68 @@
+// --memory and the CPU backend's limit for jobs that cannot be tiled (masks, simplification):
+// it comes from the machine (half its memory) or --memory, not from the small working set
+// automatic tiles are sized for.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+#include "image_file.h"
+#include "run_ddtup.h"
+#include "temp_folder.h"
+#include "test_support.h"
+
+namespace {
+
+using namespace ddt;
+namespace fs = std::filesystem;
+
+// A side × side RGB image with some structure, and a mask with a hole in its middle.
+void writeInputs(const std::string& image_path, const std::string& mask_path, uint32_t side) {
+    std::vector<float> pixels, known;
+    for (uint32_t y = 0; y < side; ++y)
+        for (uint32_t x = 0; x < side; ++x) {
+            for (int c = 0; c < 3; ++c) pixels.push_back(0.5f + 0.4f * float(std::sin(0.05 * (x + 2 * c) + 0.03 * y)));
+            const bool hole = x > side / 3 && x < side / 2 && y > side / 3 && y < side / 2;
+            known.push_back(hole ? 0.0f : 1.0f);
+        }
+    writeImage(image_path, test::makeImage(side, side, 3, pixels));
+    writeImage(mask_path, test::makeImage(side, side, 1, known));
+}
+
+}  // namespace
+
+TEST_CASE("cli memory: a mask larger than the tiles' working set runs on the CPU backend", "[cli]") {
+    TempFolder work;
+    const std::string input = work / "in.png", mask = work / "mask.png", out = work / "out.png";
+    // 900² RGB: about 170 MB by the CPU backend's estimate, above the 160 MiB that automatic
+    // tiles are sized for (and that refused this job before), far below half of any machine
+    // the suite runs on.
+    writeInputs(input, mask, 900);
+    const Run run = runDdtup({input, "--mask", mask, "-s", "1", out, "--backend", "cpu", "-q"});
+    INFO("stderr: " << run.err);
+    CHECK(run.exit_code == 0);
+    const ImageReader result(out);
+    CHECK(result.header().width == 900);
+    CHECK(result.header().height == 900);
+}
+
+TEST_CASE("cli memory: --memory caps what a job in one piece may hold, and bad sizes are refused", "[cli]") {
+    TempFolder work;
+    const std::string input = work / "in.png", mask = work / "mask.png", out = work / "out.png";
+    // 400² RGB, ×2: about 32 MiB for the mesh and 7 MiB for the output, over 16M's 14 MiB (7/8 of
+    // it) and under 64M's 56.
+    writeInputs(input, mask, 400);
+    requireOneLineError(runDdtup({input, "--mask", mask, out, "--backend", "cpu", "--memory", "16M", "-q"}), 1, input,
+                        "more than the 14 MiB");
+    requireOneLineError(runDdtup({input, "--simplify", "0.5", out, "--backend", "cpu", "--memory", "16M", "-q"}), 1, input,
+                        "more than the 14 MiB");
+    CHECK_FALSE(fs::exists(out));
+    const Run fits = runDdtup({input, "--mask", mask, out, "--backend", "cpu", "--memory", "64MiB", "-q"});
+    CHECK(fits.exit_code == 0);
+    const ImageReader result(out);
+    CHECK(result.header().width == 800);
+    CHECK(result.header().height == 800);
+
+    for (const char* bad : {"12Q", "1M", "abc", "-5G", "2GG"})
+        requireOneLineError(runDdtup({input, out, "--memory", bad}), 2, std::string("--memory ") + bad, "512M or 4G");
+}
