@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "ddt_magnify.h"
+#include "edge_directed.h"
 #include "vips_nohalo.h"
 
 namespace bench {
@@ -58,6 +59,23 @@ Upscaler nohaloColumn(std::vector<std::string>& notes) {
     return u;
 }
 
+Upscaler icbiColumn(std::vector<std::string>& notes) {
+    Upscaler u;
+    u.key = "icbi";
+    u.label = "ICBI (edge-directed)";
+    u.kind = UpscalerKind::EdgeDirected;
+    try {
+        const double shift = icbiMisalignment();
+        notes.push_back(formatted("ICBI: a magnified ramp lines up with ddtup's sampling convention "
+                                  "within %.2g input pixels",
+                                  shift));
+        if (shift > kAlignmentTolerance) u.unavailable = formatted("misaligned by %.3f input pixels", shift);
+    } catch (const std::exception& error) {
+        u.unavailable = error.what();
+    }
+    return u;
+}
+
 }  // namespace
 
 UpscalerSetup protocolUpscalers(const BenchDevice* device) {
@@ -69,6 +87,7 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
         filter("triangle", "Bilinear"),
         filter("lanczos3", "Lanczos3"),
         nohaloColumn(setup.notes),
+        icbiColumn(setup.notes),
         ddtColumn(cpu, "CPU DDT", false),
         ddtColumn(cpu, "CPU DDT consistent", true),
         ddtColumn(gpu, "GPU DDT", false),

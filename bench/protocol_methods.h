@@ -1,7 +1,8 @@
-// The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peer libvips'
-// Nohalo, and DDT plain and consistent on the CPU and on the Vulkan backend's default
-// variant, and the CPU's consistent surface assuming each named resize filter (`--assume`). Availability is probed once, up front: a column that cannot run here (no Vulkan
-// device, libvips misaligned) keeps its place as "n/a" with the reason.
+// The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peers libvips'
+// Nohalo and the edge-directed ICBI (edge_directed.h), and DDT plain and consistent on the CPU
+// and on the Vulkan backend's default variant, and the CPU's consistent surface assuming each
+// named resize filter (`--assume`). Availability is probed once, up front: a column that cannot
+// run here (no Vulkan device, a peer misaligned) keeps its place as "n/a" with the reason.
 #pragma once
 
 #include <string>
@@ -12,7 +13,7 @@
 
 namespace bench {
 
-enum class UpscalerKind { OiioFilter, Nohalo, Ddt };
+enum class UpscalerKind { OiioFilter, Nohalo, EdgeDirected, Ddt };
 
 struct Upscaler {
     std::string key;    // unique in the raw measurements: "filter/lanczos3", "cpu+consistent" …

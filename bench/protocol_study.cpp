@@ -8,6 +8,7 @@
 
 #include "crops.h"
 #include "ddt_magnify.h"
+#include "edge_directed.h"
 #include "gmsd.h"
 #include "protocol.h"
 #include "vips_nohalo.h"
@@ -52,6 +53,9 @@ std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends&
                 break;
             case UpscalerKind::Nohalo:
                 outputs[u.key] = magnifyWithNohalo(low, width, height);
+                break;
+            case UpscalerKind::EdgeDirected:
+                outputs[u.key] = magnifyWithIcbi(low, width, height);
                 break;
             case UpscalerKind::Ddt: {
                 // Plain and consistent share one optimisation of the same method (each other
