@@ -1,7 +1,5 @@
-// Device buffers, optionally with a texel view (the kernels' arrays), and transfers between
-// them and the host.
-// On devices whose device-local memory is host-visible (lavapipe, integrated GPUs) buffers
-// are mapped and transfers are plain copies; otherwise they go through a staging buffer.
+// Device buffers, optionally with a texel view (the kernels' arrays); transfer.h moves data
+// between them and the host.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -30,9 +28,5 @@ enum class Placement {
 Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placement = Placement::Device,
                     VkFormat view_format = VK_FORMAT_UNDEFINED);
 void destroyBuffer(VulkanContext& context, Buffer& buffer);
-
-void uploadToBuffer(VulkanContext& context, Buffer& buffer, const void* data, VkDeviceSize size);
-void downloadFromBuffer(VulkanContext& context, const Buffer& buffer, void* data, VkDeviceSize size,
-                        VkDeviceSize offset = 0);
 
 }  // namespace ddt

@@ -14,6 +14,7 @@
 #include "delaunay/delaunay_layout.h"
 #include "kernel_layout.h"
 #include "sweep_triangulation.h"
+#include "transfer.h"
 
 // SPIR-V written by glslangValidator at build time (see CMakeLists.txt).
 #include "spirv/delaunay_flip.h"

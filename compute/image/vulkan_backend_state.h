@@ -13,6 +13,7 @@
 #include "image_kernels.h"
 #include "layout.h"
 #include "reconstruct/surface_buffers.h"
+#include "transfer.h"
 #include "vulkan_backend.h"
 
 namespace ddt {

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "commands.h"
+#include "transfer.h"
 
 namespace ddt {
 

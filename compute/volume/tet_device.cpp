@@ -9,6 +9,7 @@
 #include "buffer.h"
 #include "commands.h"
 #include "tet_kernels.h"
+#include "transfer.h"
 #include "vulkan_error.h"
 
 namespace ddt {
