@@ -198,17 +198,6 @@ Taps catmullRomTaps(uint32_t outputs, int samples, double scale, double grid_sca
     return taps;
 }
 
-// A ramp of slope 1 per input pixel along x (or y), so a value is the coordinate it samples.
-ddt::Image ramp(uint32_t side, bool along_x) {
-    ddt::Image image;
-    image.width = image.height = side;
-    image.channels = 1;
-    image.pixels.resize(size_t(side) * side);
-    for (uint32_t y = 0; y < side; ++y)
-        for (uint32_t x = 0; x < side; ++x) image.pixels[size_t(y) * side + x] = float(along_x ? x : y);
-    return image;
-}
-
 }  // namespace
 
 ddt::Image magnifyWithIcbi(const ddt::Image& input, uint32_t width, uint32_t height) {
@@ -257,23 +246,6 @@ ddt::Image magnifyWithIcbi(const ddt::Image& input, uint32_t width, uint32_t hei
         });
     }
     return result;
-}
-
-double icbiMisalignment() {
-    const uint32_t side = 32, margin = 4;  // input pixels kept away from the mirrored borders
-    double worst = 0.0;
-    for (double scale : {2.0, 2.5, 4.0, 8.0})
-        for (bool along_x : {true, false}) {
-            const uint32_t out_side = uint32_t(side * scale);
-            const ddt::Image out = magnifyWithIcbi(ramp(side, along_x), out_side, out_side);
-            for (uint32_t y = 0; y < out_side; ++y)
-                for (uint32_t x = 0; x < out_side; ++x) {
-                    const double expected = ((along_x ? x : y) + 0.5) / scale - 0.5;
-                    if (expected < margin || expected > side - 1 - margin) continue;
-                    worst = std::max(worst, std::fabs(out.pixels[size_t(y) * out_side + x] - expected));
-                }
-        }
-    return worst;
 }
 
 }  // namespace bench

@@ -20,7 +20,7 @@
 // Catmull-Rom reproduces a ramp exactly and scored above Lanczos3 and a cubic spline for this
 // pass in the prototype (Lanczos3's gain above 1 near the input's Nyquist frequency lifts the
 // steps' staircase).
-// icbiMisalignment() measures the shift on a ramp, so the bench checks the convention.
+// The bench measures the shift on a ramp (ramp_alignment.h), so it checks the convention.
 #pragma once
 
 #include <cstdint>
@@ -32,9 +32,5 @@ namespace bench {
 // `input` (any channel count, values in [0, 1]) magnified to width × height (each at least the
 // input's side) by ICBI ×2 steps and a final Catmull-Rom pass, in float.
 ddt::Image magnifyWithIcbi(const ddt::Image& input, uint32_t width, uint32_t height);
-
-// The largest |sampled − expected| input coordinate, in input pixels, of a horizontal and a
-// vertical ramp magnified ×2, ×2.5, ×4 and ×8 (away from the borders, where the ramp is linear).
-double icbiMisalignment();
 
 }  // namespace bench

@@ -5,6 +5,7 @@
 
 #include "ddt_magnify.h"
 #include "edge_directed.h"
+#include "ramp_alignment.h"
 #include "vips_nohalo.h"
 
 namespace bench {
@@ -42,33 +43,19 @@ std::string formatted(const char* pattern, double value) {
     return text;
 }
 
-Upscaler nohaloColumn(std::vector<std::string>& notes) {
+// A peer's column, unavailable (with the reason) when its ramp does not line up with ddtup's
+// sampling; the measured shift goes into the report's notes either way.
+Upscaler peerColumn(const std::string& key, const std::string& label, UpscalerKind kind, const Magnifier& magnify,
+                    std::initializer_list<double> scales, std::vector<std::string>& notes) {
     Upscaler u;
-    u.key = "vips/nohalo";
-    u.label = "Nohalo (libvips)";
-    u.kind = UpscalerKind::Nohalo;
+    u.key = key;
+    u.label = label;
+    u.kind = kind;
     try {
-        const double shift = nohaloMisalignment();
-        notes.push_back(formatted("libvips Nohalo: a magnified ramp lines up with ddtup's sampling convention "
-                                  "within %.2g input pixels",
-                                  shift));
-        if (shift > kAlignmentTolerance) u.unavailable = formatted("misaligned by %.3f input pixels", shift);
-    } catch (const std::exception& error) {
-        u.unavailable = error.what();
-    }
-    return u;
-}
-
-Upscaler icbiColumn(std::vector<std::string>& notes) {
-    Upscaler u;
-    u.key = "icbi";
-    u.label = "ICBI (edge-directed)";
-    u.kind = UpscalerKind::EdgeDirected;
-    try {
-        const double shift = icbiMisalignment();
-        notes.push_back(formatted("ICBI: a magnified ramp lines up with ddtup's sampling convention "
-                                  "within %.2g input pixels",
-                                  shift));
+        const double shift = rampMisalignment(magnify, scales);
+        notes.push_back(label + formatted(": a magnified ramp lines up with ddtup's sampling convention within %.2g "
+                                          "input pixels",
+                                          shift));
         if (shift > kAlignmentTolerance) u.unavailable = formatted("misaligned by %.3f input pixels", shift);
     } catch (const std::exception& error) {
         u.unavailable = error.what();
@@ -86,8 +73,10 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
     setup.upscalers = {
         filter("triangle", "Bilinear"),
         filter("lanczos3", "Lanczos3"),
-        nohaloColumn(setup.notes),
-        icbiColumn(setup.notes),
+        peerColumn("vips/nohalo", "Nohalo (libvips)", UpscalerKind::Nohalo, magnifyWithNohalo, {2.0, 2.5, 4.0},
+                   setup.notes),
+        peerColumn("icbi", "ICBI (edge-directed)", UpscalerKind::EdgeDirected, magnifyWithIcbi, {2.0, 2.5, 4.0, 8.0},
+                   setup.notes),
         ddtColumn(cpu, "CPU DDT", false),
         ddtColumn(cpu, "CPU DDT consistent", true),
         ddtColumn(gpu, "GPU DDT", false),

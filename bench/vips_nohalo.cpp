@@ -22,17 +22,6 @@ std::runtime_error vipsError(const char* what) {
     return std::runtime_error(message);
 }
 
-// A ramp of slope 1 per input pixel along x (or y), so a value is the coordinate it samples.
-ddt::Image ramp(uint32_t side, bool along_x) {
-    ddt::Image image;
-    image.width = image.height = side;
-    image.channels = 1;
-    image.pixels.resize(size_t(side) * side);
-    for (uint32_t y = 0; y < side; ++y)
-        for (uint32_t x = 0; x < side; ++x) image.pixels[size_t(y) * side + x] = float(along_x ? x : y);
-    return image;
-}
-
 }  // namespace
 
 ddt::Image magnifyWithNohalo(const ddt::Image& input, uint32_t width, uint32_t height) {
@@ -65,23 +54,6 @@ ddt::Image magnifyWithNohalo(const ddt::Image& input, uint32_t width, uint32_t h
     if (result.pixels.size() != size_t(width) * height * input.channels)
         throw std::runtime_error("libvips nohalo: unexpected output size");
     return result;
-}
-
-double nohaloMisalignment() {
-    const uint32_t side = 32, margin = 4;  // input pixels kept away from the clamped borders
-    double worst = 0.0;
-    for (double scale : {2.0, 2.5, 4.0})
-        for (bool along_x : {true, false}) {
-            const uint32_t out_side = uint32_t(side * scale);
-            const ddt::Image out = magnifyWithNohalo(ramp(side, along_x), out_side, out_side);
-            for (uint32_t y = 0; y < out_side; ++y)
-                for (uint32_t x = 0; x < out_side; ++x) {
-                    const double expected = ((along_x ? x : y) + 0.5) / scale - 0.5;
-                    if (expected < margin || expected > side - 1 - margin) continue;
-                    worst = std::max(worst, std::fabs(out.pixels[size_t(y) * out_side + x] - expected));
-                }
-        }
-    return worst;
 }
 
 }  // namespace bench

@@ -4,8 +4,8 @@
 // It runs through vips_affine with the scale as the matrix and the input displacement
 // idx = idy = 0.5 − 0.5 / s, so that output pixel X samples the input at (X + 0.5) / s − 0.5
 // exactly as ddtup's renderer (and OIIO's resize) do; without it the output is shifted by a
-// quarter of an input pixel at ×2, which costs about a dB. nohaloMisalignment() measures the
-// shift on a ramp, so the bench checks the convention instead of trusting it.
+// quarter of an input pixel at ×2, which costs about a dB. The bench measures the shift on a
+// ramp (ramp_alignment.h) instead of trusting the convention.
 #pragma once
 
 #include <cstdint>
@@ -17,9 +17,5 @@ namespace bench {
 // `input` (grey or RGB, values in [0, 1]) magnified to width × height by Nohalo, in float,
 // borders extended by copying the edge pixels.
 ddt::Image magnifyWithNohalo(const ddt::Image& input, uint32_t width, uint32_t height);
-
-// The largest |sampled − expected| input coordinate, in input pixels, of a horizontal and a
-// vertical ramp magnified ×2, ×2.5 and ×4 (away from the borders, where the ramp is linear).
-double nohaloMisalignment();
 
 }  // namespace bench
