@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "memory_size.h"
 #include "parallel.h"
 #include "tiling.h"
 #include "user_error.h"
@@ -81,8 +82,6 @@ bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t chan
     const uint64_t available = backend.memoryAvailable() / sharers;
     return needed != UINT64_MAX && needed <= available - available / 8;
 }
-
-std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 
 // Tiles processed at once: one per thread where the backend has twins (the CPU), else one.
 uint32_t tilesAtOnce(const Backend& backend) { return backend.twin() ? std::max(1u, threadCount()) : 1; }

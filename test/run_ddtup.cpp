@@ -42,6 +42,8 @@ std::string shellQuoted(const std::string& arg) {
     return result + "'";
 }
 
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
 std::string readFile(const std::string& path) {
     std::ifstream file(path, std::ios::binary);
     std::stringstream text;

@@ -35,6 +35,8 @@ std::string shellQuoted(const std::string& arg);
 
 // The bytes of a file ("" if it cannot be read).
 std::string readFile(const std::string& path);
+// Writes `text` as the whole file at `path`.
+void writeText(const std::string& path, const std::string& text);
 
 // Exactly one line on stderr that names `subject` and contains `reason`, exit `code`, and
 // nothing on stdout.

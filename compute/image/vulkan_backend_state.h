@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "image_kernels.h"
 #include "layout.h"
+#include "memory_size.h"
 #include "reconstruct/surface_buffers.h"
 #include "transfer.h"
 #include "vulkan_backend.h"
@@ -23,8 +24,6 @@ inline constexpr VkDeviceSize kBandBytes = VkDeviceSize(64) << 20;
 // Loop iterations one render invocation may spend on one triangle: two triangles stay below
 // lavapipe's 65535 (see kItemsPerInvocation in glsl/layout.h).
 inline constexpr uint32_t kRasterLoopBudget = 30000;
-
-inline std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 
 struct VulkanBackend::State {
     VulkanOptions options;

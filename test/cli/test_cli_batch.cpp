@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 
 #include "image_file.h"
 #include "run_ddtup.h"
@@ -19,8 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kSample = ddt::test::testDataPath("crop32_astronaut.png");  // 32×32 RGB
-
-void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 // Every file under `folder`, relative, hidden ones included (temporary files start with a dot).
 std::set<std::string> filesUnder(const fs::path& folder) {

@@ -4,7 +4,6 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <tuple>
 
 #include "image_file.h"
@@ -18,8 +17,6 @@ using namespace ddt;
 namespace fs = std::filesystem;
 
 const std::string kSample = test::testDataPath("crop32_astronaut.png");
-
-void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 // A 32 × 32 mask, white (known) where `known(x, y)`; the corners always, so the hull is the image.
 template <typename Known>

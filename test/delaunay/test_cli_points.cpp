@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <random>
 #include <sstream>
 
@@ -20,8 +19,6 @@ namespace {
 using namespace ddt;
 
 double ramp(double x, double y) { return 0.1 + 0.02 * x + 0.03 * y; }
-
-void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 }  // namespace
 
