@@ -72,28 +72,46 @@ std::string outputPathFor(const fs::path& output_folder, fs::path relative, cons
     return (output_folder / relative).string();
 }
 
-// The mask of the input at `relative` (to the input folder, or its file name): the one image
-// in mask_folder/<relative's folder> with the same stem, any format ddtup reads. Sets `reason`
-// when there is none or more than one.
-std::string maskFor(const fs::path& mask_folder, const fs::path& relative, std::string& reason) {
-    const fs::path folder = mask_folder / relative.parent_path();
-    std::vector<std::string> found;
-    std::error_code error;
-    for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
-        const fs::path& path = entry.path();
-        if (path.stem() == relative.stem() && formatOfExtension(path.extension().string()) && !entry.is_directory(error))
-            found.push_back(path.string());
+// The masks in --mask-dir by sub-folder and stem: each folder is listed once, however many
+// inputs look in it. Only files with the extension of a format ddtup reads count.
+class MaskIndex {
+public:
+    explicit MaskIndex(fs::path root) : root_(std::move(root)) {}
+
+    // The mask of the input at `relative` (to the input folder, or its file name): the one
+    // image in root/<relative's folder> with the same stem. Sets `reason` when there is none
+    // or more than one.
+    std::string maskFor(const fs::path& relative, std::string& reason) {
+        const fs::path folder = root_ / relative.parent_path();
+        const std::vector<std::string>& found = stemsIn(folder)[relative.stem().string()];
+        const std::string wanted = (folder / relative.stem()).string() + ".*";
+        if (found.empty()) reason = "no mask " + wanted + " (--mask-dir)";
+        if (found.size() > 1) reason = "more than one mask matches " + wanted + ": " + found[0] + ", " + found[1];
+        return found.size() == 1 ? found.front() : "";
     }
-    std::sort(found.begin(), found.end());
-    const std::string wanted = (folder / relative.stem()).string() + ".*";
-    if (found.empty()) reason = "no mask " + wanted + " (--mask-dir)";
-    if (found.size() > 1) reason = "more than one mask matches " + wanted + ": " + found[0] + ", " + found[1];
-    return found.size() == 1 ? found.front() : "";
-}
+
+private:
+    std::map<std::string, std::vector<std::string>>& stemsIn(const fs::path& folder) {
+        auto [at, added] = folders_.try_emplace(folder.string());
+        if (!added) return at->second;
+        std::error_code error;
+        for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+            const fs::path& path = entry.path();
+            if (formatOfExtension(path.extension().string()) && !entry.is_directory(error))
+                at->second[path.stem().string()].push_back(path.string());
+        }
+        for (auto& [stem, paths] : at->second) std::sort(paths.begin(), paths.end());
+        return at->second;
+    }
+
+    fs::path root_;
+    std::map<std::string, std::map<std::string, std::vector<std::string>>> folders_;
+};
 
 // Gives each image its mask: --mask's for the one input, or its namesake in --mask-dir; an
 // image without one, or whose mask is also an output, is refused.
 void assignMasks(std::vector<ImageTask>& tasks, const std::vector<fs::path>& relatives, const Settings& settings) {
+    MaskIndex masks(settings.mask_folder);
     for (size_t i = 0; i < tasks.size(); ++i) {
         ImageTask& task = tasks[i];
         if (task.volume || task.state != ImageTask::State::Ready) continue;
@@ -101,7 +119,7 @@ void assignMasks(std::vector<ImageTask>& tasks, const std::vector<fs::path>& rel
         if (settings.mask_folder.empty()) continue;
         std::string reason;
         if (task.input == kStandardStream) reason = "--mask-dir finds masks by the inputs' names; standard input has none";
-        else task.mask = maskFor(settings.mask_folder, relatives[i], reason);
+        else task.mask = masks.maskFor(relatives[i], reason);
         if (reason.empty() && sameFile(task.mask, task.input)) reason = "its mask " + task.mask + " is the input itself";
         if (reason.empty() && sameFile(task.mask, task.output)) reason = "its mask " + task.mask + " is also its output";
         if (!reason.empty()) {
