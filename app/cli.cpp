@@ -114,6 +114,19 @@ std::string validateAssume(const CLI::App& app, const Settings& settings) {
     return "";
 }
 
+// "" if --fallback makes sense with the rest, else the message: it blends the mesh's surface
+// with a convolution of the full input, on the CPU backend.
+std::string validateFallback(const CLI::App& app, const Settings& settings) {
+    if (settings.fallback == "none") return "";
+    const std::string given = "--fallback " + settings.fallback + ": ";
+    if (settings.backend == "vulkan" || app.count("--device")) return given + "runs on the CPU backend only (not yet a Vulkan kernel)";
+    if (settings.simplifies()) return given + "simplification (--simplify, --max-error) renders its own mesh's surface";
+    if (settings.masked()) return given + "a mask's unknown pixels have no input to convolve";
+    if (std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath))
+        return given + "a point file has no pixel grid to convolve";
+    return "";
+}
+
 // "" if point-file inputs (core/io/point_file.h) make sense with the rest, else the message.
 std::string validatePoints(const CLI::App& app, const Settings& settings) {
     const bool any_points = std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath);
@@ -210,7 +223,7 @@ bool perAxisScale(const Settings& settings) { return settings.axis_scales[0] > 0
 std::vector<std::string> imageOnlyOptions(const CLI::App& app, const Settings& settings) {
     std::vector<std::string> given;
     for (const char* name : {"--quality", "--mesh", "--mesh-height", "--simplify", "--max-error", "--reconstruct",
-                             "--assume", "--width", "--height", "--variant", "--no-active-set", "--mask", "--mask-dir", "--memory",
+                             "--assume", "--fallback", "--width", "--height", "--variant", "--no-active-set", "--mask", "--mask-dir", "--memory",
                              "--frame"})
         if (app.count(name)) given.push_back(name);
     if (settings.depth == "half") given.push_back("--depth half");
@@ -286,6 +299,7 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (std::string problem = validateMesh(app, settings); !problem.empty()) return problem;
     if (std::string problem = validateMask(app, settings); !problem.empty()) return problem;
     if (std::string problem = validateAssume(app, settings); !problem.empty()) return problem;
+    if (std::string problem = validateFallback(app, settings); !problem.empty()) return problem;
     return validatePoints(app, settings);
 }
 
@@ -391,6 +405,12 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "camera or resize footprint, a Gaussian of 0.4 input pixels), box (area averaging), bicubic "
                    "(Catmull-Rom, an editor's bicubic resize) or lanczos3; the right one gains up to 0.5 dB")
         ->check([](const std::string& name) { return parseAssumedKernel(name) ? "" : "unknown filter " + name + "; use " + assumedKernelNames(); })
+        ->capture_default_str();
+    app.add_option("--fallback", settings.fallback,
+                   "Where the input has little contrast, blend the surface towards a convolution of the input: "
+                   "lanczos3 (the mesh keeps its weight on strong edges; better on photographs' smooth and "
+                   "grainy regions; CPU backend) or none")
+        ->check(CLI::IsMember({"none", "lanczos3"}))
         ->capture_default_str();
     app.add_option("--tile", settings.tile,
                    "Tile side in input pixels for images too large for the device; for volumes the brick side in "

@@ -54,6 +54,7 @@ struct Settings {
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
     std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/image/reconstruct.h)
     std::string assume = "footprint";        // the downscale filter the consistent surface assumes (core/image/assumed_kernel.h)
+    std::string fallback = "none";           // lanczos3: blend towards a convolution where contrast is low (core/image/convolution_fallback.h)
     int device = -1;           // Vulkan device index; -1 = choose
     bool active_set = true;    // Vulkan: re-test only edges a flip may have changed
     bool list_devices = false;

@@ -149,6 +149,7 @@ struct Job {
     OutputSize out;
     bool reconstruct;
     AssumedKernel kernel;
+    bool fallback;
     const TileStepCallback& on_step;
     RowEmitter& rows;
     StitchedMesh* strip_mesh;  // the current strip's tiles' meshes, if the caller wants them
@@ -181,6 +182,7 @@ OptimizeStats shapeTile(Job& job, Backend& backend, const Tile& tile, uint32_t i
         backend.reconstruct(degradationFor(double(job.out.width) / job.image.width,
                                            double(job.out.height) / job.image.height, job.kernel));
     }
+    if (job.fallback) backend.addFallback();
     return stats;
 }
 
@@ -352,7 +354,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
     BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
-    Job job{backends, image, out, options.reconstruct, options.kernel, on_step, rows, nullptr, {}, {}};
+    Job job{backends, image, out, options.reconstruct, options.kernel, options.fallback, on_step, rows, nullptr, {}, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

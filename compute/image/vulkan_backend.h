@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +52,8 @@ public:
     void prepareFrom(const Image& image, Mesh initial) override;
     OptimizeStats optimize() override;
     void reconstruct(const DegradationModel& model) override;
+    // Not on the device yet: the command line keeps --fallback to the CPU backend.
+    void addFallback() override { throw std::logic_error("VulkanBackend: the convolution fallback runs on the CPU backend"); }
     void renderWindow(const RenderWindow& window, float* rows) override;
     Mesh mesh() override;
     ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) override;

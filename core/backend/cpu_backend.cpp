@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "backend.h"
+#include "convolution_fallback.h"
 #include "parallel.h"
 #include "physical_memory.h"
 
@@ -22,19 +23,22 @@ const uint64_t kWorkingMemory = uint64_t(160) << 20;
 // A surface taken out of the backend with its triangle tables: it owns what the renderer reads.
 class TakenSurface final : public HostSurface {
 public:
-    TakenSurface(Surface surface, MeshRenderer&& tables)
+    TakenSurface(Surface surface, MeshRenderer&& tables, std::optional<ConvolutionFallback> fallback)
         : surface_(std::move(surface)),
-          renderer_(std::move(tables), surface_.values, surface_.bubbles.empty() ? nullptr : &surface_.bubbles) {}
+          renderer_(std::move(tables), surface_.values, surface_.bubbles.empty() ? nullptr : &surface_.bubbles),
+          fallback_(std::move(fallback)) {}
     TakenSurface(const TakenSurface&) = delete;  // renderer_ refers to surface_
     TakenSurface& operator=(const TakenSurface&) = delete;
 
     void renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const override {
         renderer_.renderWindow(window, rows, row_stride);
+        if (fallback_) fallback_->blend(window, rows, row_stride);
     }
 
 private:
     Surface surface_;
     MeshRenderer renderer_;
+    std::optional<ConvolutionFallback> fallback_;
 };
 
 class CpuBackend final : public Backend {
@@ -49,6 +53,7 @@ public:
         image_ = &image;
         renderer_.reset();
         surface_.reset();
+        fallback_.reset();
         field_ = costFieldOf(image);
         mesh_ = std::move(initial);
         mesh_released_ = false;
@@ -73,8 +78,19 @@ public:
         renderer_.emplace(std::move(locator), surface_->values, &surface_->bubbles);
     }
 
+    void addFallback() override { fallback_.emplace(*image_); }
+
     void renderWindow(const RenderWindow& window, float* rows) override {
-        renderInParallel(renderer(), window, image_->channels, rows);
+        if (!fallback_) return renderInParallel(renderer(), window, image_->channels, rows);
+        const MeshRenderer& surface = renderer();
+        const size_t row_floats = size_t(window.width()) * image_->channels;
+        parallelFor(window.height(), kRowsPerRenderBand, [&](size_t begin, size_t end) {
+            RenderWindow band = window;
+            band.y_begin = window.y_begin + uint32_t(begin);
+            band.y_end = window.y_begin + uint32_t(end);
+            surface.renderWindow(band, rows + begin * row_floats);
+            fallback_->blend(band, rows + begin * row_floats);
+        });
     }
 
     bool handsOverSurface() const override { return true; }
@@ -83,9 +99,10 @@ public:
         renderer();  // builds the triangle tables if reconstruct did not
         // The plain surface is the prepared image's values, which its caller may drop: copied.
         Surface surface = surface_ ? std::move(*surface_) : Surface{*image_, {}};
-        auto taken = std::make_unique<TakenSurface>(std::move(surface), std::move(*renderer_));
+        auto taken = std::make_unique<TakenSurface>(std::move(surface), std::move(*renderer_), std::move(fallback_));
         renderer_.reset();
         surface_.reset();
+        fallback_.reset();
         mesh_ = {};
         mesh_released_ = true;
         field_ = {};
@@ -150,6 +167,7 @@ private:
     bool mesh_released_ = false;  // by reconstruct
     std::optional<Surface> surface_;  // set by reconstruct
     std::optional<MeshRenderer> renderer_;
+    std::optional<ConvolutionFallback> fallback_;  // set by addFallback
 };
 
 }  // namespace

@@ -1,0 +1,160 @@
+#include "convolution_fallback.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace ddt {
+
+namespace {
+
+constexpr int kLanczosTaps = 6;  // Lanczos3 under magnification: 3 input pixels each side
+constexpr int kGaussianRadius = 3;
+
+uint32_t clampIndex(int64_t i, uint32_t size) { return uint32_t(std::clamp<int64_t>(i, 0, int64_t(size) - 1)); }
+
+double lanczos3(double d) {
+    if (d == 0.0) return 1.0;
+    if (std::abs(d) >= 3.0) return 0.0;
+    const double pi_d = M_PI * d;
+    return 3.0 * std::sin(pi_d) * std::sin(pi_d / 3.0) / (pi_d * pi_d);
+}
+
+// One output column's (or row's) taps along one axis of the crop.
+struct LanczosTaps {
+    std::array<uint32_t, kLanczosTaps> index;
+    std::array<float, kLanczosTaps> weight;
+    uint32_t cell;    // the crop pixel at or before the sample, for the weights' bilinear lookup
+    float fraction;   // and the sample's offset from it, in [0, 1]
+};
+
+// Output pixel `o` of an axis of `out_size` outputs over `input_size` whole-input pixels
+// samples at ((o + 0.5) · input/out − 0.5) (core/image/render.h). The taps are found in
+// whole-input coordinates and only then moved into the crop, so a tile's pixels get the same
+// weights, bit for bit, as the whole image's.
+LanczosTaps tapsAt(uint32_t o, uint32_t out_size, uint32_t input_size, uint32_t crop_start, uint32_t crop_size) {
+    const double position = (o + 0.5) * double(input_size) / out_size - 0.5;
+    const int64_t base = int64_t(std::floor(position));
+    auto inCrop = [&](int64_t i) { return clampIndex(int64_t(clampIndex(i, input_size)) - crop_start, crop_size); };
+    LanczosTaps taps;
+    double total = 0.0;
+    std::array<double, kLanczosTaps> weights;
+    for (int k = 0; k < kLanczosTaps; ++k) {
+        const int64_t i = base - 2 + k;
+        weights[k] = lanczos3(position - double(i));
+        total += weights[k];
+        taps.index[k] = inCrop(i);
+    }
+    for (int k = 0; k < kLanczosTaps; ++k) taps.weight[k] = float(weights[k] / total);
+    // The weights' bilinear lookup between whole-input pixels cell and cell + 1.
+    const double clamped = std::clamp(position, 0.0, double(input_size - 1));
+    const int64_t cell = std::min<int64_t>(int64_t(std::floor(clamped)), std::max<int64_t>(int64_t(input_size) - 2, 0));
+    taps.cell = inCrop(cell);
+    taps.fraction = input_size > 1 ? float(clamped - double(cell)) : 0.0f;
+    return taps;
+}
+
+std::vector<LanczosTaps> axisTaps(uint32_t begin, uint32_t end, uint32_t out_size, uint32_t input_size,
+                                  uint32_t crop_start, uint32_t crop_size) {
+    std::vector<LanczosTaps> taps;
+    taps.reserve(end - begin);
+    for (uint32_t o = begin; o < end; ++o) taps.push_back(tapsAt(o, out_size, input_size, crop_start, crop_size));
+    return taps;
+}
+
+// `field` smoothed along one axis by the Gaussian of σ = 1, with clamped edges.
+std::vector<float> gaussianAlong(const std::vector<float>& field, uint32_t width, uint32_t height, bool along_x) {
+    std::array<float, 2 * kGaussianRadius + 1> g;
+    float total = 0.0f;
+    for (int k = -kGaussianRadius; k <= kGaussianRadius; ++k) total += g[k + kGaussianRadius] = std::exp(-0.5f * k * k);
+    for (float& v : g) v /= total;
+    std::vector<float> result(field.size());
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            float sum = 0.0f;
+            for (int k = -kGaussianRadius; k <= kGaussianRadius; ++k) {
+                const uint32_t xx = along_x ? clampIndex(int64_t(x) + k, width) : x;
+                const uint32_t yy = along_x ? y : clampIndex(int64_t(y) + k, height);
+                sum += g[k + kGaussianRadius] * field[size_t(yy) * width + xx];
+            }
+            result[size_t(y) * width + x] = sum;
+        }
+    return result;
+}
+
+}  // namespace
+
+std::vector<float> surfaceWeights(const Image& image) {
+    const uint32_t w = image.width, h = image.height, c = image.channels;
+    const uint32_t colours = image.hasAlpha() ? c - 1 : c;
+    std::vector<float> mean(size_t(w) * h);
+    for (size_t p = 0; p < mean.size(); ++p) {
+        float sum = 0.0f;
+        for (uint32_t k = 0; k < colours; ++k) sum += image.pixels[p * c + k];
+        mean[p] = sum / float(colours);
+    }
+    auto at = [&](int64_t x, int64_t y) { return mean[size_t(clampIndex(y, h)) * w + clampIndex(x, w)]; };
+    std::vector<float> energy(mean.size());
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const int64_t X = x, Y = y;
+            const float gx = (at(X + 1, Y - 1) + 2 * at(X + 1, Y) + at(X + 1, Y + 1) - at(X - 1, Y - 1) -
+                              2 * at(X - 1, Y) - at(X - 1, Y + 1)) / 8.0f;
+            const float gy = (at(X - 1, Y + 1) + 2 * at(X, Y + 1) + at(X + 1, Y + 1) - at(X - 1, Y - 1) -
+                              2 * at(X, Y - 1) - at(X + 1, Y - 1)) / 8.0f;
+            energy[size_t(y) * w + x] = gx * gx + gy * gy;
+        }
+    std::vector<float> smoothed = gaussianAlong(gaussianAlong(energy, w, h, true), w, h, false);
+    for (float& v : smoothed) {
+        const float t = std::clamp((std::log10(v + 1e-9f) - kLogFlat) / (kLogEdge - kLogFlat), 0.0f, 1.0f);
+        v = kWeightFlat + (kWeightEdge - kWeightFlat) * t;
+    }
+    return smoothed;
+}
+
+ConvolutionFallback::ConvolutionFallback(const Image& input) : input_(input), weights_(surfaceWeights(input)) {}
+
+void ConvolutionFallback::blend(const RenderWindow& window, float* rows, size_t row_stride) const {
+    const uint32_t c = input_.channels, crop_w = input_.width, crop_h = input_.height;
+    const size_t row_floats = row_stride ? row_stride : size_t(window.width()) * c;
+    const std::vector<LanczosTaps> columns =
+        axisTaps(window.x_begin, window.x_end, window.out.width, window.input_width, window.crop_x, crop_w);
+    const bool integer = input_.sample_type == SampleType::UInt8 || input_.sample_type == SampleType::UInt16;
+    const bool alpha = input_.hasAlpha();
+    std::vector<float> across(size_t(kLanczosTaps) * window.width() * c);  // the rows' horizontal sums
+    for (uint32_t y = window.y_begin; y < window.y_end; ++y) {
+        const LanczosTaps row = tapsAt(y, window.out.height, window.input_height, window.crop_y, crop_h);
+        for (int j = 0; j < kLanczosTaps; ++j) {
+            const float* source = input_.row(row.index[j]);
+            float* sums = across.data() + size_t(j) * window.width() * c;
+            for (uint32_t x = 0; x < window.width(); ++x)
+                for (uint32_t k = 0; k < c; ++k) {
+                    float sum = 0.0f;
+                    for (int i = 0; i < kLanczosTaps; ++i) sum += columns[x].weight[i] * source[size_t(columns[x].index[i]) * c + k];
+                    sums[size_t(x) * c + k] = sum;
+                }
+        }
+        const float* w_top = weights_.data() + size_t(row.cell) * crop_w;
+        const float* w_bottom = weights_.data() + size_t(std::min(row.cell + 1, crop_h - 1)) * crop_w;
+        float* out = rows + size_t(y - window.y_begin) * row_floats;
+        for (uint32_t x = 0; x < window.width(); ++x) {
+            const LanczosTaps& col = columns[x];
+            const uint32_t right = std::min(col.cell + 1, crop_w - 1);
+            const float top = w_top[col.cell] + col.fraction * (w_top[right] - w_top[col.cell]);
+            const float bottom = w_bottom[col.cell] + col.fraction * (w_bottom[right] - w_bottom[col.cell]);
+            const float surface_weight = top + row.fraction * (bottom - top);
+            float* pixel = out + size_t(x) * c;
+            for (uint32_t k = 0; k < c; ++k) {
+                float convolved = 0.0f;
+                for (int j = 0; j < kLanczosTaps; ++j) convolved += row.weight[j] * across[(size_t(j) * window.width() + x) * c + k];
+                float value = surface_weight * pixel[k] + (1.0f - surface_weight) * convolved;
+                if (integer) value = std::clamp(value, 0.0f, 1.0f);
+                pixel[k] = value;
+            }
+            if (alpha)
+                for (uint32_t k = 0; k + 1 < c; ++k) pixel[k] = std::min(pixel[k], pixel[c - 1]);
+        }
+    }
+}
+
+}  // namespace ddt
