@@ -10,6 +10,8 @@ namespace {
 
 constexpr int kLanczosTaps = 6;  // Lanczos3 under magnification: 3 input pixels each side
 constexpr int kGaussianRadius = 3;
+// Output rows blended per pass: their crop rows' horizontal sums are computed once.
+constexpr uint32_t kRowsPerChunk = 64;
 
 uint32_t clampIndex(int64_t i, uint32_t size) { return uint32_t(std::clamp<int64_t>(i, 0, int64_t(size) - 1)); }
 
@@ -115,44 +117,53 @@ std::vector<float> surfaceWeights(const Image& image) {
 ConvolutionFallback::ConvolutionFallback(const Image& input) : input_(input), weights_(surfaceWeights(input)) {}
 
 void ConvolutionFallback::blend(const RenderWindow& window, float* rows, size_t row_stride) const {
-    const uint32_t c = input_.channels, crop_w = input_.width, crop_h = input_.height;
-    const size_t row_floats = row_stride ? row_stride : size_t(window.width()) * c;
+    const uint32_t c = input_.channels, crop_w = input_.width, crop_h = input_.height, width = window.width();
+    const size_t row_floats = row_stride ? row_stride : size_t(width) * c;
     const std::vector<LanczosTaps> columns =
         axisTaps(window.x_begin, window.x_end, window.out.width, window.input_width, window.crop_x, crop_w);
     const bool integer = input_.sample_type == SampleType::UInt8 || input_.sample_type == SampleType::UInt16;
     const bool alpha = input_.hasAlpha();
-    std::vector<float> across(size_t(kLanczosTaps) * window.width() * c);  // the rows' horizontal sums
-    for (uint32_t y = window.y_begin; y < window.y_end; ++y) {
-        const LanczosTaps row = tapsAt(y, window.out.height, window.input_height, window.crop_y, crop_h);
-        for (int j = 0; j < kLanczosTaps; ++j) {
-            const float* source = input_.row(row.index[j]);
-            float* sums = across.data() + size_t(j) * window.width() * c;
-            for (uint32_t x = 0; x < window.width(); ++x)
+    std::vector<float> across;  // the horizontal pass of crop rows [first_row, first_row + count)
+    for (uint32_t chunk = window.y_begin; chunk < window.y_end; chunk += kRowsPerChunk) {
+        const uint32_t chunk_end = std::min(window.y_end, chunk + kRowsPerChunk);
+        // The taps move down with the output row, so the chunk reads one run of crop rows.
+        const uint32_t first_row = tapsAt(chunk, window.out.height, window.input_height, window.crop_y, crop_h).index[0];
+        const uint32_t last_row =
+            tapsAt(chunk_end - 1, window.out.height, window.input_height, window.crop_y, crop_h).index[kLanczosTaps - 1];
+        across.resize(size_t(last_row - first_row + 1) * width * c);
+        for (uint32_t r = first_row; r <= last_row; ++r) {
+            const float* source = input_.row(r);
+            float* sums = across.data() + size_t(r - first_row) * width * c;
+            for (uint32_t x = 0; x < width; ++x)
                 for (uint32_t k = 0; k < c; ++k) {
                     float sum = 0.0f;
                     for (int i = 0; i < kLanczosTaps; ++i) sum += columns[x].weight[i] * source[size_t(columns[x].index[i]) * c + k];
                     sums[size_t(x) * c + k] = sum;
                 }
         }
-        const float* w_top = weights_.data() + size_t(row.cell) * crop_w;
-        const float* w_bottom = weights_.data() + size_t(std::min(row.cell + 1, crop_h - 1)) * crop_w;
-        float* out = rows + size_t(y - window.y_begin) * row_floats;
-        for (uint32_t x = 0; x < window.width(); ++x) {
-            const LanczosTaps& col = columns[x];
-            const uint32_t right = std::min(col.cell + 1, crop_w - 1);
-            const float top = w_top[col.cell] + col.fraction * (w_top[right] - w_top[col.cell]);
-            const float bottom = w_bottom[col.cell] + col.fraction * (w_bottom[right] - w_bottom[col.cell]);
-            const float surface_weight = top + row.fraction * (bottom - top);
-            float* pixel = out + size_t(x) * c;
-            for (uint32_t k = 0; k < c; ++k) {
-                float convolved = 0.0f;
-                for (int j = 0; j < kLanczosTaps; ++j) convolved += row.weight[j] * across[(size_t(j) * window.width() + x) * c + k];
-                float value = surface_weight * pixel[k] + (1.0f - surface_weight) * convolved;
-                if (integer) value = std::clamp(value, 0.0f, 1.0f);
-                pixel[k] = value;
+        for (uint32_t y = chunk; y < chunk_end; ++y) {
+            const LanczosTaps row = tapsAt(y, window.out.height, window.input_height, window.crop_y, crop_h);
+            const float* w_top = weights_.data() + size_t(row.cell) * crop_w;
+            const float* w_bottom = weights_.data() + size_t(std::min(row.cell + 1, crop_h - 1)) * crop_w;
+            float* out = rows + size_t(y - window.y_begin) * row_floats;
+            for (uint32_t x = 0; x < width; ++x) {
+                const LanczosTaps& col = columns[x];
+                const uint32_t right = std::min(col.cell + 1, crop_w - 1);
+                const float top = w_top[col.cell] + col.fraction * (w_top[right] - w_top[col.cell]);
+                const float bottom = w_bottom[col.cell] + col.fraction * (w_bottom[right] - w_bottom[col.cell]);
+                const float surface_weight = top + row.fraction * (bottom - top);
+                float* pixel = out + size_t(x) * c;
+                for (uint32_t k = 0; k < c; ++k) {
+                    float convolved = 0.0f;
+                    for (int j = 0; j < kLanczosTaps; ++j)
+                        convolved += row.weight[j] * across[(size_t(row.index[j] - first_row) * width + x) * c + k];
+                    float value = surface_weight * pixel[k] + (1.0f - surface_weight) * convolved;
+                    if (integer) value = std::clamp(value, 0.0f, 1.0f);
+                    pixel[k] = value;
+                }
+                if (alpha)
+                    for (uint32_t k = 0; k + 1 < c; ++k) pixel[k] = std::min(pixel[k], pixel[c - 1]);
             }
-            if (alpha)
-                for (uint32_t k = 0; k + 1 < c; ++k) pixel[k] = std::min(pixel[k], pixel[c - 1]);
         }
     }
 }
