@@ -29,15 +29,19 @@ ddt::Image probeImage() {
 }  // namespace
 
 DdtOutputs magnifyWithDdt(ddt::Backend& backend, const ddt::Image& low, uint32_t width, uint32_t height, bool plain,
-                          bool consistent, ddt::AssumedKernel assume) {
+                          bool consistent, ddt::AssumedKernel assume, bool fallback) {
     DdtOutputs outputs;
     backend.prepare(low);
     backend.optimize();
     if (plain) outputs.plain = render(backend, low, width, height);
-    if (!consistent) return outputs;
+    if (!consistent && !fallback) return outputs;
     try {
         backend.reconstruct(ddt::degradationFor(double(width) / low.width, double(height) / low.height, assume));
-        outputs.consistent = render(backend, low, width, height);
+        if (consistent) outputs.consistent = render(backend, low, width, height);
+        if (fallback) {
+            backend.addFallback();
+            outputs.fallback = render(backend, low, width, height);
+        }
     } catch (const ddt::UserError& error) {
         outputs.consistent_error = error.what();
     }

@@ -180,10 +180,13 @@ Table qualityTable(const BenchResults& results) {
         {"SSIM", [](const ddt::QualityScores& q) { return q.ssim; }},
     };
     // The consistent surface's column comes from the protocol tables' protocol A, which is
-    // this table's protocol on the same originals (absent when they did not run).
+    // this table's protocol on the same originals (absent when they did not run): the default
+    // surface's, not one assuming another filter or blended by the fallback.
     const Upscaler* consistent = nullptr;
     for (const Upscaler& u : results.upscalers)
-        if (u.kind == UpscalerKind::Ddt && u.consistent && u.ddt.backend == "cpu") consistent = &u;
+        if (u.kind == UpscalerKind::Ddt && u.consistent && u.ddt.backend == "cpu" &&
+            u.assume == ddt::AssumedKernel::footprint && !u.fallback && !consistent)
+            consistent = &u;
     if (consistent) table.columns.push_back(consistent->label + " (protocol tables)");
     std::vector<std::string> sets = results.set_names;
     sets.push_back(kAllImages);

@@ -24,11 +24,13 @@ Upscaler filter(const char* name, const char* label) {
 }
 
 Upscaler ddtColumn(const DdtMethod& method, const std::string& label, bool consistent,
-                   ddt::AssumedKernel assume = ddt::AssumedKernel::footprint) {
+                   ddt::AssumedKernel assume = ddt::AssumedKernel::footprint, bool fallback = false) {
     Upscaler u;
     u.key = method.key + (consistent ? "+consistent" : "");
     if (assume != ddt::AssumedKernel::footprint) u.key += std::string("/assume-") + ddt::assumedKernelName(assume);
+    if (fallback) u.key += "+fallback";
     u.assume = assume;
+    u.fallback = fallback;
     u.label = label;
     u.kind = UpscalerKind::Ddt;
     u.ddt = method;
@@ -84,6 +86,10 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
     };
     for (ddt::AssumedKernel kernel : {ddt::AssumedKernel::box, ddt::AssumedKernel::bicubic, ddt::AssumedKernel::lanczos3})
         setup.upscalers.push_back(ddtColumn(cpu, std::string("CPU consistent, ") + ddt::assumedKernelName(kernel), true, kernel));
+    // The convolution fallback (--fallback lanczos3) on the default surface and on the bicubic
+    // assumption, the pair its weights were chosen for.
+    setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent + fallback", true, ddt::AssumedKernel::footprint, true));
+    setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent, bicubic + fallback", true, ddt::AssumedKernel::bicubic, true));
     return setup;
 }
 

@@ -1,7 +1,8 @@
 // The columns of the protocol tables: OIIO's bilinear and Lanczos3, the peers libvips'
 // Nohalo and the edge-directed ICBI (edge_directed.h), and DDT plain and consistent on the CPU
 // and on the Vulkan backend's default variant, and the CPU's consistent surface assuming each
-// named resize filter (`--assume`). Availability is probed once, up front: a column that cannot
+// named resize filter (`--assume`), and the convolution fallback (`--fallback lanczos3`) on
+// the default and on the bicubic assumption. Availability is probed once, up front: a column that cannot
 // run here (no Vulkan device, a peer misaligned) keeps its place as "n/a" with the reason.
 #pragma once
 
@@ -23,6 +24,7 @@ struct Upscaler {
     DdtMethod ddt;            // Ddt
     bool consistent = false;  // Ddt: the consistent reconstruction instead of the plain surface
     ddt::AssumedKernel assume = ddt::AssumedKernel::footprint;  // Ddt, consistent: the filter it assumes
+    bool fallback = false;  // Ddt, consistent: blended towards Lanczos3 where contrast is low (--fallback lanczos3)
     std::string unavailable;  // "" if it runs here
 };
 

@@ -60,17 +60,21 @@ std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends&
             case UpscalerKind::Ddt: {
                 // Plain and consistent share one optimisation of the same method (each other
                 // assumed filter has its own: a reconstruction may give up the backend's mesh).
+                // The fallback's column blends the consistent surface of the same run.
                 const Upscaler* plain = nullptr;
                 const Upscaler* consistent = nullptr;
+                const Upscaler* fallback = nullptr;
                 for (const Upscaler& v : results.upscalers)
                     if (v.kind == UpscalerKind::Ddt && runKey(v) == runKey(u) && v.unavailable.empty())
-                        (v.consistent ? consistent : plain) = &v;
+                        (v.fallback ? fallback : v.consistent ? consistent : plain) = &v;
                 DdtOutputs ddt = magnifyWithDdt(backends.forMethod(u.ddt), low, width, height, plain != nullptr,
-                                                consistent != nullptr, u.assume);
+                                                consistent != nullptr, u.assume, fallback != nullptr);
                 if (plain) outputs[plain->key] = std::move(*ddt.plain);
                 if (ddt.consistent) outputs[consistent->key] = std::move(*ddt.consistent);
+                if (ddt.fallback) outputs[fallback->key] = std::move(*ddt.fallback);
                 if (!ddt.consistent_error.empty())
-                    addNote(results, consistent->label + " n/a on " + where + ": " + ddt.consistent_error);
+                    addNote(results, (consistent ? consistent : fallback)->label + " n/a on " + where + ": " +
+                                         ddt.consistent_error);
                 break;
             }
             }
