@@ -129,11 +129,13 @@ public:
     // 16 bytes) and their ends (8), the cost field, the normalisers (one float per vertex and
     // per edge, 16), and per channel 84 bytes of floats (the supersamples' values, 36; the
     // vertex values, bubbles, residuals and the projection's totals, 36; the bounds, 8; the
-    // input).
+    // input). The convolution fallback, with either surface, adds its copy of the input and
+    // its weights, and while it makes them four floats per pixel (4 · channels + 20).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t optimizing = 3 * (32 + 16) + 2 * 24 + 4 + 4 * channels;
-        const uint64_t reconstructing = 2 * 24 + 9 * 16 + 8 + 4 + 16 + 84 * channels;
+        const uint64_t fallback = 4 * channels + 20;
+        const uint64_t optimizing = 3 * (32 + 16) + 2 * 24 + 4 + 4 * channels + fallback;
+        const uint64_t reconstructing = 2 * 24 + 9 * 16 + 8 + 4 + 16 + 84 * channels + fallback;
         return vertices * (reconstruction ? std::max(optimizing, reconstructing) : optimizing);
     }
 
