@@ -79,8 +79,6 @@ AutomaticDevice automaticDevice() {
 ChosenBackend makeBackend(const Settings& settings) {
     if (settings.backend == "cpu") return cpuBackend(settings, "");
     if (settings.backend == "vulkan" || settings.device >= 0) return vulkanBackend(settings, settings.device, "");
-    if (settings.fallback != "none")
-        return cpuBackend(settings, "--fallback " + settings.fallback + " runs on the CPU backend");
     const AutomaticDevice device = automaticDevice();
     if (device.index < 0)
         return cpuBackend(settings, device.cpu_reason + (settings.active_set ? "" : "; --no-active-set, which applies "

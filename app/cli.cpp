@@ -115,11 +115,10 @@ std::string validateAssume(const CLI::App& app, const Settings& settings) {
 }
 
 // "" if --fallback makes sense with the rest, else the message: it blends the mesh's surface
-// with a convolution of the full input, on the CPU backend.
-std::string validateFallback(const CLI::App& app, const Settings& settings) {
+// with a convolution of the full input.
+std::string validateFallback(const Settings& settings) {
     if (settings.fallback == "none") return "";
     const std::string given = "--fallback " + settings.fallback + ": ";
-    if (settings.backend == "vulkan" || app.count("--device")) return given + "runs on the CPU backend only (not yet a Vulkan kernel)";
     if (settings.simplifies()) return given + "simplification (--simplify, --max-error) renders its own mesh's surface";
     if (settings.masked()) return given + "a mask's unknown pixels have no input to convolve";
     if (std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath))
@@ -299,7 +298,7 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (std::string problem = validateMesh(app, settings); !problem.empty()) return problem;
     if (std::string problem = validateMask(app, settings); !problem.empty()) return problem;
     if (std::string problem = validateAssume(app, settings); !problem.empty()) return problem;
-    if (std::string problem = validateFallback(app, settings); !problem.empty()) return problem;
+    if (std::string problem = validateFallback(settings); !problem.empty()) return problem;
     return validatePoints(app, settings);
 }
 
@@ -409,7 +408,7 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_option("--fallback", settings.fallback,
                    "Where the input has little contrast, blend the surface towards a convolution of the input: "
                    "lanczos3 (the mesh keeps its weight on strong edges; better on photographs' smooth and "
-                   "grainy regions; CPU backend) or none")
+                   "grainy regions) or none")
         ->check(CLI::IsMember({"none", "lanczos3"}))
         ->capture_default_str();
     app.add_option("--tile", settings.tile,

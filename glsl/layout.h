@@ -102,7 +102,10 @@ const uint kBindingBubbleWeights = 31;      // per edge: ⟨φ, Dᵀ1⟩
 const uint kBindingStarStart = 32;          // r32ui per vertex: its lowest-id edge, where its star walk starts
 // Explicit positions (core/image/mesh.h), read by the kernels that evaluate costs when kPositioned.
 const uint kBindingPositions = 33;          // rg32i per vertex: its Position (glsl/fixed_position.h)
-const uint kBindingCount = 34;
+// The convolution fallback (glsl/image/fallback/), r32f per input pixel.
+const uint kBindingFallbackWeights = 34;    // the surface's weight w(p); first the gradient energy
+const uint kBindingFallbackAcross = 35;     // the energy smoothed along x, while the weights are made
+const uint kBindingCount = 36;
 
 // Counters and state of the optimisation, written by the kernels, read by the host after
 // each submit. Counters that kernels append to are updated with atomics.
@@ -136,22 +139,22 @@ struct PushConstants {
     uint step;                 // plan: which step to plan (kArgs…); edge_cost: 1 stores every cost;
                                // reconstruction updates: 0 stores the weights, 1 applies a SART step
     uint first_edge_row;       // render: the first edge row of the dispatch (its y dimension)
-    uint first_row;            // render: the band's output rows
+    uint first_row;            // render, fallback blend: the band's output rows
     uint row_count;
     uint first_col;            // render: the window's output columns
     uint col_count;
-    uint out_width;            // render: the whole output's size
+    uint out_width;            // render, fallback blend: the whole output's size
     uint out_height;
-    uint input_width;          // render: the whole input's size (the job is its crop at crop_x, crop_y)
+    uint input_width;          // render, fallback blend: the whole input's size (the job is its crop at crop_x, crop_y)
     uint input_height;
     uint crop_x;
     uint crop_y;
-    uint band_first_col;       // render: the band's first output column and its width in pixels
+    uint band_first_col;       // render, fallback blend: the band's first output column and its width in pixels
     uint band_width;
     uint quadratic;            // render: 1 renders the reconstructed surface (values and bubbles)
     uint taps_x_radius;        // reconstruction: the degradation's taps per axis, 2r + 1 each
     uint taps_y_radius;
-    uint integer_samples;      // reconstruction: 1 bounds the values to [0, 1] (8- and 16-bit input)
+    uint integer_samples;      // reconstruction, fallback blend: 1 bounds the values to [0, 1] (8- and 16-bit input)
     float quantisation_tolerance;  // reconstruction: residuals count beyond this (core/image/reconstruct.h)
 };
 

@@ -1,5 +1,6 @@
 // Rendering on the device: the rows each triangle spans (glsl/image/row_spans.comp), then
-// bands of output rows (glsl/image/render.comp) read back into the caller's rows.
+// bands of output rows (glsl/image/render.comp), blended with the fallback on
+// (device_fallback.cpp), read back into the caller's rows.
 #include <algorithm>
 #include <cmath>
 
@@ -17,6 +18,19 @@ void VulkanBackend::State::computeRowSpans() {
     commands.submitAndWait();
     spans.resize(initial.size());
     downloadFromBuffer(*context, row_spans, spans.data(), spans.size() * 4);
+}
+
+PushConstants VulkanBackend::State::windowPush(const RenderWindow& window) const {
+    PushConstants p = push();
+    p.out_width = window.out.width;
+    p.out_height = window.out.height;
+    p.input_width = window.input_width;
+    p.input_height = window.input_height;
+    p.crop_x = window.crop_x;
+    p.crop_y = window.crop_y;
+    p.band_first_col = window.x_begin;
+    p.band_width = window.width();
+    return p;
 }
 
 // Records `kernel`, a per-triangle pass (render.comp's frame), over output rows
@@ -38,19 +52,11 @@ void VulkanBackend::State::recordTrianglePart(VkCommandBuffer commands, VkPipeli
             last_row = std::max(last_row, y);
         }
     }
-    PushConstants p = push();
+    PushConstants p = windowPush(window);
     p.first_row = y_begin;
     p.row_count = y_end - y_begin;
     p.first_col = x_begin;
     p.col_count = x_end - x_begin;
-    p.out_width = out.width;
-    p.out_height = out.height;
-    p.input_width = window.input_width;
-    p.input_height = window.input_height;
-    p.crop_x = window.crop_x;
-    p.crop_y = window.crop_y;
-    p.band_first_col = window.x_begin;
-    p.band_width = window.width();
     const uint32_t groups_per_row = (3 * width - 2 + kGroupSize - 1) / kGroupSize;
     for (uint32_t row = first_row; row <= last_row && first_row <= last_row; row += kMaxGroups) {
         p.first_edge_row = row;
@@ -99,6 +105,7 @@ void VulkanBackend::renderWindow(const RenderWindow& window, float* rows) {
         const uint32_t band_end = std::min(window.y_end, y + band_rows);
         for (uint32_t x = window.x_begin; x < window.x_end; x += part.cols)
             s.renderPart(window, y, band_end, x, std::min(window.x_end, x + part.cols));
+        if (s.fallback) s.blendBand(window, y, band_end);
         // The band holds four floats per pixel; the caller wants `channels`.
         const size_t pixels = size_t(band_end - y) * window_w;
         float* band_rows_out = rows + size_t(y - window.y_begin) * window_w * c;

@@ -11,6 +11,10 @@
 #include "spirv/degrade_x.h"
 #include "spirv/degrade_y.h"
 #include "spirv/evaluate_surface.h"
+#include "spirv/fallback_blend.h"
+#include "spirv/fallback_energy.h"
+#include "spirv/fallback_smooth_x.h"
+#include "spirv/fallback_weights.h"
 #include "spirv/initial_bubbles.h"
 #include "spirv/locate_samples.h"
 #include "spirv/project_triangles.h"
@@ -88,6 +92,11 @@ Kernels createKernels(VulkanContext& context, const KernelVariant& variant) {
         r.project_triangles = createKernel(context, k.layout, kSpirvProjectTriangles, variant);
         r.update_values = createKernel(context, k.layout, kSpirvUpdateValues, variant);
         r.update_bubbles = createKernel(context, k.layout, kSpirvUpdateBubbles, variant);
+        FallbackKernels& f = k.fallback;
+        f.energy = createKernel(context, k.layout, kSpirvFallbackEnergy, variant);
+        f.smooth_x = createKernel(context, k.layout, kSpirvFallbackSmoothX, variant);
+        f.weights = createKernel(context, k.layout, kSpirvFallbackWeights, variant);
+        f.blend = createKernel(context, k.layout, kSpirvFallbackBlend, variant);
     } catch (...) {
         destroyKernels(context, k);
         throw;
@@ -105,11 +114,12 @@ void createPositionedKernels(VulkanContext& context, Kernels& k) {
 
 void destroyKernels(VulkanContext& context, Kernels& k) {
     const ReconstructionKernels& r = k.reconstruction;
+    const FallbackKernels& f = k.fallback;
     for (VkPipeline pipeline : {k.plan, k.candidates, k.select, k.flip, k.edge_cost, k.row_spans, k.render,
                                 k.positioned_candidates, k.positioned_edge_cost,
                                 r.star_starts, r.value_bounds, r.initial_bubbles, r.locate_samples, r.evaluate_surface,
                                 r.degrade_y, r.degrade_x, r.transpose_x, r.transpose_y, r.project_triangles,
-                                r.update_values, r.update_bubbles})
+                                r.update_values, r.update_bubbles, f.energy, f.smooth_x, f.weights, f.blend})
         if (pipeline) vkDestroyPipeline(context.device, pipeline, nullptr);
     if (k.layout) vkDestroyPipelineLayout(context.device, k.layout, nullptr);
     if (k.set_layout) vkDestroyDescriptorSetLayout(context.device, k.set_layout, nullptr);

@@ -37,6 +37,14 @@ struct ReconstructionKernels {
     VkPipeline update_bubbles = VK_NULL_HANDLE;
 };
 
+// The convolution fallback's kernels (glsl/image/fallback/, driven by compute/image/device_fallback.cpp).
+struct FallbackKernels {
+    VkPipeline energy = VK_NULL_HANDLE;
+    VkPipeline smooth_x = VK_NULL_HANDLE;
+    VkPipeline weights = VK_NULL_HANDLE;
+    VkPipeline blend = VK_NULL_HANDLE;
+};
+
 struct Kernels {
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -48,6 +56,7 @@ struct Kernels {
     VkPipeline row_spans = VK_NULL_HANDLE;
     VkPipeline render = VK_NULL_HANDLE;
     ReconstructionKernels reconstruction;
+    FallbackKernels fallback;
     // The kernels that evaluate costs, candidates and edge_cost, for meshes with explicit
     // positions (kPositioned); made by createPositionedKernels when a job first needs them.
     VkPipeline positioned_candidates = VK_NULL_HANDLE;

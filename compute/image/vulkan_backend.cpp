@@ -43,8 +43,8 @@ uint32_t VulkanBackend::validationMessages() const { return state_->context->val
 
 // Device memory of a width × height job, and "" or the per-buffer limit it breaks. What
 // bites on lavapipe (2 GiB heap, 2 GiB allocations, 2^27 texel-buffer elements; no
-// VK_EXT_memory_budget): a 4096² input needs 3.7 GB in all (3 edges and 216 bytes per pixel
-// with the default rule, 240 with the round-based ones), beyond the heap, though each array
+// VK_EXT_memory_budget): a 4096² input needs 3.8 GB in all (3 edges and 224 bytes per pixel
+// with the default rule, 248 with the round-based ones), beyond the heap, though each array
 // fits; an 8192² input has 201 M edges, beyond the texel-buffer elements (and its 3.2 GB
 // edge arrays beyond the largest allocation). maxStorageBufferRange (128 MiB) does not
 // bite: the big arrays are texel buffers. The consistent reconstruction adds about 708 bytes
@@ -66,8 +66,10 @@ VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(const JobSize&
     const uint64_t largest = elements * 16;
     MemoryNeed need;
     // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels; its
-    // position as an rg32i texel where explicit.
-    need.bytes = edges * per_edge + vertices * (4 + 4 + 16 + (job.positioned ? 8 : 0)) + kBandBytes +
+    // position as an rg32i texel where explicit; the convolution fallback's weight and, while
+    // it makes them, their pass along x (counted whether or not it is asked for, as the CPU
+    // backend counts its own).
+    need.bytes = edges * per_edge + vertices * (4 + 4 + 16 + (job.positioned ? 8 : 0) + 4 + 4) + kBandBytes +
                  (reconstruction ? surfaceBufferBytes(vertices, edges) : 0);
     if (edges >= kCopyEntry) need.problem = "more edges than the kernels can index";
     else if (elements > context->properties.limits.maxTexelBufferElements)
@@ -127,6 +129,8 @@ void VulkanBackend::State::createBuffers(const Image& img) {
     positions = createBuffer(c, explicit_positions.empty() ? 8 : vertices * 8, device, VK_FORMAT_R32G32_SINT);
     // A placeholder until the first render sizes it.
     band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32G32B32A32_SFLOAT);
+    fallback_weights = createBuffer(c, 4, device, VK_FORMAT_R32_SFLOAT);
+    fallback_across = createBuffer(c, 4, device, VK_FORMAT_R32_SFLOAT);
     surface = createSurfacePlaceholders(c);
 
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, kBindingCount},
@@ -167,6 +171,8 @@ void VulkanBackend::State::writeDescriptors() {
     by_binding[kBindingControl] = &control;
     by_binding[kBindingArgs] = &args;
     by_binding[kBindingPositions] = &positions;
+    by_binding[kBindingFallbackWeights] = &fallback_weights;
+    by_binding[kBindingFallbackAcross] = &fallback_across;
     for (uint32_t i = 0; i < kBindingCount; ++i)
         if (const Buffer* b = surface.atBinding(i)) by_binding[i] = b;
 

@@ -1,10 +1,10 @@
 // The Vulkan backend: the paper's parallel Lawson optimisation (Sec. 3–5) in compute
-// kernels over the edge arrays of core/image/mesh.h, and rendering on the device. Each iteration
-// runs the same steps as the paper: candidates, accept/reject rounds (select), flip.
+// kernels over the edge arrays of core/image/mesh.h, and rendering on the device, with the
+// consistent reconstruction and the convolution fallback. Each iteration runs the same steps
+// as the paper: candidates, accept/reject rounds (select), flip.
 #pragma once
 
 #include <functional>
-#include <stdexcept>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,8 +52,8 @@ public:
     void prepareFrom(const Image& image, Mesh initial) override;
     OptimizeStats optimize() override;
     void reconstruct(const DegradationModel& model) override;
-    // Not on the device yet: the command line keeps --fallback to the CPU backend.
-    void addFallback() override { throw std::logic_error("VulkanBackend: the convolution fallback runs on the CPU backend"); }
+    // The surface's weights made on the device; renderWindow blends each band there (device_fallback.cpp).
+    void addFallback() override;
     void renderWindow(const RenderWindow& window, float* rows) override;
     Mesh mesh() override;
     ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) override;

@@ -1,6 +1,7 @@
 // The Vulkan backend's state, shared by the files that implement its stages:
 // vulkan_backend.cpp (device, buffers, the mesh up and down), device_optimize.cpp (the flips),
-// device_reconstruct.cpp (the consistent surface) and device_render.cpp (the output rows).
+// device_reconstruct.cpp (the consistent surface), device_render.cpp (the output rows) and
+// device_fallback.cpp (the convolution fallback).
 #pragma once
 
 #include <map>
@@ -41,9 +42,11 @@ struct VulkanBackend::State {
     std::vector<Position> explicit_positions;     // the mesh's positions (empty: the grid's places)
 
     Buffer edge_vertices, edge_neighbours, luma, alpha, gain, status[2], mark, active_list[2], candidate_list,
-        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans, positions;
+        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans, positions,
+        fallback_weights, fallback_across;  // the fallback's: placeholders until addFallback
     SurfaceBuffers surface;  // the consistent reconstruction's arrays (placeholders until it runs)
     bool quadratic = false;  // render the reconstructed surface, not the input values
+    bool fallback = false;   // blend each rendered band towards Lanczos3 (addFallback)
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
     std::vector<uint32_t> spans;  // row_spans downloaded; empty when stale
@@ -53,13 +56,14 @@ struct VulkanBackend::State {
         return {&edge_vertices, &edge_neighbours, &luma,          &alpha,        &gain,          &status[0],
                 &status[1],     &mark,            &active_list[0], &active_list[1], &candidate_list, &round_list[0],
                 &round_list[1], &control,         &control_readback, &args,      &partial_sums,  &pixels,
-                &band,          &row_spans,       &positions};
+                &band,          &row_spans,       &positions,    &fallback_weights, &fallback_across};
     }
 
     void releaseBuffers() {
         for (Buffer* buffer : buffers()) destroyBuffer(*context, *buffer);
         destroySurfaceBuffers(*context, surface);
         quadratic = false;
+        fallback = false;
         if (descriptor_pool) vkDestroyDescriptorPool(context->device, descriptor_pool, nullptr);
         descriptor_pool = VK_NULL_HANDLE;
         descriptor_set = VK_NULL_HANDLE;
@@ -126,9 +130,13 @@ struct VulkanBackend::State {
         uint32_t rows, cols;
     };
     PartShape partShape(const RenderWindow& window) const;
+    // The job's scalars with the window's: the whole output and input, the crop, the band's columns.
+    PushConstants windowPush(const RenderWindow& window) const;
     void recordTrianglePart(VkCommandBuffer commands, VkPipeline kernel, const RenderWindow& window, uint32_t y_begin,
                             uint32_t y_end, uint32_t x_begin, uint32_t x_end);
     void renderPart(const RenderWindow& window, uint32_t y_begin, uint32_t y_end, uint32_t x_begin, uint32_t x_end);
+    // Blends the window's rows [y_begin, y_end), rendered into the band, towards Lanczos3.
+    void blendBand(const RenderWindow& window, uint32_t y_begin, uint32_t y_end);
     OptimizeStats finishStats(const Control& control, double cost_init, uint64_t dispatches, double device_ns);
 };
 

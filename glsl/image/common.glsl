@@ -34,7 +34,8 @@ layout(binding = kBindingCandidateList, r32ui) uniform uimageBuffer candidate_li
 layout(binding = kBindingRoundList0, r32ui) uniform uimageBuffer round_list0;
 layout(binding = kBindingRoundList1, r32ui) uniform uimageBuffer round_list1;
 layout(binding = kBindingPixels, rgba32f) uniform readonly imageBuffer pixels;
-layout(binding = kBindingBand, rgba32f) uniform writeonly imageBuffer band;
+// Written by render.comp, read and rewritten by fallback/fallback_blend.comp.
+layout(binding = kBindingBand, rgba32f) uniform imageBuffer band;
 layout(binding = kBindingRowSpans, r32ui) uniform uimageBuffer row_spans;
 layout(binding = kBindingPartialSums, rg32ui) uniform writeonly uimageBuffer partial_sums;
 layout(binding = kBindingControl, std430) buffer ControlBlock {
