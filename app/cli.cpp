@@ -117,7 +117,7 @@ std::string validateAssume(const CLI::App& app, const Settings& settings) {
 // "" if --fallback makes sense with the rest, else the message: it blends the mesh's surface
 // with a convolution of the full input.
 std::string validateFallback(const Settings& settings) {
-    if (settings.fallback == "none") return "";
+    if (settings.fallback != "lanczos3") return "";  // the default gives way with the consistent surface
     const std::string given = "--fallback " + settings.fallback + ": ";
     if (settings.simplifies()) return given + "simplification (--simplify, --max-error) renders its own mesh's surface";
     if (settings.masked()) return given + "a mask's unknown pixels have no input to convolve";
@@ -408,9 +408,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_option("--fallback", settings.fallback,
                    "Where the input has little contrast, blend the surface towards a convolution of the input: "
                    "lanczos3 (the mesh keeps its weight on strong edges; better on photographs' smooth and "
-                   "grainy regions) or none")
-        ->check(CLI::IsMember({"none", "lanczos3"}))
-        ->capture_default_str();
+                   "grainy regions) or none (default: lanczos3 with the consistent surface, none with the plain one)")
+        ->check(CLI::IsMember({"none", "lanczos3"}));
     app.add_option("--tile", settings.tile,
                    "Tile side in input pixels for images too large for the device; for volumes the brick side in "
                    "voxels (optimized one by one, with a margin of 8; automatic: bricks of 128 above 2^22 voxels); "

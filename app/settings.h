@@ -32,6 +32,7 @@ struct Settings {
     bool simplifies() const { return simplify > 0.0 || max_error > 0.0; }
     std::string mask;          // --mask: the image whose non-black pixels mark the input's known ones; "" = all known
     std::string mask_folder;   // --mask-dir: batches; each input's mask is the image of the same name in it
+    bool fallsBack() const { return fallback.empty() ? reconstruct == "consistent" : fallback == "lanczos3"; }
     bool masked() const { return !mask.empty() || !mask_folder.empty(); }
     // --frame WxH: the frame of point-file inputs (core/delaunay/point_mesh.h); 0 = the points' own
     uint32_t frame_width = 0, frame_height = 0;
@@ -54,7 +55,9 @@ struct Settings {
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
     std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/image/reconstruct.h)
     std::string assume = "footprint";        // the downscale filter the consistent surface assumes (core/image/assumed_kernel.h)
-    std::string fallback = "none";           // lanczos3: blend towards a convolution where contrast is low (core/image/convolution_fallback.h)
+    // lanczos3: blend towards a convolution where contrast is low (core/image/convolution_fallback.h);
+    // "" (not given): lanczos3 with the consistent surface, none with the plain one, the paper's.
+    std::string fallback;
     int device = -1;           // Vulkan device index; -1 = choose
     bool active_set = true;    // Vulkan: re-test only edges a flip may have changed
     bool list_devices = false;

@@ -233,7 +233,7 @@ void ImageJob::render(Backend& backend) {
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
         options.kernel = *parseAssumedKernel(settings_.assume);  // checked by the command line
-        options.fallback = settings_.fallback == "lanczos3";
+        options.fallback = settings_.fallsBack();
         options.mesh = mesh ? &*mesh : nullptr;
         // The default surface is the consistent one; where it cannot apply, say so rather than
         // change it without a word (a --reconstruct consistent given here was refused).

@@ -1,5 +1,5 @@
-// --fallback through the real executable: lanczos3 changes the picture and keeps the sample
-// type on either backend, and the combinations it cannot serve are refused with one line and
+// --fallback through the real executable: lanczos3 is the consistent surface's default, changes
+// the picture and keeps the sample type on either backend, and the combinations it cannot serve are refused with one line and
 // nothing written.
 #include <catch2/catch.hpp>
 
@@ -11,7 +11,7 @@
 #include "temp_folder.h"
 #include "test_support.h"
 
-TEST_CASE("cli: --fallback lanczos3 blends the default surface, and none is the default bit for bit") {
+TEST_CASE("cli: the consistent surface falls back to lanczos3 by default, the plain one does not, and none turns it off") {
     TempFolder folder;
     ddt::Image image = ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png"));
     ddt::writeImage(folder / "in8.png", image);
@@ -19,8 +19,13 @@ TEST_CASE("cli: --fallback lanczos3 blends the default surface, and none is the 
     ddt::writeImage(folder / "in16.png", image);
     for (const char* name : {"in8.png", "in16.png"}) {
         const std::string input = folder / name;
-        ddt::Image outputs[3];
-        const std::vector<std::vector<std::string>> extras = {{}, {"--fallback", "none"}, {"--fallback", "lanczos3"}};
+        ddt::Image outputs[6];
+        const std::vector<std::vector<std::string>> extras = {{},
+                                                              {"--fallback", "lanczos3"},
+                                                              {"--fallback", "none"},
+                                                              {"--reconstruct", "plain"},
+                                                              {"--reconstruct", "plain", "--fallback", "none"},
+                                                              {"--reconstruct", "plain", "--fallback", "lanczos3"}};
         for (size_t i = 0; i < extras.size(); ++i) {
             const std::string output = folder / ("out" + std::to_string(i) + "-" + name);
             std::vector<std::string> args = {input, output, "-s", "3", "--backend", "cpu", "-q"};
@@ -35,6 +40,8 @@ TEST_CASE("cli: --fallback lanczos3 blends the default surface, and none is the 
         INFO(name);
         CHECK(outputs[0].pixels == outputs[1].pixels);
         CHECK(outputs[0].pixels != outputs[2].pixels);
+        CHECK(outputs[3].pixels == outputs[4].pixels);
+        CHECK(outputs[3].pixels != outputs[5].pixels);
     }
 }
 
