@@ -211,6 +211,17 @@ Mesh optimisedGridMesh(const Image& image) {
     return mesh;
 }
 
+void renderTileInto(Backend& backend, const Image& image, OutputSize out, const Tile& tile, std::vector<float>& whole) {
+    const RenderWindow window{image.width,    image.height,   out,           tile.crop.x0, tile.crop.y0,
+                              tile.output.x0, tile.output.x1, tile.output.y0, tile.output.y1};
+    std::vector<float> rows(size_t(window.width()) * window.height() * image.channels);
+    backend.renderWindow(window, rows.data());
+    const size_t row_floats = size_t(window.width()) * image.channels;
+    for (uint32_t y = 0; y < window.height(); ++y)
+        std::copy_n(rows.data() + y * row_floats, row_floats,
+                    whole.data() + (size_t(window.y_begin + y) * out.width + window.x_begin) * image.channels);
+}
+
 Agreement compareSamples(const std::vector<float>& a, const std::vector<float>& b) {
     REQUIRE(a.size() == b.size());
     Agreement agreement;

@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "backend.h"
 #include "image.h"
 #include "mesh.h"
+#include "tiling.h"
 
 namespace ddt::test {
 
@@ -75,6 +77,10 @@ Mesh optimisedGridMesh(const Image& image);
 // around the centre that kMaxCollapseValence stops from reaching the border (side ≥ 20).
 // Removed edges are left marked, not compacted.
 Mesh centreFanMesh(uint32_t side);
+
+// Renders `tile`'s output with `backend`, prepared on the tile's crop of `image`, into its
+// place in `whole`, an untiled output of size `out`.
+void renderTileInto(Backend& backend, const Image& image, OutputSize out, const Tile& tile, std::vector<float>& whole);
 
 // How closely two renderings of one image agree, sample by sample (for tiled vs untiled).
 struct Agreement {

@@ -28,6 +28,9 @@ struct PixelRect {
     uint32_t height() const { return y1 - y0; }
 };
 
+// The pixels of `image` inside `rect`, as an image of their own (a tile's crop).
+Image cropOf(const Image& image, const PixelRect& rect);
+
 struct Tile {
     PixelRect core;    // input pixels the tile answers for
     PixelRect crop;    // input pixels its mesh is built on: the core grown by the overlap

@@ -107,23 +107,10 @@ TEST_CASE("fallback: a tile's crop renders exactly the whole image's blended pix
     std::vector<float> tiled(whole.size(), -1.0f);
     for (uint32_t y0 = 0; y0 < image.height; y0 = stripEnd(image.height, y0, 48))
         for (const Tile& tile : planStrip(image.width, image.height, out, y0, stripEnd(image.height, y0, 48), 48, overlap)) {
-            Image crop = image;
-            crop.width = tile.crop.width();
-            crop.height = tile.crop.height();
-            crop.pixels.clear();
-            for (uint32_t y = tile.crop.y0; y < tile.crop.y1; ++y)
-                crop.pixels.insert(crop.pixels.end(), image.row(y) + size_t(tile.crop.x0) * image.channels,
-                                   image.row(y) + size_t(tile.crop.x1) * image.channels);
+            const Image crop = cropOf(image, tile.crop);
             backend->prepare(crop);
             backend->addFallback();
-            RenderWindow window{image.width, image.height, out, tile.crop.x0, tile.crop.y0,
-                                tile.output.x0, tile.output.x1, tile.output.y0, tile.output.y1};
-            std::vector<float> rows(size_t(window.width()) * window.height() * image.channels);
-            backend->renderWindow(window, rows.data());
-            const size_t row_floats = size_t(window.width()) * image.channels;
-            for (uint32_t y = 0; y < window.height(); ++y)
-                std::copy_n(rows.data() + y * row_floats, row_floats,
-                            tiled.data() + (size_t(window.y_begin + y) * out.width + window.x_begin) * image.channels);
+            test::renderTileInto(*backend, image, out, tile, tiled);
         }
     CHECK(test::samePixels(tiled, whole));
 }

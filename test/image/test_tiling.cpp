@@ -163,22 +163,9 @@ TEST_CASE("tiling: a crop's grid mesh renders exactly the whole grid's pixels", 
         backend->renderRows(out, 0, out.height, whole.data());
         std::vector<float> tiled(whole.size(), -1.0f);
         for (const Tile& tile : planTiles(image.width, image.height, out, 16, 3)) {
-            Image crop;
-            crop.width = tile.crop.width();
-            crop.height = tile.crop.height();
-            crop.channels = image.channels;
-            for (uint32_t y = tile.crop.y0; y < tile.crop.y1; ++y)
-                crop.pixels.insert(crop.pixels.end(), image.row(y) + size_t(tile.crop.x0) * image.channels,
-                                   image.row(y) + size_t(tile.crop.x1) * image.channels);
+            const Image crop = cropOf(image, tile.crop);
             backend->prepare(crop);
-            RenderWindow window{image.width, image.height, out, tile.crop.x0, tile.crop.y0,
-                                tile.output.x0, tile.output.x1, tile.output.y0, tile.output.y1};
-            std::vector<float> rows(size_t(window.width()) * window.height() * image.channels);
-            backend->renderWindow(window, rows.data());
-            const size_t row_floats = size_t(window.width()) * image.channels;
-            for (uint32_t y = 0; y < window.height(); ++y)
-                std::copy_n(rows.data() + y * row_floats, row_floats,
-                            tiled.data() + (size_t(window.y_begin + y) * out.width + window.x_begin) * image.channels);
+            test::renderTileInto(*backend, image, out, tile, tiled);
         }
         CHECK(test::samePixels(tiled, whole));
         CHECK(validationMessages(*backend) == 0);

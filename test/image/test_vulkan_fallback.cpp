@@ -35,16 +35,6 @@ VulkanBackend makeBackend() {
     return VulkanBackend(options);
 }
 
-float maxDifference(const std::vector<float>& a, const std::vector<float>& b) {
-    REQUIRE(a.size() == b.size());
-    float largest = 0.0f;
-    for (size_t i = 0; i < a.size(); ++i) {
-        REQUIRE(std::isfinite(a[i]));
-        largest = std::max(largest, std::fabs(a[i] - b[i]));
-    }
-    return largest;
-}
-
 // The photo piece with one more channel, alpha rising from 0.2 to 1 across it, colour premultiplied.
 Image withAlpha(const Image& rgb) {
     std::vector<float> pixels;
@@ -86,18 +76,6 @@ std::vector<float> vulkanRows(VulkanBackend& backend, const RenderWindow& window
     return rows;
 }
 
-// The crop of `image` a tile's mesh is made of.
-Image cropOf(const Image& image, const Tile& tile) {
-    Image crop = image;
-    crop.width = tile.crop.width();
-    crop.height = tile.crop.height();
-    crop.pixels.clear();
-    for (uint32_t y = tile.crop.y0; y < tile.crop.y1; ++y)
-        crop.pixels.insert(crop.pixels.end(), image.row(y) + size_t(tile.crop.x0) * image.channels,
-                           image.row(y) + size_t(tile.crop.x1) * image.channels);
-    return crop;
-}
-
 }  // namespace
 
 TEST_CASE("vulkan fallback: blends the grid's plain surface as core's ConvolutionFallback", "[vulkan]") {
@@ -121,16 +99,16 @@ TEST_CASE("vulkan fallback: blends the grid's plain surface as core's Convolutio
             backend.addFallback();
             const std::vector<float> device = vulkanRows(backend, window, image.channels);
             const std::vector<float> core = coreBlend(image, buildGridMesh(image.width, image.height), window);
-            const float difference = maxDifference(device, core);
+            const float difference = test::compareSamples(device, core).max_difference;
             CHECK(difference <= kCoreTolerance);
             largest = std::max(largest, difference);
-            CHECK(maxDifference(device, plain) > 0.01f);  // the blend did move the surface
+            CHECK(test::compareSamples(device, plain).max_difference > 0.01f);  // the blend did move the surface
             if (image.hasAlpha())
                 for (size_t p = 0; p < device.size(); p += 4)
                     for (uint32_t k = 0; k < 3; ++k) REQUIRE(device[p + k] <= device[p + 3]);
             // prepare turns the fallback off again.
             backend.prepare(image);
-            CHECK(maxDifference(vulkanRows(backend, window, image.channels), plain) == 0.0f);
+            CHECK(test::compareSamples(vulkanRows(backend, window, image.channels), plain).max_difference == 0.0f);
         }
     WARN("largest Vulkan-core difference: " << largest);
     CHECK(backend.validationMessages() == 0);
@@ -151,7 +129,7 @@ TEST_CASE("vulkan fallback: blends the consistent surface as core's ConvolutionF
     const std::vector<float> device = vulkanRows(backend, window, image.channels);
     const Mesh mesh = buildGridMesh(image.width, image.height);
     const Surface surface = reconstructSurface(mesh, image, model);
-    const float difference = maxDifference(device, coreBlend(image, mesh, window, &surface));
+    const float difference = test::compareSamples(device, coreBlend(image, mesh, window, &surface)).max_difference;
     WARN("consistent surface: Vulkan-core difference " << difference);
     CHECK(difference <= kCoreTolerance);
     CHECK(backend.validationMessages() == 0);
@@ -169,7 +147,7 @@ TEST_CASE("vulkan fallback: the bands of a huge magnification blend as core", "[
     backend.optimize();
     backend.addFallback();
     const std::vector<float> device = vulkanRows(backend, window, image.channels);
-    CHECK(maxDifference(device, coreBlend(image, backend.mesh(), window)) <= kCoreTolerance);
+    CHECK(test::compareSamples(device, coreBlend(image, backend.mesh(), window)).max_difference <= kCoreTolerance);
     CHECK(backend.validationMessages() == 0);
 }
 
@@ -193,13 +171,13 @@ TEST_CASE("vulkan fallback: a tile's window blends as core and as the untiled im
     REQUIRE(tile.crop.y0 > 0);
     REQUIRE(tile.crop.x1 < image.width);
     REQUIRE(tile.crop.y1 < image.height);
-    const Image crop = cropOf(image, tile);
+    const Image crop = cropOf(image, tile.crop);
     const RenderWindow window{image.width, image.height, out, tile.crop.x0, tile.crop.y0,
                               tile.output.x0, tile.output.x1, tile.output.y0, tile.output.y1};
     backend.prepare(crop);
     backend.addFallback();
     const std::vector<float> device = vulkanRows(backend, window, image.channels);
-    CHECK(maxDifference(device, coreBlend(crop, buildGridMesh(crop.width, crop.height), window)) <= kCoreTolerance);
+    CHECK(test::compareSamples(device, coreBlend(crop, buildGridMesh(crop.width, crop.height), window)).max_difference <= kCoreTolerance);
     std::vector<float> untiled;
     const size_t row_floats = size_t(window.width()) * image.channels;
     for (uint32_t y = window.y_begin; y < window.y_end; ++y) {

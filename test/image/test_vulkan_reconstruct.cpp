@@ -71,16 +71,6 @@ std::vector<float> vulkanUpscale(VulkanBackend& backend, const Image& image, Out
     return rows;
 }
 
-float maxDifference(const std::vector<float>& a, const std::vector<float>& b) {
-    REQUIRE(a.size() == b.size());
-    float largest = 0.0f;
-    for (size_t i = 0; i < a.size(); ++i) {
-        REQUIRE(std::isfinite(a[i]));
-        largest = std::max(largest, std::fabs(a[i] - b[i]));
-    }
-    return largest;
-}
-
 struct Case {
     uint32_t channels;
     SampleType type;
@@ -108,7 +98,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh", "[vulk
         const std::vector<float> device = vulkanUpscale(backend, image, out, &mesh);
         const Surface surface = reconstructSurface(mesh, image, modelFor(image, out));
         const Image reference = renderImage(mesh, surface.values, out, &surface.bubbles);
-        const float difference = maxDifference(device, reference.pixels);
+        const float difference = test::compareSamples(device, reference.pixels).max_difference;
         CHECK(difference <= kCoreTolerance);
         largest = std::max(largest, difference);
     }
@@ -118,7 +108,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh", "[vulk
     Mesh mesh;
     const std::vector<float> device = vulkanUpscale(backend, photo, out, &mesh);
     const Surface surface = reconstructSurface(mesh, photo, modelFor(photo, out));
-    const float difference = maxDifference(device, renderImage(mesh, surface.values, out, &surface.bubbles).pixels);
+    const float difference = test::compareSamples(device, renderImage(mesh, surface.values, out, &surface.bubbles).pixels).max_difference;
     CHECK(difference <= kCoreTolerance);
     largest = std::max(largest, difference);
     WARN("largest Vulkan-core difference: " << largest);
@@ -140,7 +130,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference under every assumed filte
             Mesh mesh;
             const std::vector<float> device = vulkanUpscale(backend, image, out, &mesh, kernel);
             const Surface surface = reconstructSurface(mesh, image, modelFor(image, out, kernel));
-            CHECK(maxDifference(device, renderImage(mesh, surface.values, out, &surface.bubbles).pixels) <= kCoreTolerance);
+            CHECK(test::compareSamples(device, renderImage(mesh, surface.values, out, &surface.bubbles).pixels).max_difference <= kCoreTolerance);
         }
     CHECK(backend.validationMessages() == 0);
 }
