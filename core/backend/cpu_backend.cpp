@@ -81,16 +81,9 @@ public:
     void addFallback() override { fallback_.emplace(*image_); }
 
     void renderWindow(const RenderWindow& window, float* rows) override {
-        if (!fallback_) return renderInParallel(renderer(), window, image_->channels, rows);
-        const MeshRenderer& surface = renderer();
-        const size_t row_floats = size_t(window.width()) * image_->channels;
-        parallelFor(window.height(), kRowsPerRenderBand, [&](size_t begin, size_t end) {
-            RenderWindow band = window;
-            band.y_begin = window.y_begin + uint32_t(begin);
-            band.y_end = window.y_begin + uint32_t(end);
-            surface.renderWindow(band, rows + begin * row_floats);
-            fallback_->blend(band, rows + begin * row_floats);
-        });
+        BandFinish blend;
+        if (fallback_) blend = [&](const RenderWindow& band, float* band_rows) { fallback_->blend(band, band_rows); };
+        renderInParallel(renderer(), window, image_->channels, rows, blend);
     }
 
     bool handsOverSurface() const override { return true; }

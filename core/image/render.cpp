@@ -361,13 +361,15 @@ void MeshRenderer::locateSamples(OutputSize out, uint32_t first, uint32_t end, s
     for (uint32_t i = 0; i < end - first; ++i) ends[i] = total += ends[i];
 }
 
-void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows) {
+void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows,
+                      const BandFinish& finish) {
     const size_t row_floats = size_t(window.width()) * channels;
     parallelFor(window.height(), kRowsPerRenderBand, [&](size_t begin, size_t end) {
         RenderWindow band = window;
         band.y_begin = window.y_begin + uint32_t(begin);
         band.y_end = window.y_begin + uint32_t(end);
         renderer.renderWindow(band, rows + begin * row_floats);
+        if (finish) finish(band, rows + begin * row_floats);
     });
 }
 

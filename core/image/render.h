@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -109,8 +110,11 @@ private:
 };
 
 // Renders `window` with `renderer` in bands of rows on the threads of core/parallel.h: each
-// band writes only its own rows, so the result does not depend on the split.
-void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows);
+// band writes only its own rows, so the result does not depend on the split. `finish`, if
+// set, then works on each band's rows on the same thread (the convolution fallback's blend).
+using BandFinish = std::function<void(const RenderWindow& band, float* band_rows)>;
+void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, uint32_t channels, float* rows,
+                      const BandFinish& finish = {});
 
 // Output rows per band of renderInParallel: enough to amortise finding a band's triangles.
 constexpr uint32_t kRowsPerRenderBand = 16;
