@@ -7,6 +7,7 @@
 
 #include "channel_count.h"
 #include "divide_by.h"
+#include "lattice_samples.h"
 #include "parallel.h"
 #include "raster.h"
 
@@ -273,6 +274,8 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
     const uint32_t top_first = rowsOf(triangles_[first]).first, top_last = rowsOf(triangles_[end - 1]).first;
     const GridBounds grid = gridBoundsOf(window, w, top_first, std::min(h, top_last + tallest_ + 1));
     const DivideBy by_width(w);
+    // At exactly ×3 a triangle of the grid's mesh needs no scan (lattice_samples.h).
+    const bool thirds = out_w == 3 * window.input_width && out_h == 3 * window.input_height;
     for (uint32_t i = first; i < end; ++i) {
         const Triangle& t = triangles_[i];
         const uint32_t ys[3] = {by_width.quotient(t.v0), by_width.quotient(t.v1), by_width.quotient(t.v2)};
@@ -282,11 +285,17 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
         const uint32_t y_lo = grid.row_first[std::min({ys[0], ys[1], ys[2]}) - grid.row_base];
         const uint32_t y_hi = grid.row_last[std::max({ys[0], ys[1], ys[2]}) - grid.row_base];
         if (x_lo > x_hi || y_lo > y_hi) continue;
+        auto sample = visit(i);
+        if (thirds) {
+            const uint32_t x[3] = {xs[0] + cx, xs[1] + cx, xs[2] + cx}, y[3] = {ys[0] + cy, ys[1] + cy, ys[2] + cy};
+            if (visitLatticeTriangle(x, y, window.input_width, window.input_height, x_lo, x_hi + 1, y_lo, y_hi + 1, sample))
+                continue;
+        }
         for (int k = 0; k < 3; ++k) {
             px[k] = vertexCoord(xs[k] + cx, out_w);
             py[k] = vertexCoord(ys[k] + cy, out_h);
         }
-        scanTriangle(axes, px, py, x_lo, x_hi, y_lo, y_hi, visit(i));
+        scanTriangle(axes, px, py, x_lo, x_hi, y_lo, y_hi, sample);
     }
 }
 
