@@ -5,6 +5,7 @@
 
 #include "channel_count.h"
 #include "degradation.h"
+#include "divide_by.h"
 #include "parallel.h"
 #include "pixel_vector.h"
 #include "render.h"
@@ -341,16 +342,23 @@ Surface initialSurface(const Mesh& mesh, const Image& input) {
     const int w = int(input.width), h = int(input.height);
     const uint32_t c = input.channels;
     Surface surface{input, std::vector<float>(size_t(mesh.edgeCount()) * c)};
-    auto at = [&](int x, int y) { return input.pixels.data() + (size_t(clampIndex(y, h)) * w + clampIndex(x, w)) * c; };
-    parallelFor(mesh.edgeCount(), 4096, [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e) {
-            const int px = int(mesh.vertices[e].a % w), py = int(mesh.vertices[e].a / w);
-            const int qx = int(mesh.vertices[e].b % w), qy = int(mesh.vertices[e].b / w);
-            const float *p = at(px, py), *q = at(qx, qy);
-            const float *before = at(2 * px - qx, 2 * py - qy), *after = at(2 * qx - px, 2 * qy - py);
-            for (uint32_t k = 0; k < c; ++k)
-                surface.bubbles[e * c + k] = (-before[k] + 9 * p[k] + 9 * q[k] - after[k]) / 16 - (p[k] + q[k]) / 2;
-        }
+    const DivideBy by_width(std::max(input.width, 2u));  // a vertex's row without a division instruction
+    auto row = [&](uint32_t vertex) { return w == 1 ? int(vertex) : int(by_width.quotient(vertex)); };
+    withChannelCount(c, [&](auto channels) {
+        constexpr uint32_t cc = decltype(channels)::value;
+        auto at = [&](int x, int y) {
+            return loadPixel<cc>(input.pixels.data() + (size_t(clampIndex(y, h)) * w + clampIndex(x, w)) * cc);
+        };
+        parallelFor(mesh.edgeCount(), 4096, [&](size_t begin, size_t end) {
+            for (size_t e = begin; e < end; ++e) {
+                const int py = row(mesh.vertices[e].a), px = int(mesh.vertices[e].a) - py * w;
+                const int qy = row(mesh.vertices[e].b), qx = int(mesh.vertices[e].b) - qy * w;
+                const PixelVector<cc> p = at(px, py), q = at(qx, qy);
+                const PixelVector<cc> before = at(2 * px - qx, 2 * py - qy), after = at(2 * qx - px, 2 * qy - py);
+                storePixel<cc>(surface.bubbles.data() + e * cc,
+                               (-before + 9.0f * p + 9.0f * q - after) / 16.0f - (p + q) / 2.0f);
+            }
+        });
     });
     return surface;
 }
