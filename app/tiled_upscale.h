@@ -40,7 +40,7 @@ struct TileOptions {
     uint32_t tile = 0;  // tile side in input pixels; 0 = automatic: tiles only when the input does not fit
     uint32_t overlap = kDefaultOverlap;  // 0 counts as 1
     bool reconstruct = false;            // each tile's surface: consistent (core/image/reconstruct.h) or plain
-    AssumedKernel kernel = AssumedKernel::footprint;  // the consistent surface's assumed downscale filter
+    AssumedKernel kernel = AssumedKernel::mixed;  // the consistent surface's assumed downscale filter
     bool fallback = false;               // blend towards Lanczos3 where contrast is low (core/image/convolution_fallback.h)
     StitchedMesh* mesh = nullptr;        // if set, gets every tile's optimised mesh (of the strips that succeed)
 };

@@ -23,7 +23,7 @@ struct DdtOutputs {
 // fallback (core/image/convolution_fallback.h) if `fallback`. A backend whose reconstruct
 // throws UserError leaves `consistent` and `fallback` empty with the message.
 DdtOutputs magnifyWithDdt(ddt::Backend& backend, const ddt::Image& low, uint32_t width, uint32_t height, bool plain,
-                          bool consistent, ddt::AssumedKernel assume = ddt::AssumedKernel::footprint,
+                          bool consistent, ddt::AssumedKernel assume = ddt::AssumedKernel::mixed,
                           bool fallback = false);
 
 // "" when `method`'s backend can reconstruct (tried on a small image), else the reason.

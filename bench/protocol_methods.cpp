@@ -24,10 +24,10 @@ Upscaler filter(const char* name, const char* label) {
 }
 
 Upscaler ddtColumn(const DdtMethod& method, const std::string& label, bool consistent,
-                   ddt::AssumedKernel assume = ddt::AssumedKernel::footprint, bool fallback = false) {
+                   ddt::AssumedKernel assume = ddt::AssumedKernel::mixed, bool fallback = false) {
     Upscaler u;
     u.key = method.key + (consistent ? "+consistent" : "");
-    if (assume != ddt::AssumedKernel::footprint) u.key += std::string("/assume-") + ddt::assumedKernelName(assume);
+    if (assume != ddt::AssumedKernel::mixed) u.key += std::string("/assume-") + ddt::assumedKernelName(assume);
     if (fallback) u.key += "+fallback";
     u.assume = assume;
     u.fallback = fallback;
@@ -84,11 +84,13 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
         ddtColumn(gpu, "GPU DDT", false),
         ddtColumn(gpu, "GPU DDT consistent", true),
     };
-    for (ddt::AssumedKernel kernel : {ddt::AssumedKernel::box, ddt::AssumedKernel::bicubic, ddt::AssumedKernel::lanczos3})
+    for (ddt::AssumedKernel kernel : {ddt::AssumedKernel::footprint, ddt::AssumedKernel::box, ddt::AssumedKernel::bicubic,
+                                      ddt::AssumedKernel::lanczos3})
         setup.upscalers.push_back(ddtColumn(cpu, std::string("CPU consistent, ") + ddt::assumedKernelName(kernel), true, kernel));
-    // The convolution fallback (--fallback lanczos3) on the default surface and on the bicubic
-    // assumption, the pair its weights were chosen for.
-    setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent + fallback", true, ddt::AssumedKernel::footprint, true));
+    // The convolution fallback (--fallback lanczos3) on the default surface (the default run)
+    // and on the two assumptions `mixed` mixes.
+    setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent + fallback", true, ddt::AssumedKernel::mixed, true));
+    setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent, footprint + fallback", true, ddt::AssumedKernel::footprint, true));
     setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent, bicubic + fallback", true, ddt::AssumedKernel::bicubic, true));
     return setup;
 }

@@ -23,7 +23,7 @@ struct Upscaler {
     std::string oiio_filter;  // OiioFilter
     DdtMethod ddt;            // Ddt
     bool consistent = false;  // Ddt: the consistent reconstruction instead of the plain surface
-    ddt::AssumedKernel assume = ddt::AssumedKernel::footprint;  // Ddt, consistent: the filter it assumes
+    ddt::AssumedKernel assume = ddt::AssumedKernel::mixed;  // Ddt, consistent: the filter it assumes
     bool fallback = false;  // Ddt, consistent: blended towards Lanczos3 where contrast is low (--fallback lanczos3)
     std::string unavailable;  // "" if it runs here
 };

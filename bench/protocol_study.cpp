@@ -126,11 +126,12 @@ bool runProtocolStudy(BenchResults& results, const std::vector<StudyImage>& imag
                 const ddt::ByteImage original_bytes = ddt::toBytes(original), low_bytes = ddt::toBytes(low);
                 for (const auto& [key, output] : outputs) r.scores[key] = score(original_bytes, low_bytes, output);
 
-                // The peers, ddtup's default (the consistent surface), its plain surface, the truth.
+                // The peers, ddtup's default (the consistent surface with the fallback), its plain
+                // surface, the truth.
                 const std::vector<CropPanel> panels = {{"Lanczos3", find(outputs, "filter/lanczos3")},
                                                        {"Nohalo", find(outputs, "vips/nohalo")},
                                                        {"ICBI", find(outputs, "icbi")},
-                                                       {"ddtup (consistent)", find(outputs, "cpu+consistent")},
+                                                       {"ddtup (default)", find(outputs, "cpu+consistent+fallback")},
                                                        {"ddtup plain", find(outputs, "cpu")},
                                                        {"Original", &original}};
                 const std::string strip = strips_dir + "/" + protocol.key + "_" + image.set + "_" + image.name + "_x" +

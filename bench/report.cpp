@@ -121,8 +121,8 @@ std::string protocolSection(const BenchResults& r) {
     text += "### Quality per protocol, factor and set\n\n" + toMarkdown(protocolQualityTable(r)) +
             "\n`table3_protocols.csv`\n\n";
     text +=
-        "Crops: `crops/protocols/PROTOCOL_SET_IMAGE_xFACTOR.png`, left to right original, Lanczos3, CPU DDT and CPU "
-        "DDT consistent.\n\n";
+        "Crops: `crops/protocols/PROTOCOL_SET_IMAGE_xFACTOR.png`, left to right Lanczos3, Nohalo, ICBI, ddtup's "
+        "default (CPU), CPU DDT plain and the original.\n\n";
     return text;
 }
 

@@ -10,13 +10,14 @@ constexpr double kPi = 3.14159265358979323846;
 
 double sinc(double x) { return x == 0.0 ? 1.0 : std::sin(kPi * x) / (kPi * x); }
 
-const AssumedKernel kAll[] = {AssumedKernel::footprint, AssumedKernel::box, AssumedKernel::bicubic,
-                              AssumedKernel::lanczos3};
+const AssumedKernel kAll[] = {AssumedKernel::mixed, AssumedKernel::footprint, AssumedKernel::box,
+                              AssumedKernel::bicubic, AssumedKernel::lanczos3};
 
 }  // namespace
 
 const char* assumedKernelName(AssumedKernel kernel) {
     switch (kernel) {
+    case AssumedKernel::mixed: return "mixed";
     case AssumedKernel::footprint: return "footprint";
     case AssumedKernel::box: return "box";
     case AssumedKernel::bicubic: return "bicubic";
@@ -49,6 +50,7 @@ double kernelWeight(AssumedKernel kernel, double x) {
         return 0.0;
     }
     case AssumedKernel::lanczos3: return a < 3.0 ? sinc(x) * sinc(x / 3.0) : 0.0;
+    case AssumedKernel::mixed: break;  // not one kernel (degradationTaps mixes two)
     }
     return 0.0;
 }
@@ -59,6 +61,7 @@ double kernelSupport(AssumedKernel kernel) {
     case AssumedKernel::box: return 0.5;
     case AssumedKernel::bicubic: return 2.0;
     case AssumedKernel::lanczos3: return 3.0;
+    case AssumedKernel::mixed: break;
     }
     return 0.0;
 }

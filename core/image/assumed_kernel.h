@@ -19,21 +19,31 @@ namespace ddt {
 constexpr double kFootprintSigma = 0.4;
 
 enum class AssumedKernel {
-    footprint,  // the generic pixel footprint: a Gaussian of 0.4 input pixels (the default)
+    mixed,      // an unknown downscale (the default): the footprint and bicubic, kMixedFootprintShare of the footprint
+    footprint,  // the generic pixel footprint of a camera or an averaging resize: a Gaussian of 0.4 input pixels
     box,        // area averaging: each input pixel the mean of its footprint
     bicubic,    // Keys' cubic with a = −0.5 (Catmull–Rom), photo editors' "bicubic"
     lanczos3,   // sinc windowed by sinc over ±3 input pixels
 };
 
-// "footprint", "box", "bicubic", "lanczos3", and back; nullopt for any other name.
+// The footprint's share of `mixed`, whose taps are this much of the footprint's and the rest
+// of bicubic's (core/image/reconstruct.h). Chosen by the lowest row on held-out photographs,
+// half a (bench/README.md, "Mixed assumption"): against the footprint alone, with the
+// fallback, input made by one Lanczos3 shrink gains 0.07–0.13 dB and by a bicubic one
+// 0.03–0.06, by bilinear halvings or a camera loses 0.04–0.09; the lowest row rose from
+// +0.02 to +0.12 dB over Lanczos3 (0.7: +0.11).
+constexpr double kMixedFootprintShare = 0.5;
+
+// "mixed", "footprint", "box", "bicubic", "lanczos3", and back; nullopt for any other name.
 const char* assumedKernelName(AssumedKernel kernel);
 std::optional<AssumedKernel> parseAssumedKernel(const std::string& name);
 // The names, comma-separated, for messages and help.
 std::string assumedKernelNames();
 
-// The kernel's weight at distance x in input pixels, at its full width (before normalising).
+// The kernel's weight at distance x in input pixels, at its full width (before normalising),
+// and how far from its centre it reaches; `mixed` is a mixture of two kernels' normalised
+// taps, not one kernel: 0 for both.
 double kernelWeight(AssumedKernel kernel, double x);
-// How far from its centre the kernel reaches, in input pixels, at its full width.
 double kernelSupport(AssumedKernel kernel);
 
 }  // namespace ddt

@@ -22,9 +22,28 @@ uint32_t trianglesPerRun(size_t triangles) {
     return uint32_t(std::clamp<size_t>(triangles / (4 * threadCount()), 4096, 65536));
 }
 
+// For `mixed`, the footprint's width (its bicubic part is at width 1, as a named filter's).
 double widthFor(AssumedKernel kernel, double scale) {
     if (scale <= 1.0) return 0.0;
-    return kernel == AssumedKernel::footprint ? std::sqrt(1.0 - 1.0 / (scale * scale)) : 1.0;
+    const bool footprint = kernel == AssumedKernel::footprint || kernel == AssumedKernel::mixed;
+    return footprint ? std::sqrt(1.0 - 1.0 / (scale * scale)) : 1.0;
+}
+
+// One kernel's taps at a positive width (degradationTaps).
+std::vector<float> kernelTaps(AssumedKernel kernel, double width) {
+    const int radius = int(std::ceil(kernelSupport(kernel) * width * kSupersampling));
+    std::vector<double> weights;
+    for (int t = -radius; t <= radius; ++t) weights.push_back(kernelWeight(kernel, double(t) / kSupersampling / width));
+    // Zero taps at the ends (a kernel's support falling on a tap) only cost work.
+    while (weights.size() > 1 && weights.front() == 0.0) {
+        weights.erase(weights.begin());
+        weights.pop_back();
+    }
+    double total = 0.0;
+    for (double w : weights) total += w;
+    std::vector<float> taps(weights.size());
+    for (size_t i = 0; i < taps.size(); ++i) taps[i] = float(weights[i] / total);
+    return taps;
 }
 
 int clampIndex(int i, int size) { return std::clamp(i, 0, size - 1); }
@@ -323,18 +342,18 @@ DegradationModel degradationFor(double scale_x, double scale_y, AssumedKernel ke
 
 std::vector<float> degradationTaps(AssumedKernel kernel, double width) {
     if (width == 0.0) return {1.0f};
-    const int radius = int(std::ceil(kernelSupport(kernel) * width * kSupersampling));
-    std::vector<double> weights;
-    for (int t = -radius; t <= radius; ++t) weights.push_back(kernelWeight(kernel, double(t) / kSupersampling / width));
-    // Zero taps at the ends (a kernel's support falling on a tap) only cost work.
-    while (weights.size() > 1 && weights.front() == 0.0) {
-        weights.erase(weights.begin());
-        weights.pop_back();
-    }
-    double total = 0.0;
-    for (double w : weights) total += w;
-    std::vector<float> taps(weights.size());
-    for (size_t i = 0; i < taps.size(); ++i) taps[i] = float(weights[i] / total);
+    if (kernel != AssumedKernel::mixed) return kernelTaps(kernel, width);
+    // Both normalised tap sets centred on one another, the shorter padded with zeros.
+    const std::vector<float> footprint = kernelTaps(AssumedKernel::footprint, width),
+                             bicubic = kernelTaps(AssumedKernel::bicubic, 1.0);
+    const size_t size = std::max(footprint.size(), bicubic.size());
+    auto tap = [size](const std::vector<float>& taps, size_t i) {
+        const size_t offset = (size - taps.size()) / 2;
+        return i >= offset && i - offset < taps.size() ? taps[i - offset] : 0.0f;
+    };
+    std::vector<float> taps(size);
+    for (size_t i = 0; i < size; ++i)
+        taps[i] = float(kMixedFootprintShare * tap(footprint, i) + (1.0 - kMixedFootprintShare) * tap(bicubic, i));
     return taps;
 }
 

@@ -32,12 +32,12 @@
 //   lower than no margin (0.01–0.03 levels).
 //
 // The degradation model D, in input-pixel units: the assumed downscale filter K
-// (core/image/assumed_kernel.h, `--assume`; by default a generic footprint) on the supersampling.
+// (core/image/assumed_kernel.h, `--assume`; by default `mixed`, below) on the supersampling.
 //   D(S)(x) = Σ_d g(d) S(x + d), d on a fixed kSupersampling × kSupersampling grid per input
 //   pixel (offsets −1/3, 0, +1/3), g(d) = K(d / w) separable, truncated at K's support,
 //   normalised, with a width w per axis; the samples near the border are clamped into the
 //   image. At s = 1, w = 0: D is the identity, the residual is zero and the output is the input.
-// - The footprint, the default, is a Gaussian of standard deviation kFootprintSigma = 0.4 input
+// - The footprint is a Gaussian of standard deviation kFootprintSigma = 0.4 input
 //   pixels as s → ∞: a box of one pixel (area averaging) has σ = 0.29, repeated bilinear
 //   halvings about 0.45, and a camera's pixel aperture with its optics lies between. Its
 //   w(s) = √(1 − 1/s²) is the spread of s point samples spaced 1/s across one input pixel,
@@ -46,6 +46,11 @@
 // - A named resize filter (box, bicubic, lanczos3) has w = 1 for every s > 1: a resize to 1/s
 //   stretches the filter to the small image's pixels, whatever s. (The footprint's w(s) on
 //   them scored 0.1–0.4 dB lower at ×2 on the outside photographs, bench/README.md.)
+// - `mixed`, the default, is for an input whose downscale is unknown: its taps are
+//   kMixedFootprintShare of the footprint's at w(s) and the rest of bicubic's at w = 1, each
+//   normalised, centred on one another. One reconstruction under this compromise scored as
+//   well on held-out photographs as averaging the surfaces of the two assumptions, which
+//   costs two (bench/README.md, "Mixed assumption").
 // - The surface is evaluated on the fixed supersampling whatever the output size: the final
 //   render at the requested size is the only step whose cost grows with the scale.
 #pragma once
@@ -66,12 +71,12 @@ constexpr uint32_t kSupersampling = 3;        // odd, so each pixel's centre is 
 
 // The degradation per axis for realised factors sx, sy (output / input size).
 struct DegradationModel {
-    AssumedKernel kernel = AssumedKernel::footprint;
+    AssumedKernel kernel = AssumedKernel::mixed;
     double width_x = 0.0, width_y = 0.0;  // w per axis, a fraction of K's full width; 0: no blur
 
     bool identity() const { return width_x == 0.0 && width_y == 0.0; }
 };
-DegradationModel degradationFor(double scale_x, double scale_y, AssumedKernel kernel = AssumedKernel::footprint);
+DegradationModel degradationFor(double scale_x, double scale_y, AssumedKernel kernel = AssumedKernel::mixed);
 
 // Whether stored values of the sample type are limited to [0, 1] (8 and 16 bits), so that the
 // reconstruction's values are too.

@@ -54,10 +54,10 @@ TEST_CASE("cli: an unknown --reconstruct mode is refused with one line") {
     CHECK(folder.names() == before);
 }
 
-TEST_CASE("cli: --assume sets the consistent surface's filter: footprint by default, each named filter its own picture") {
+TEST_CASE("cli: --assume sets the consistent surface's filter: mixed by default, each filter its own picture") {
     TempFolder folder;
     const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
-    const std::vector<std::string> kernels = {"", "footprint", "box", "bicubic", "lanczos3"};
+    const std::vector<std::string> kernels = {"", "mixed", "footprint", "box", "bicubic", "lanczos3"};
     std::vector<ddt::Image> outputs;
     for (const std::string& kernel : kernels) {
         const std::string output = folder / ("out-" + (kernel.empty() ? "default" : kernel) + ".png");

@@ -54,7 +54,8 @@ std::vector<double> filterTaps(AssumedKernel kernel) {
         case AssumedKernel::bicubic:  // Keys, a = −0.5
             return a < 1 ? 1.5 * a * a * a - 2.5 * a * a + 1 : a < 2 ? -0.5 * a * a * a + 2.5 * a * a - 4 * a + 2 : 0.0;
         case AssumedKernel::lanczos3: return a < 3 ? sinc(x) * sinc(x / 3) : 0.0;
-        case AssumedKernel::footprint: break;
+        case AssumedKernel::footprint:
+        case AssumedKernel::mixed: break;
         }
         return 0.0;
     };
@@ -138,7 +139,7 @@ TEST_CASE("reconstruct: on a smooth input the output, degraded by the model, giv
     const Mesh mesh = optimisedMesh(input);
     for (double scale : {2.0, 4.0, 8.0}) {
         const Residual consistent = interiorResidualOf(
-            input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(scale, scale)), scale));
+            input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(scale, scale, AssumedKernel::footprint)), scale));
         CAPTURE(scale, consistent.rms, consistent.largest);
         // The stated tolerance: half a level of 8 bits (the input's quantisation tolerance:
         // residuals within it are not chased) plus a quarter level that three SART steps may
@@ -159,16 +160,52 @@ TEST_CASE("reconstruct: a named resize filter's taps are the filter's weights on
         CHECK(degradationFor(1.0, 1.0, kernel).identity());
     }
     // The footprint's stay the Gaussian of σ = 0.4·√(1 − 1/s²).
-    const std::vector<float> footprint = degradationTaps(AssumedKernel::footprint, degradationFor(2.0, 2.0).width_x);
+    const std::vector<float> footprint =
+        degradationTaps(AssumedKernel::footprint, degradationFor(2.0, 2.0, AssumedKernel::footprint).width_x);
     const std::vector<double> expected = modelTaps(2.0);
     REQUIRE(footprint.size() == expected.size());
     for (size_t i = 0; i < footprint.size(); ++i) CHECK(footprint[i] == Approx(expected[i]).margin(1e-7));
 }
 
+// `taps` centred in `size` taps, zeros on either side.
+std::vector<double> padded(const std::vector<double>& taps, size_t size) {
+    std::vector<double> result(size, 0.0);
+    for (size_t i = 0; i < taps.size(); ++i) result[(size - taps.size()) / 2 + i] = taps[i];
+    return result;
+}
+
+TEST_CASE("reconstruct: mixed's taps are half the footprint's and half bicubic's at full width, centred") {
+    for (double scale : {1.25, 2.0, 8.0}) {
+        const std::vector<double> footprint = modelTaps(scale), bicubic = filterTaps(AssumedKernel::bicubic);
+        const size_t size = std::max(footprint.size(), bicubic.size());
+        const std::vector<double> a = padded(footprint, size), b = padded(bicubic, size);
+        const std::vector<float> taps = degradationTaps(AssumedKernel::mixed, degradationFor(scale, scale).width_x);
+        CAPTURE(scale);
+        REQUIRE(taps.size() == size);
+        for (size_t i = 0; i < size; ++i) CHECK(taps[i] == Approx(0.5 * a[i] + 0.5 * b[i]).margin(1e-7));  // float rounding
+    }
+}
+
+TEST_CASE("reconstruct: the mixed surface lies between the two it mixes") {
+    // Degraded by the footprint it is closer to the input than bicubic's surface; by bicubic,
+    // closer than the footprint's.
+    const Image input = wavyImage(2.0);
+    const Mesh mesh = optimisedMesh(input);
+    auto surface = [&](AssumedKernel kernel) { return reconstructSurface(mesh, input, degradationFor(4.0, 4.0, kernel)); };
+    const Surface mixed = surface(AssumedKernel::mixed), footprint = surface(AssumedKernel::footprint),
+                  bicubic = surface(AssumedKernel::bicubic);
+    const std::vector<double> footprint_taps = modelTaps(4.0), bicubic_taps = filterTaps(AssumedKernel::bicubic);
+    auto rms = [&](const Surface& s, const std::vector<double>& taps) {
+        return interiorResidualOf(input, degraded(mesh, s, taps)).rms;
+    };
+    CHECK(rms(mixed, footprint_taps) < rms(bicubic, footprint_taps));
+    CHECK(rms(mixed, bicubic_taps) < rms(footprint, bicubic_taps));
+}
+
 TEST_CASE("reconstruct: the surface assuming a filter is more consistent with that filter than the footprint's") {
     const Image input = wavyImage(2.0);  // faster waves, where the filters differ more
     const Mesh mesh = optimisedMesh(input);
-    const Surface footprint = reconstructSurface(mesh, input, degradationFor(4.0, 4.0));
+    const Surface footprint = reconstructSurface(mesh, input, degradationFor(4.0, 4.0, AssumedKernel::footprint));
     for (AssumedKernel kernel : {AssumedKernel::box, AssumedKernel::bicubic, AssumedKernel::lanczos3}) {
         const std::vector<double> taps = filterTaps(kernel);
         const Residual right =
@@ -188,7 +225,7 @@ TEST_CASE("reconstruct: on a wavy input the residual drops well below plain DDT'
     for (double scale : {2.0, 4.0, 8.0}) {
         const Residual before = interiorResidualOf(input, degraded(mesh, plain, scale));
         const Residual after = interiorResidualOf(
-            input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(scale, scale)), scale));
+            input, degraded(mesh, reconstructSurface(mesh, input, degradationFor(scale, scale, AssumedKernel::footprint)), scale));
         CAPTURE(scale, before.rms, after.rms);
         CHECK(after.rms < before.rms / 2);  // measured: 2.9× to 3.4× lower
     }
@@ -229,17 +266,22 @@ TEST_CASE("reconstruct: a step edge keeps its plateaus and never overshoots them
         }
 }
 
-TEST_CASE("reconstruct: s = 1 is the identity, and the surface moves continuously away from it") {
+TEST_CASE("reconstruct: s = 1 is the identity, and the footprint's surface moves continuously away from it") {
     const Image input = test::photoCrop();
     const Mesh mesh = optimisedMesh(input);
-    CHECK(degradationFor(1.0, 1.0).identity());
-    const Surface at_one = reconstructSurface(mesh, input, degradationFor(1.0, 1.0));
-    CHECK(test::samePixels(at_one.values.pixels, input.pixels));
-    const Image out = renderImage(mesh, at_one.values, {input.width, input.height}, &at_one.bubbles);
-    CHECK(test::samePixels(out.pixels, input.pixels));
+    for (AssumedKernel kernel : {AssumedKernel::mixed, AssumedKernel::footprint, AssumedKernel::bicubic}) {
+        CAPTURE(assumedKernelName(kernel));
+        CHECK(degradationFor(1.0, 1.0, kernel).identity());
+        const Surface at_one = reconstructSurface(mesh, input, degradationFor(1.0, 1.0, kernel));
+        CHECK(test::samePixels(at_one.values.pixels, input.pixels));
+        const Image out = renderImage(mesh, at_one.values, {input.width, input.height}, &at_one.bubbles);
+        CHECK(test::samePixels(out.pixels, input.pixels));
+    }
 
+    // The footprint's width grows from 0; a resize filter's (and mixed's bicubic part) is
+    // whole at every s > 1, as a resize by any factor stretches it to the small image's pixels.
     auto distance = [&](double scale) {
-        const Surface s = reconstructSurface(mesh, input, degradationFor(scale, scale));
+        const Surface s = reconstructSurface(mesh, input, degradationFor(scale, scale, AssumedKernel::footprint));
         float largest = 0.0f;
         for (size_t i = 0; i < input.pixels.size(); ++i)
             largest = std::max(largest, std::abs(s.values.pixels[i] - input.pixels[i]));

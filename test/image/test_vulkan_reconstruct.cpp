@@ -117,11 +117,11 @@ TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh", "[vulk
 
 TEST_CASE("vulkan reconstruct: equals core's reference under every assumed filter", "[vulkan]") {
     // The named filters' taps are wider than the footprint's and, for bicubic and lanczos3,
-    // negative in their lobes.
+    // negative in their lobes; mixed's are two kernels' at once.
     VulkanBackend backend = makeBackend();
     const std::vector<Case> cases = {{3, SampleType::UInt8, 2.0, 2.0}, {1, SampleType::Float, 3.7, 2.5}};
     uint32_t seed = 40;
-    for (AssumedKernel kernel : {AssumedKernel::box, AssumedKernel::bicubic, AssumedKernel::lanczos3})
+    for (AssumedKernel kernel : {AssumedKernel::box, AssumedKernel::bicubic, AssumedKernel::lanczos3, AssumedKernel::mixed})
         for (const Case& c : cases) {
             const Image image = sampleImage(23, 17, c.channels, c.type, seed++);
             const OutputSize out{uint32_t(std::lround(c.scale_x * image.width)),
