@@ -361,8 +361,8 @@ Surface initialSurface(const Mesh& mesh, const Image& input) {
     const int w = int(input.width), h = int(input.height);
     const uint32_t c = input.channels;
     Surface surface{input, std::vector<float>(size_t(mesh.edgeCount()) * c)};
-    const DivideBy by_width(std::max(input.width, 2u));  // a vertex's row without a division instruction
-    auto row = [&](uint32_t vertex) { return w == 1 ? int(vertex) : int(by_width.quotient(vertex)); };
+    const DivideBy by_width(input.width);  // a vertex's row without a division instruction (a grid is ≥ 2 wide)
+    auto row = [&](uint32_t vertex) { return int(by_width.quotient(vertex)); };
     withChannelCount(c, [&](auto channels) {
         constexpr uint32_t cc = decltype(channels)::value;
         auto at = [&](int x, int y) {
