@@ -77,6 +77,12 @@ uint32_t flipRandomEdges(Mesh& mesh, std::mt19937& rng, uint32_t count) {
     return done;
 }
 
+Mesh scrambledGridMesh(uint32_t width, uint32_t height, std::mt19937& rng) {
+    Mesh mesh = buildGridMesh(width, height);
+    flipRandomEdges(mesh, rng, 4 * width * height);
+    return mesh;
+}
+
 Mesh movedMesh(uint32_t width, uint32_t height, std::mt19937& rng) {
     Mesh mesh = buildGridMesh(width, height);
     flipRandomEdges(mesh, rng, 4 * width * height);

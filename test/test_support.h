@@ -45,6 +45,10 @@ bool quadIsStrictlyConvex(const Mesh& mesh, uint32_t e);
 // Flips `count` random edges whose quadrilateral is strictly convex; returns the flips done.
 uint32_t flipRandomEdges(Mesh& mesh, std::mt19937& rng, uint32_t count);
 
+// The width × height grid mesh after 4 · width · height random convex flips: long, thin
+// triangles of every direction, each still of area 1/2 (every pixel centre stays a vertex).
+Mesh scrambledGridMesh(uint32_t width, uint32_t height, std::mt19937& rng);
+
 // A width × height grid mesh scrambled by random convex flips whose vertices then move off
 // the pixel centres (explicit positions): interior ones by up to 0.45 pixels along each axis,
 // border ones along their side, corners not at all; each move kept only if every triangle

@@ -12,14 +12,6 @@
 
 namespace {
 
-// A grid mesh after random convex flips: long, thin triangles of every direction, each still
-// of area 1/2.
-ddt::Mesh flippedGrid(uint32_t width, uint32_t height, std::mt19937& rng) {
-    ddt::Mesh mesh = ddt::buildGridMesh(width, height);
-    ddt::test::flipRandomEdges(mesh, rng, 4 * width * height);
-    return mesh;
-}
-
 // What a triangle owns at ×3 of a width × height input whose crop (cx, cy) the mesh covers.
 struct Owned {
     uint32_t x, y;      // output column and row
@@ -71,7 +63,7 @@ TEST_CASE("lattice samples: at x3 each triangle of a grid mesh holds the samples
     std::mt19937 rng(7);
     for (auto [w, h] : {std::pair{2u, 2u}, {5u, 3u}, {3u, 7u}, {13u, 9u}, {16u, 16u}}) {
         for (bool flipped : {false, true}) {
-            const ddt::Mesh mesh = flipped ? flippedGrid(w, h, rng) : ddt::buildGridMesh(w, h);
+            const ddt::Mesh mesh = flipped ? ddt::test::scrambledGridMesh(w, h, rng) : ddt::buildGridMesh(w, h);
             const ddt::Image image = ddt::test::randomImage(rng, w, h, 1);
             const ddt::MeshRenderer renderer(mesh, image);
             const uint32_t triangles = uint32_t(renderer.triangles().size());
@@ -106,7 +98,7 @@ TEST_CASE("lattice samples: a tile's mesh renders a band at x3 with the tie rule
     // band cuts through triangles.
     std::mt19937 rng(11);
     const uint32_t in_w = 20, in_h = 15, cx = 6, cy = 4, w = 9, h = 8;
-    const ddt::Mesh mesh = flippedGrid(w, h, rng);
+    const ddt::Mesh mesh = ddt::test::scrambledGridMesh(w, h, rng);
     const ddt::Image crop = ddt::test::randomImage(rng, w, h, 1);
     ddt::RenderWindow window;
     window.input_width = in_w;

@@ -22,14 +22,6 @@ static std::ostream& operator<<(std::ostream& out, OutputSize s) { return out <<
 
 namespace {
 
-// A mesh that is not the grid: random convex flips, so the renderer meets long and thin
-// triangles and all edge directions.
-ddt::Mesh scrambledMesh(uint32_t width, uint32_t height, std::mt19937& rng) {
-    ddt::Mesh mesh = ddt::buildGridMesh(width, height);
-    ddt::test::flipRandomEdges(mesh, rng, 4 * width * height);
-    return mesh;
-}
-
 // Sample coordinate of output index i in units of 1/(2·out): u = (i + 0.5)·in/out − 0.5,
 // clamped into [0, in − 1], times 2·out (written here from render.h's description).
 int64_t sampleUnits(uint32_t i, uint32_t in, uint32_t out) {
@@ -134,7 +126,7 @@ TEST_CASE("render: scale 1 reproduces the input exactly") {
             ddt::Mesh optimized = grid;
             ddt::optimizeSerial(optimized, ddt::costFieldOf(image));
             CHECK(ddt::test::samePixels(ddt::renderImage(optimized, image, {w, h}).pixels, image.pixels));
-            CHECK(ddt::test::samePixels(ddt::renderImage(scrambledMesh(w, h, rng), image, {w, h}).pixels, image.pixels));
+            CHECK(ddt::test::samePixels(ddt::renderImage(ddt::test::scrambledGridMesh(w, h, rng), image, {w, h}).pixels, image.pixels));
         }
     }
 }
@@ -154,7 +146,7 @@ TEST_CASE("render: every output pixel belongs to exactly one triangle and is wri
         ddt::Image image = ddt::test::randomImage(rng, c.w, c.h, 3);
         for (int variant = 0; variant < 3; ++variant) {
             const ddt::Mesh mesh = variant == 0   ? ddt::buildGridMesh(c.w, c.h)
-                                   : variant == 1 ? scrambledMesh(c.w, c.h, rng)
+                                   : variant == 1 ? ddt::test::scrambledGridMesh(c.w, c.h, rng)
                                                   : ddt::test::movedMesh(c.w, c.h, rng);
             const OutputSize out{c.out_w, c.out_h};
             const char* const kinds[] = {"grid", "scrambled", "moved"};
@@ -172,7 +164,7 @@ TEST_CASE("render: rendering in bands equals rendering at once, bit for bit") {
     std::mt19937 rng(99);
     for (auto [w, h, s] : {std::tuple{5u, 3u, 2.5}, {13u, 9u, 7.3}, {8u, 8u, 3.0}, {2u, 6u, 4.0}}) {
         ddt::Image image = ddt::test::randomImage(rng, w, h, 4);
-        for (const ddt::Mesh& mesh : {scrambledMesh(w, h, rng), ddt::test::movedMesh(w, h, rng)}) {
+        for (const ddt::Mesh& mesh : {ddt::test::scrambledGridMesh(w, h, rng), ddt::test::movedMesh(w, h, rng)}) {
         const OutputSize out = ddt::scaledOutputSize(w, h, s);
         const std::vector<float> whole = renderInto(mesh, image, out, 0.0f);
         const ddt::MeshRenderer renderer(mesh, image);
@@ -199,7 +191,7 @@ TEST_CASE("render: a linear image renders to the exact linear function, at pixel
     const double planes[3][3] = {{0.125, 1.0 / 64, 1.0 / 32}, {0.75, -1.0 / 32, 1.0 / 128}, {0.5, 0.0, -1.0 / 16}};
     for (auto [w, h, s] : {std::tuple{9u, 7u, 2.5}, {5u, 8u, 7.3}, {4u, 4u, 8.0}}) {
         for (bool moved : {false, true}) {
-            const ddt::Mesh mesh = moved ? ddt::test::movedMesh(w, h, rng) : scrambledMesh(w, h, rng);
+            const ddt::Mesh mesh = moved ? ddt::test::movedMesh(w, h, rng) : ddt::test::scrambledGridMesh(w, h, rng);
             REQUIRE(ddt::checkMesh(mesh).empty());
             std::vector<float> pixels;
             for (uint32_t v = 0; v < w * h; ++v) {
@@ -257,7 +249,7 @@ TEST_CASE("render: values stay within the input's range per channel") {
         for (int round = 0; round < 4; ++round) {
             const uint32_t w = 3 + round * 3, h = 2 + round * 2;
             ddt::Image image = ddt::test::randomImage(rng, w, h, channels, round % 2 ? 4 : 0);
-            ddt::Mesh mesh = scrambledMesh(w, h, rng);
+            ddt::Mesh mesh = ddt::test::scrambledGridMesh(w, h, rng);
             if (round == 3) {
                 mesh = ddt::buildGridMesh(w, h);
                 ddt::optimizeSerial(mesh, ddt::costFieldOf(image));
