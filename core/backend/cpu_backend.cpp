@@ -68,12 +68,12 @@ public:
 
     void reconstruct(const DegradationModel& model) override {
         requireMesh();
-        // One set of triangle tables locates the supersamples, then renders the result.
+        // One set of triangle tables serves the reconstruction, then renders the result.
         MeshRenderer locator = renderer_ ? MeshRenderer(std::move(*renderer_), *image_) : MeshRenderer(mesh_, *image_);
         renderer_.reset();
         surface_.reset();
         // The reconstruction is the mesh's last use: rendering reads the triangle tables.
-        surface_ = reconstructSurface(std::move(mesh_), *image_, model, locator);
+        surface_ = reconstructSurface(std::move(mesh_), *image_, model, locator.triangles());
         mesh_released_ = true;
         renderer_.emplace(std::move(locator), surface_->values, &surface_->bubbles);
     }

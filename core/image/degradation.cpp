@@ -111,16 +111,15 @@ Degradation::Degradation(uint32_t width, uint32_t height, uint32_t channels, con
       transpose_rows_(widestSpan(transpose_y_)) {}
 
 // Each output row is done by one task from its own copy of the row between the two passes.
-void Degradation::apply(const std::vector<float>& sub, std::vector<float>& degraded) {
+void Degradation::apply(const float* sub, float* degraded) const {
     const size_t sub_row = size_t(sub_w_) * c_;
-    degraded.resize(size_t(w_) * h_ * c_);
     withChannelCount(c_, [&](auto channels) {
         constexpr uint32_t c = decltype(channels)::value;
         parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
             std::vector<float> between(sub_row);
             for (size_t y = begin; y < end; ++y) {
-                gatherRow(apply_y_, uint32_t(y), [&](uint32_t row) { return sub.data() + row * sub_row; }, between.data(), sub_row);
-                gatherColumns<c>(apply_x_, between.data(), degraded.data() + y * w_ * c);
+                gatherRow(apply_y_, uint32_t(y), [&](uint32_t row) { return sub + row * sub_row; }, between.data(), sub_row);
+                gatherColumns<c>(apply_x_, between.data(), degraded + y * w_ * c);
             }
         });
     });
@@ -128,9 +127,8 @@ void Degradation::apply(const std::vector<float>& sub, std::vector<float>& degra
 
 // Each task keeps the rows between the two passes that its output rows need in a ring: the
 // rows an output gathers increase with it, so a row is computed once per task.
-void Degradation::transpose(const std::vector<float>& residual, std::vector<float>& sub) {
+void Degradation::transpose(const float* residual, float* sub) const {
     const size_t sub_row = size_t(sub_w_) * c_;
-    sub.resize(sub_row * sub_h_);
     withChannelCount(c_, [&](auto channels) {
         constexpr uint32_t c = decltype(channels)::value;
         parallelFor(sub_h_, kGrain, [&](size_t begin, size_t end) {
@@ -140,7 +138,7 @@ void Degradation::transpose(const std::vector<float>& residual, std::vector<floa
                 const uint32_t slot = y % transpose_rows_;
                 float* row = ring.data() + slot * sub_row;
                 if (ring_row[slot] != y) {
-                    gatherColumns<c>(transpose_x_, residual.data() + size_t(y) * w_ * c, row);
+                    gatherColumns<c>(transpose_x_, residual + size_t(y) * w_ * c, row);
                     ring_row[slot] = y;
                 }
                 return row;
@@ -148,7 +146,7 @@ void Degradation::transpose(const std::vector<float>& residual, std::vector<floa
             for (size_t o = begin; o < end; ++o) {
                 // Every row this output needs, first, so that none evicts another while in use.
                 for (uint32_t j = transpose_y_.first[o]; j < transpose_y_.first[o + 1]; ++j) between(transpose_y_.index[j]);
-                gatherRow(transpose_y_, uint32_t(o), between, sub.data() + o * sub_row, sub_row);
+                gatherRow(transpose_y_, uint32_t(o), between, sub + o * sub_row, sub_row);
             }
         });
     });

@@ -31,10 +31,10 @@ public:
     uint32_t subWidth() const { return sub_w_; }
     uint32_t subHeight() const { return sub_h_; }
 
-    // degraded (w × h) = D(sub).
-    void apply(const std::vector<float>& sub, std::vector<float>& degraded);
-    // sub (sub_w × sub_h) = Dᵀ(residual).
-    void transpose(const std::vector<float>& residual, std::vector<float>& sub);
+    // degraded (w × h × channels floats) = D(sub (sub_w × sub_h × channels)).
+    void apply(const float* sub, float* degraded) const;
+    // sub = Dᵀ(residual).
+    void transpose(const float* residual, float* sub) const;
 
 private:
     uint32_t w_, h_, c_, sub_w_, sub_h_;

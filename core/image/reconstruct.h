@@ -52,7 +52,9 @@
 //   well on held-out photographs as averaging the surfaces of the two assumptions, which
 //   costs two (bench/README.md, "Mixed assumption").
 // - The surface is evaluated on the fixed supersampling whatever the output size: the final
-//   render at the requested size is the only step whose cost grows with the scale.
+//   render at the requested size is the only step whose cost grows with the scale. On the
+//   grid's mesh each supersample is a vertex's, an edge's third or a triangle's centroid
+//   (core/image/supersample_lattice.h), so the solver's passes go element by element.
 #pragma once
 
 #include <cstdint>
@@ -61,7 +63,6 @@
 #include "assumed_kernel.h"
 #include "image.h"
 #include "mesh.h"
-#include "render.h"
 
 namespace ddt {
 
@@ -99,17 +100,14 @@ struct Surface {
 // The starting surface: the input's values and the cubic-midpoint bubbles.
 Surface initialSurface(const Mesh& mesh, const Image& input);
 
-// The consistent surface for `mesh` (optimised on `input`) under `model`.
+// The consistent surface for `mesh`, the grid's (no explicit positions), optimised on `input`,
+// under `model`.
 Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
                            uint32_t iterations = kReconstructIterations);
-// The same, locating the supersamples with `locator`, a renderer of `mesh` (for any surface):
-// a caller that renders the result afterwards builds the triangle tables once (see
-// MeshRenderer's constructor that takes them over).
-Surface reconstructSurface(const Mesh& mesh, const Image& input, const DegradationModel& model,
-                           const MeshRenderer& locator, uint32_t iterations = kReconstructIterations);
-// The same, consuming the mesh: it is emptied once the supersamples are located, before the
-// solver's arrays are made, which lowers the peak memory by the mesh's size.
-Surface reconstructSurface(Mesh&& mesh, const Image& input, const DegradationModel& model, const MeshRenderer& locator,
-                           uint32_t iterations = kReconstructIterations);
+// The same, consuming the mesh (its edge records are taken over and the rest freed before the
+// solver's arrays are made), with its triangles as a caller that renders afterwards already
+// has them (MeshRenderer::triangles()).
+Surface reconstructSurface(Mesh&& mesh, const Image& input, const DegradationModel& model,
+                           const std::vector<Triangle>& triangles, uint32_t iterations = kReconstructIterations);
 
 }  // namespace ddt
