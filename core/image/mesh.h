@@ -131,15 +131,20 @@ struct Triangle {
 };
 std::vector<Triangle> listTriangles(const Mesh& mesh);
 
-// Calls f(triangle) for every triangle, in listTriangles' order.
+// Calls f(triangle) for every triangle that edges [first, end) report, in listTriangles' order.
 template <typename F>
-void forEachTriangle(const Mesh& mesh, F f) {
-    for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
+void forEachTriangle(const Mesh& mesh, uint32_t first, uint32_t end, F f) {
+    for (uint32_t e = first; e < end; ++e) {
         const EdgeVertices& v = mesh.vertices[e];
         const EdgeNeighbours& n = mesh.neighbours[e];
         if (v.l != kNone && e < n.bl && e < n.la) f(Triangle{v.a, v.b, v.l, n.bl, n.la, e});
         if (v.r != kNone && e < n.ar && e < n.rb) f(Triangle{v.b, v.a, v.r, n.ar, n.rb, e});
     }
+}
+// Calls f(triangle) for every triangle, in listTriangles' order.
+template <typename F>
+void forEachTriangle(const Mesh& mesh, F f) {
+    forEachTriangle(mesh, 0, mesh.edgeCount(), f);
 }
 
 // What a mesh's boundary must be: the rectangle [0, w − 1] × [0, h − 1] (the grid's mesh and

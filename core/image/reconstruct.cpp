@@ -56,7 +56,7 @@ float beyondTolerance(float residual, float tolerance) {
 // The range each vertex value must stay in: its 3 × 3 input neighbourhood's, within [0, 1]
 // for integer sample types.
 struct Bounds {
-    std::vector<float> low, high;
+    std::unique_ptr<float[]> low, high;  // made uninitialised, first touched by the parallel pass
 };
 
 // Separable: the 3-wide range of each row, then of three rows of those. std::min and std::max
@@ -66,7 +66,8 @@ Bounds boundsOf(const Image& input) {
     const uint32_t w = input.width, h = input.height, c = input.channels;
     const size_t row_floats = size_t(w) * c;
     const bool integer = boundedToUnit(input.sample_type);
-    Bounds bounds{std::vector<float>(input.pixels.size()), std::vector<float>(input.pixels.size())};
+    Bounds bounds{std::make_unique_for_overwrite<float[]>(input.pixels.size()),
+                  std::make_unique_for_overwrite<float[]>(input.pixels.size())};
     parallelFor(h, kGrain, [&](size_t begin, size_t end) {
         // The rows' own ranges, for rows [first, last] of this task.
         const size_t first = begin ? begin - 1 : 0, last = std::min<size_t>(h - 1, end);
@@ -231,9 +232,10 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
 
 Surface reconstructSurface(Mesh&& mesh, const Image& input, const DegradationModel& model,
                            const std::vector<Triangle>& triangles, uint32_t iterations) {
+    mesh.neighbours = {};  // only the edges' vertices are read from here on
     Surface surface = initialSurface(mesh, input);
     if (model.identity() || iterations == 0) return surface;
-    const SupersampleLattice lattice(mesh.width, mesh.height, input.channels, mesh.vertices, triangles);
+    const SupersampleLattice lattice(mesh.width, mesh.height, input.channels, std::move(mesh.vertices), triangles);
     mesh = {};
     return solve(lattice, std::move(surface), input, model, iterations);
 }

@@ -15,6 +15,10 @@ namespace ddt {
 
 namespace {
 
+// The triangle tables are made in chunks of edges: enough edges to be worth a task, few
+// enough chunks that their counts per row stay small.
+const uint32_t kEdgesPerChunk = 16384, kMostChunks = 64;
+
 // Two doubles in one SIMD value (the GCC/Clang vector extension), for two channels or two
 // weights of a sample: the arithmetic is lane-wise IEEE double precision, so each lane gets
 // exactly the scalar expression's value.
@@ -65,17 +69,42 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vect
     assert(image.pixels.size() >= size_t(mesh.vertexCount()) * image.channels);
     assert(!bubbles || bubbles->size() == size_t(mesh.edgeCount()) * image.channels);
     // The triangles sorted by top row (counting sort, stable), so a band of output rows visits
-    // only nearby triangles.
-    first_in_row_.assign(mesh.height + 1, 0);
-    forEachTriangle(mesh, [&](const Triangle& t) {
-        const auto [top, bottom] = rowsOf(t);
-        ++first_in_row_[top + 1];
-        tallest_ = std::max(tallest_, bottom - top);
+    // only nearby triangles. Chunks of edges are counted and placed on the threads, each
+    // chunk's triangles after the earlier chunks' in every row: the order one pass would give.
+    const uint32_t edges = mesh.edgeCount(), rows = mesh.height;
+    const uint32_t chunks = std::clamp<uint32_t>(edges / kEdgesPerChunk, 1, kMostChunks);
+    auto edgesOf = [&](size_t chunk) { return std::pair{uint32_t(uint64_t(edges) * chunk / chunks), uint32_t(uint64_t(edges) * (chunk + 1) / chunks)}; };
+    std::vector<uint32_t> next(size_t(chunks) * rows, 0), tallest(chunks, 0);  // next: per chunk, per top row
+    parallelFor(chunks, 1, [&](size_t begin, size_t end) {
+        for (size_t chunk = begin; chunk < end; ++chunk) {
+            uint32_t* count = next.data() + chunk * rows;
+            forEachTriangle(mesh, edgesOf(chunk).first, edgesOf(chunk).second, [&](const Triangle& t) {
+                const auto [top, bottom] = rowsOf(t);
+                ++count[top];
+                tallest[chunk] = std::max(tallest[chunk], bottom - top);
+            });
+        }
     });
-    for (uint32_t y = 0; y < mesh.height; ++y) first_in_row_[y + 1] += first_in_row_[y];
-    triangles_.resize(first_in_row_.back());
-    std::vector<uint32_t> next(first_in_row_.begin(), first_in_row_.end() - 1);
-    forEachTriangle(mesh, [&](const Triangle& t) { triangles_[next[rowsOf(t).first]++] = t; });
+    tallest_ = *std::max_element(tallest.begin(), tallest.end());
+    first_in_row_.assign(rows + 1, 0);
+    uint32_t placed = 0;
+    for (uint32_t y = 0; y < rows; ++y) {
+        first_in_row_[y] = placed;
+        for (uint32_t chunk = 0; chunk < chunks; ++chunk) {
+            const uint32_t count = next[size_t(chunk) * rows + y];
+            next[size_t(chunk) * rows + y] = placed;
+            placed += count;
+        }
+    }
+    first_in_row_[rows] = placed;
+    triangles_.resize(placed);
+    parallelFor(chunks, 1, [&](size_t begin, size_t end) {
+        for (size_t chunk = begin; chunk < end; ++chunk) {
+            uint32_t* place = next.data() + chunk * rows;
+            forEachTriangle(mesh, edgesOf(chunk).first, edgesOf(chunk).second,
+                            [&](const Triangle& t) { triangles_[place[rowsOf(t).first]++] = t; });
+        }
+    });
 }
 
 std::pair<uint32_t, uint32_t> MeshRenderer::rowsOf(const Triangle& t) const {

@@ -1,9 +1,9 @@
 #include "supersample_lattice.h"
 
+#include <algorithm>
 #include <cassert>
 
 #include "channel_count.h"
-#include "divide_by.h"
 #include "parallel.h"
 #include "pixel_vector.h"
 
@@ -27,47 +27,34 @@ const size_t kRowGrain = 16;
 }  // namespace
 
 SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t channels,
-                                       const std::vector<EdgeVertices>& edges, const std::vector<Triangle>& triangles)
-    : width_(width), height_(height), channels_(channels), edge_count_(uint32_t(edges.size())),
-      edges_(std::make_unique_for_overwrite<EdgeSamples[]>(edges.size())), triangles_(triangles),
-      centroids_(std::make_unique_for_overwrite<uint32_t[]>(triangles.size())),
-      shares_(std::make_unique_for_overwrite<float[]>(2 * edges.size() * channels)) {
-    // Where a point of the lattice lies, from sums of vertex columns and rows, in thirds of a
-    // pixel from vertex 0's pixel centre.
-    const DivideBy by_width(width);
+                                       std::vector<EdgeVertices> edges, const std::vector<Triangle>& triangles)
+    : width_(width), height_(height), channels_(channels), edges_(std::move(edges)), triangles_(triangles),
+      at_vertex_(size_t(width) * height), shared_(std::make_unique_for_overwrite<uint32_t[]>(2 * edges_.size())),
+      shares_(std::make_unique_for_overwrite<float[]>(2 * edges_.size() * channels)) {
     const uint32_t sub_w = subWidth();
-    auto at = [sub_w](uint32_t x, uint32_t y) { return (y + 1) * sub_w + x + 1; };
-    auto column = [&](uint32_t v) { return v - by_width.quotient(v) * width; };
-    auto row = [&](uint32_t v) { return by_width.quotient(v); };
-    parallelFor(edges.size(), kGrain, [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e) {
-            const EdgeVertices& r = edges[e];
-            const uint32_t ax = column(r.a), ay = row(r.a), bx = column(r.b), by = row(r.b);
-            auto centroid = [&](uint32_t third) {
-                return third == kNone ? kNone : at(ax + bx + column(third), ay + by + row(third));
-            };
-            edges_[e] = {r.a, r.b, at(2 * ax + bx, 2 * ay + by), at(ax + 2 * bx, ay + 2 * by), centroid(r.l), centroid(r.r), 0, 0};
-        }
+    parallelFor(height, kRowGrain, [&](size_t begin, size_t end) {
+        for (uint32_t y = uint32_t(begin); y < end; ++y)
+            for (uint32_t x = 0; x < width; ++x) at_vertex_[y * width + x] = (3 * y + 1) * sub_w + 3 * x + 1;
     });
-    parallelFor(triangles.size(), kGrain, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            const Triangle& t = triangles[i];
-            centroids_[i] = at(column(t.v0) + column(t.v1) + column(t.v2), row(t.v0) + row(t.v1) + row(t.v2));
-        }
-    });
-    // Counted, summed, then given out in edge order.
-    const uint32_t vertices = width * height;
-    first_slot_.assign(vertices + 1, 0);
-    for (const EdgeVertices& e : edges) {
-        ++first_slot_[e.a + 1];
-        ++first_slot_[e.b + 1];
-    }
-    for (uint32_t v = 0; v < vertices; ++v) first_slot_[v + 1] += first_slot_[v];
-    std::vector<uint32_t> next(first_slot_.begin(), first_slot_.end() - 1);
-    for (uint32_t e = 0; e < edge_count_; ++e) {
-        edges_[e].slot_a = next[edges_[e].a]++;
-        edges_[e].slot_b = next[edges_[e].b]++;
-    }
+    // Counted, summed, then given out in edge order. The vertices are split into ranges, one
+    // per thread, each thread going through every edge for the ends in its range: so each
+    // count and list is written by one thread, in edge order.
+    const uint32_t vertices = width * height, ranges = std::max(1u, threadCount());
+    auto forEachEnd = [&](auto f) {
+        parallelFor(ranges, 1, [&](size_t begin, size_t end) {
+            const uint32_t first = uint32_t(uint64_t(vertices) * begin / ranges);
+            const uint32_t last = uint32_t(uint64_t(vertices) * end / ranges);
+            for (uint32_t e = 0; e < edges_.size(); ++e) {
+                if (edges_[e].a >= first && edges_[e].a < last) f(edges_[e].a, 2 * e);
+                if (edges_[e].b >= first && edges_[e].b < last) f(edges_[e].b, 2 * e + 1);
+            }
+        });
+    };
+    first_share_.assign(vertices + 1, 0);
+    forEachEnd([&](uint32_t v, uint32_t) { ++first_share_[v + 1]; });
+    for (uint32_t v = 0; v < vertices; ++v) first_share_[v + 1] += first_share_[v];
+    std::vector<uint32_t> next(first_share_.begin(), first_share_.end() - 1);
+    forEachEnd([&](uint32_t v, uint32_t share) { shared_[next[v]++] = share; });
 }
 
 void SupersampleLattice::evaluate(const float* values, const float* bubbles, uint32_t c, float* sub) const {
@@ -79,24 +66,25 @@ template <uint32_t C>
 void SupersampleLattice::evaluateWith(const float* values, const float* bubbles, float* sub) const {
     auto value = [&](uint32_t v) { return loadPixel<C>(values + size_t(v) * C); };
     auto bubble = [&](uint32_t e) { return loadPixel<C>(bubbles + size_t(e) * C); };
-    auto store = [&](uint32_t sample, PixelVector<C> s) { storePixel<C>(sub + size_t(sample) * C, s); };
+    auto store = [&](size_t sample, PixelVector<C> s) { storePixel<C>(sub + sample * C, s); };
     const size_t sub_w = subWidth(), sub_h = subHeight();
+    // In bands of rows, each with the edges and triangles that lie about there (edge ids follow
+    // the grid's vertices, three each; the triangles are sorted by top row), so that a band's
+    // writes stay within a few rows of supersamples. Every element is written by one band.
+    const size_t edges = edges_.size(), triangles = triangles_.size();
     parallelFor(height_, kRowGrain, [&](size_t begin, size_t end) {
         for (uint32_t y = uint32_t(begin); y < end; ++y)
-            for (uint32_t x = 0; x < width_; ++x) store(uint32_t((3 * y + 1) * sub_w + 3 * x + 1), value(y * width_ + x));
-    });
-    parallelFor(edge_count_, kGrain, [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e) {
-            const EdgeSamples& r = edges_[e];
-            const PixelVector<C> va = value(r.a), vb = value(r.b), lifted = kBubbleAtThird * bubble(uint32_t(e));
-            store(r.near_a, kTwoThirds * va + kThird * vb + lifted);
-            store(r.near_b, kThird * va + kTwoThirds * vb + lifted);
+            for (uint32_t v = y * width_; v < (y + 1) * width_; ++v) store(at_vertex_[v], value(v));
+        const size_t last = end == height_;  // the last band takes what the proportion rounds off
+        for (size_t e = edges * begin / height_, e_end = last ? edges : edges * end / height_; e < e_end; ++e) {
+            const uint32_t a = edges_[e].a, b = edges_[e].b;
+            const PixelVector<C> va = value(a), vb = value(b), lifted = kBubbleAtThird * bubble(uint32_t(e));
+            store(third(a, b), kTwoThirds * va + kThird * vb + lifted);
+            store(third(b, a), kThird * va + kTwoThirds * vb + lifted);
         }
-    });
-    parallelFor(triangles_.size(), kGrain, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
+        for (size_t i = triangles * begin / height_, i_end = last ? triangles : triangles * end / height_; i < i_end; ++i) {
             const Triangle& t = triangles_[i];
-            store(centroids_[i], kThird * (value(t.v0) + value(t.v1) + value(t.v2)) +
+            store(centroid(t.v0, t.v1, t.v2), kThird * (value(t.v0) + value(t.v1) + value(t.v2)) +
                                      kBubbleAtCentroid * (bubble(t.e0) + bubble(t.e1) + bubble(t.e2)));
         }
     });
@@ -136,29 +124,32 @@ void SupersampleLattice::projectWith(float* g, float* vertex_sums, float* edge_s
             add(row + (sub_w - 2) * C, row + (sub_w - 1) * C);
         }
     });
-    auto at = [&](uint32_t sample) { return loadPixel<C>(g + size_t(sample) * C); };
-    // A centroid's share, or none on the hull's side.
-    auto centroid = [&](uint32_t sample) { return sample == kNone ? PixelVector<C>{} : at(sample); };
+    auto at = [&](size_t sample) { return loadPixel<C>(g + sample * C); };
+    // A triangle's centroid, or none on the hull's side.
+    auto centroid = [&](uint32_t a, uint32_t b, uint32_t third) {
+        return third == kNone ? PixelVector<C>{} : at(this->centroid(a, b, third));
+    };
     // Each edge its bubble's sum and its shares of its vertices' sums; then each vertex its
     // sample and its shares.
     float* const shares = shares_.get();
-    parallelFor(edge_count_, kGrain, [&](size_t begin, size_t end) {
+    parallelFor(edges_.size(), kGrain, [&](size_t begin, size_t end) {
         for (size_t e = begin; e < end; ++e) {
-            const EdgeSamples& r = edges_[e];
-            const PixelVector<C> near_a = at(r.near_a), near_b = at(r.near_b);
-            const PixelVector<C> centroids = centroid(r.left) + centroid(r.right);
+            const EdgeVertices& r = edges_[e];
+            const PixelVector<C> near_a = at(third(r.a, r.b)), near_b = at(third(r.b, r.a));
+            const PixelVector<C> centroids = centroid(r.a, r.b, r.l) + centroid(r.a, r.b, r.r);
             storePixel<C>(edge_sums + e * C, kBubbleAtThird * (near_a + near_b) + kBubbleAtCentroid * centroids);
-            storePixel<C>(shares + size_t(r.slot_a) * C, kTwoThirds * near_a + kThird * near_b + kHalfCentroid * centroids);
-            storePixel<C>(shares + size_t(r.slot_b) * C, kThird * near_a + kTwoThirds * near_b + kHalfCentroid * centroids);
+            storePixel<C>(shares + 2 * e * C, kTwoThirds * near_a + kThird * near_b + kHalfCentroid * centroids);
+            storePixel<C>(shares + (2 * e + 1) * C,
+                          kThird * near_a + kTwoThirds * near_b + kHalfCentroid * centroids);
         }
     });
-    parallelFor(height_, kRowGrain, [&](size_t begin, size_t end) {
-        for (uint32_t y = uint32_t(begin); y < end; ++y)
-            for (uint32_t x = 0, v = y * width_; x < width_; ++x, ++v) {
-                PixelVector<C> sum = at(uint32_t((3 * y + 1) * sub_w + 3 * x + 1));
-                for (uint32_t i = first_slot_[v]; i < first_slot_[v + 1]; ++i) sum += loadPixel<C>(shares + size_t(i) * C);
-                storePixel<C>(vertex_sums + size_t(v) * C, sum);
-            }
+    parallelFor(size_t(width_) * height_, kGrain, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v) {
+            PixelVector<C> sum = at(at_vertex_[v]);
+            for (uint32_t i = first_share_[v]; i < first_share_[v + 1]; ++i)
+                sum += loadPixel<C>(shares + size_t(shared_[i]) * C);
+            storePixel<C>(vertex_sums + v * C, sum);
+        }
     });
 }
 

@@ -16,6 +16,7 @@
 // order, so the results do not depend on how the work is split across threads.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -26,16 +27,16 @@ namespace ddt {
 
 class SupersampleLattice {
 public:
-    // The width × height grid's mesh (no explicit positions) as its edge records and its
-    // triangles (listTriangles' or a renderer's, any order; they must outlive this), for
-    // surfaces of up to `channels` channels.
-    SupersampleLattice(uint32_t width, uint32_t height, uint32_t channels, const std::vector<EdgeVertices>& edges,
+    // The width × height grid's mesh (no explicit positions) as its edge records (taken over)
+    // and its triangles (listTriangles' or a renderer's, any order; they must outlive this),
+    // for surfaces of up to `channels` channels.
+    SupersampleLattice(uint32_t width, uint32_t height, uint32_t channels, std::vector<EdgeVertices> edges,
                        const std::vector<Triangle>& triangles);
 
     // The supersampled grid: kSupersampling (3) samples per pixel and axis.
     uint32_t subWidth() const { return 3 * width_; }
     uint32_t subHeight() const { return 3 * height_; }
-    uint32_t edgeCount() const { return edge_count_; }
+    uint32_t edgeCount() const { return uint32_t(edges_.size()); }
 
     // sub (subWidth × subHeight × c floats) = the surface with vertex values `values` (c per
     // vertex) and `bubbles` (c per edge) at every supersample.
@@ -43,32 +44,33 @@ public:
 
     // ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples (c floats
     // each): c per vertex into vertex_sums, c per edge into edge_sums. g's outer ring is added
-    // into the ring inside it (the transpose of the clamping), so g is changed.
+    // into the ring inside it (the transpose of the clamping), so g is changed. It works in
+    // the lattice's own scratch: one call at a time.
     void project(float* g, uint32_t c, float* vertex_sums, float* edge_sums) const;
 
 private:
-    // An edge's endpoints; the supersamples it reaches: its thirds (the one near a, the one
-    // near b) and the centroids of its triangles (kNone for a side on the hull); and where its
-    // shares of a's and b's projections go among the vertices' shares.
-    struct EdgeSamples {
-        uint32_t a, b;
-        uint32_t near_a, near_b, left, right;
-        uint32_t slot_a, slot_b;
-    };
+    // The supersample at the mean of two or three vertices' places (an edge's third nearer p,
+    // a triangle's centroid): the index is linear in the place, so the mean of the vertices'
+    // own indices (the sums are multiples of 3).
+    size_t third(uint32_t p, uint32_t q) const { return (2 * size_t(at_vertex_[p]) + at_vertex_[q]) / 3; }
+    size_t centroid(uint32_t u, uint32_t v, uint32_t w) const {
+        return (size_t(at_vertex_[u]) + at_vertex_[v] + at_vertex_[w]) / 3;
+    }
 
     template <uint32_t C>
     void evaluateWith(const float* values, const float* bubbles, float* sub) const;
     template <uint32_t C>
     void projectWith(float* g, float* vertex_sums, float* edge_sums) const;
 
-    uint32_t width_, height_, channels_, edge_count_;
-    // The large arrays are left uninitialised and first written by the parallel passes.
-    std::unique_ptr<EdgeSamples[]> edges_;
+    uint32_t width_, height_, channels_;
+    std::vector<EdgeVertices> edges_;
     const std::vector<Triangle>& triangles_;
-    std::unique_ptr<uint32_t[]> centroids_;  // per triangle of triangles_
-    // Each vertex's shares from its edges, in edge order, are slots [first_slot_[v],
-    // first_slot_[v + 1]); project keeps them in shares_, `channels` floats per slot.
-    std::vector<uint32_t> first_slot_;
+    std::vector<uint32_t> at_vertex_;  // each vertex's supersample (below 9·w·h: 32 bits to 477 M pixels)
+    // Edge e's shares of its a's and b's projections go to shares_[2e] and [2e + 1] (`channels`
+    // floats each, left uninitialised until project writes them). Vertex v gathers the shares
+    // shared_[first_share_[v] .. first_share_[v + 1]), in edge order.
+    std::vector<uint32_t> first_share_;
+    std::unique_ptr<uint32_t[]> shared_;
     std::unique_ptr<float[]> shares_;
 };
 
