@@ -59,49 +59,59 @@ struct Bounds {
     std::unique_ptr<float[]> low, high;  // made uninitialised, first touched by the parallel pass
 };
 
-// Separable: the 3-wide range of each row, then of three rows of those. std::min and std::max
-// keep the first of equal values, so this picks the same value (down to the sign of a zero)
-// as a scan of the 3 × 3 pixels in row-major order.
-Bounds boundsOf(const Image& input) {
-    const uint32_t w = input.width, h = input.height, c = input.channels;
-    const size_t row_floats = size_t(w) * c;
+// Separable: the 3-wide range of each row, then of three rows of those, a pixel's channels at
+// once. Each min and max keeps the first of equal values (as std::min and std::max do), so
+// this picks the same value (down to the sign of a zero) as a scan of the 3 × 3 pixels in
+// row-major order.
+template <uint32_t C>
+Bounds boundsWith(const Image& input) {
+    const uint32_t w = input.width, h = input.height;
     const bool integer = boundedToUnit(input.sample_type);
     Bounds bounds{std::make_unique_for_overwrite<float[]>(input.pixels.size()),
                   std::make_unique_for_overwrite<float[]>(input.pixels.size())};
+    auto lower = [](PixelVector<C> a, PixelVector<C> b) { return b < a ? b : a; };
+    auto higher = [](PixelVector<C> a, PixelVector<C> b) { return a < b ? b : a; };
     parallelFor(h, kGrain, [&](size_t begin, size_t end) {
         // The rows' own ranges, for rows [first, last] of this task.
         const size_t first = begin ? begin - 1 : 0, last = std::min<size_t>(h - 1, end);
-        std::vector<float> row_low((last - first + 1) * row_floats), row_high(row_low.size());
+        std::vector<PixelVector<C>> row_low((last - first + 1) * w), row_high(row_low.size());
         for (size_t y = first; y <= last; ++y) {
             const float* row = input.row(uint32_t(y));
-            float* low = row_low.data() + (y - first) * row_floats;
-            float* high = row_high.data() + (y - first) * row_floats;
-            for (uint32_t x = 0; x < w; ++x)
-                for (uint32_t k = 0; k < c; ++k) {
-                    float lo = INFINITY, hi = -INFINITY;
-                    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(w - 1, x + 1); ++nx) {
-                        lo = std::min(lo, row[nx * c + k]);
-                        hi = std::max(hi, row[nx * c + k]);
-                    }
-                    low[x * c + k] = lo;
-                    high[x * c + k] = hi;
+            PixelVector<C>* low = row_low.data() + (y - first) * w;
+            PixelVector<C>* high = row_high.data() + (y - first) * w;
+            for (uint32_t x = 0; x < w; ++x) {
+                PixelVector<C> lo = loadPixel<C>(row + (x ? x - 1 : 0) * C), hi = lo;
+                for (uint32_t nx = x ? x : 1; nx <= std::min(w - 1, x + 1); ++nx) {
+                    lo = lower(lo, loadPixel<C>(row + nx * C));
+                    hi = higher(hi, loadPixel<C>(row + nx * C));
                 }
+                low[x] = lo;
+                high[x] = hi;
+            }
         }
-        for (size_t y = begin; y < end; ++y)
-            for (size_t i = 0; i < row_floats; ++i) {
-                float lo = INFINITY, hi = -INFINITY;
-                for (size_t ny = y ? y - 1 : 0; ny <= std::min<size_t>(h - 1, y + 1); ++ny) {
-                    lo = std::min(lo, row_low[(ny - first) * row_floats + i]);
-                    hi = std::max(hi, row_high[(ny - first) * row_floats + i]);
+        for (size_t y = begin; y < end; ++y) {
+            const size_t top = (y ? y - 1 : 0) - first, bottom = std::min<size_t>(h - 1, y + 1) - first;
+            for (uint32_t x = 0; x < w; ++x) {
+                PixelVector<C> lo = row_low[top * w + x], hi = row_high[top * w + x];
+                for (size_t ny = top + 1; ny <= bottom; ++ny) {
+                    lo = lower(lo, row_low[ny * w + x]);
+                    hi = higher(hi, row_high[ny * w + x]);
                 }
                 if (integer) {
-                    lo = std::max(lo, 0.0f);
-                    hi = std::min(hi, 1.0f);
+                    lo = higher(lo, PixelVector<C>{} + 0.0f);
+                    hi = lower(hi, PixelVector<C>{} + 1.0f);
                 }
-                bounds.low[y * row_floats + i] = lo;
-                bounds.high[y * row_floats + i] = hi;
+                storePixel<C>(bounds.low.get() + (y * w + x) * C, lo);
+                storePixel<C>(bounds.high.get() + (y * w + x) * C, hi);
             }
+        }
     });
+    return bounds;
+}
+
+Bounds boundsOf(const Image& input) {
+    Bounds bounds;
+    withChannelCount(input.channels, [&](auto channels) { bounds = boundsWith<decltype(channels)::value>(input); });
     return bounds;
 }
 
@@ -180,17 +190,22 @@ Surface solve(const SupersampleLattice& lattice, Surface surface, const Image& i
     const auto sub = floats(size_t(lattice.subWidth()) * lattice.subHeight() * c), residual = floats(input.pixels.size()),
                vertex_steps = floats(size_t(vertices) * c), edge_steps = floats(size_t(edges) * c);
 
-    // SART's normalisers: ⟨φ_u, Dᵀ1⟩, the same for every channel (the same operations on the
-    // same values), so worked out on one.
-    const auto vertex_weight = floats(vertices), edge_weight = floats(edges);
-    {
-        std::fill_n(residual.get(), vertices, 1.0f);
-        Degradation(input.width, input.height, 1, model).transpose(residual.get(), sub.get());
-        lattice.project(sub.get(), 1, vertex_weight.get(), edge_weight.get());
-    }
+    // SART's normalisers ⟨φ_u, Dᵀ1⟩, the same for every channel (the same operations on the
+    // same values), so worked out on one; kept as each unknown's step per unit of projection,
+    // ω / ⟨φ_u, Dᵀ1⟩ (0 for a bubble whose normaliser is not positive: it stays).
+    const auto vertex_scale = floats(vertices), edge_scale = floats(edges);
+    std::fill_n(residual.get(), vertices, 1.0f);
+    Degradation(input.width, input.height, 1, model).transpose(residual.get(), sub.get());
+    lattice.project(sub.get(), 1, vertex_scale.get(), edge_scale.get());
+    parallelFor(vertices, kElementGrain, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) vertex_scale[i] = kRelaxation / vertex_scale[i];
+    });
+    parallelFor(edges, kElementGrain, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) edge_scale[i] = edge_scale[i] > 0.0f ? kRelaxation / edge_scale[i] : 0.0f;
+    });
 
     // Each step moves every unknown by ω·⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩: a vertex value within its
-    // bounds and premultiplied colour at most alpha, a bubble where its normaliser is positive.
+    // bounds and premultiplied colour at most alpha.
     float* const v = surface.values.pixels.data();
     float* const b = surface.bubbles.data();
     for (uint32_t step = 0; step < iterations; ++step) {
@@ -201,20 +216,24 @@ Surface solve(const SupersampleLattice& lattice, Surface surface, const Image& i
         });
         degradation.transpose(residual.get(), sub.get());
         lattice.project(sub.get(), c, vertex_steps.get(), edge_steps.get());
-        parallelFor(vertices, kElementGrain, [&](size_t begin, size_t end) {
-            for (size_t vertex = begin; vertex < end; ++vertex) {
-                const size_t p = vertex * c;
-                for (uint32_t k = 0; k < c; ++k)
-                    v[p + k] = std::clamp(v[p + k] + kRelaxation * vertex_steps[p + k] / vertex_weight[vertex],
-                                          bounds.low[p + k], bounds.high[p + k]);
-                if (input.hasAlpha())
-                    for (uint32_t k = 0; k + 1 < c; ++k) v[p + k] = std::min(v[p + k], v[p + c - 1]);
-            }
-        });
-        parallelFor(edges, kElementGrain, [&](size_t begin, size_t end) {
-            for (size_t edge = begin; edge < end; ++edge)
-                if (edge_weight[edge] > 0.0f)
-                    for (uint32_t k = 0; k < c; ++k) b[edge * c + k] += kRelaxation * edge_steps[edge * c + k] / edge_weight[edge];
+        withChannelCount(c, [&](auto channels) {
+            constexpr uint32_t cc = decltype(channels)::value;
+            parallelFor(vertices, kElementGrain, [&](size_t begin, size_t end) {
+                for (size_t vertex = begin; vertex < end; ++vertex) {
+                    const size_t p = vertex * cc;
+                    PixelVector<cc> moved = loadPixel<cc>(v + p) + vertex_scale[vertex] * loadPixel<cc>(vertex_steps.get() + p);
+                    const PixelVector<cc> low = loadPixel<cc>(bounds.low.get() + p), high = loadPixel<cc>(bounds.high.get() + p);
+                    moved = moved < low ? low : moved;  // std::clamp, lane by lane
+                    moved = high < moved ? high : moved;
+                    storePixel<cc>(v + p, moved);
+                    if (input.hasAlpha())
+                        for (uint32_t k = 0; k + 1 < cc; ++k) v[p + k] = std::min(v[p + k], v[p + cc - 1]);
+                }
+            });
+            parallelFor(edges, kElementGrain, [&](size_t begin, size_t end) {
+                for (size_t e = begin; e < end; ++e)
+                    storePixel<cc>(b + e * cc, loadPixel<cc>(b + e * cc) + edge_scale[e] * loadPixel<cc>(edge_steps.get() + e * cc));
+            });
         });
     }
     return surface;

@@ -29,12 +29,13 @@ const size_t kRowGrain = 16;
 SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t channels,
                                        std::vector<EdgeVertices> edges, const std::vector<Triangle>& triangles)
     : width_(width), height_(height), channels_(channels), edges_(std::move(edges)), triangles_(triangles),
-      at_vertex_(size_t(width) * height), shared_(std::make_unique_for_overwrite<uint32_t[]>(2 * edges_.size())),
+      third_of_(size_t(width) * height), shared_(std::make_unique_for_overwrite<uint32_t[]>(2 * edges_.size())),
       shares_(std::make_unique_for_overwrite<float[]>(2 * edges_.size() * channels)) {
-    const uint32_t sub_w = subWidth();
+    // Vertex (x, y)'s supersample is at column 3x + 1 and row 3y + 1 of the 3w-wide grid:
+    // (3y + 1) · 3w + 3x + 1 = 3 · (3wy + w + x) + 1.
     parallelFor(height, kRowGrain, [&](size_t begin, size_t end) {
         for (uint32_t y = uint32_t(begin); y < end; ++y)
-            for (uint32_t x = 0; x < width; ++x) at_vertex_[y * width + x] = (3 * y + 1) * sub_w + 3 * x + 1;
+            for (uint32_t x = 0; x < width; ++x) third_of_[y * width + x] = 3 * width * y + width + x;
     });
     // Counted, summed, then given out in edge order. The vertices are split into ranges, one
     // per thread, each thread going through every edge for the ends in its range: so each
@@ -74,7 +75,7 @@ void SupersampleLattice::evaluateWith(const float* values, const float* bubbles,
     const size_t edges = edges_.size(), triangles = triangles_.size();
     parallelFor(height_, kRowGrain, [&](size_t begin, size_t end) {
         for (uint32_t y = uint32_t(begin); y < end; ++y)
-            for (uint32_t v = y * width_; v < (y + 1) * width_; ++v) store(at_vertex_[v], value(v));
+            for (uint32_t v = y * width_; v < (y + 1) * width_; ++v) store(sampleOf(v), value(v));
         const size_t last = end == height_;  // the last band takes what the proportion rounds off
         for (size_t e = edges * begin / height_, e_end = last ? edges : edges * end / height_; e < e_end; ++e) {
             const uint32_t a = edges_[e].a, b = edges_[e].b;
@@ -145,7 +146,7 @@ void SupersampleLattice::projectWith(float* g, float* vertex_sums, float* edge_s
     });
     parallelFor(size_t(width_) * height_, kGrain, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v) {
-            PixelVector<C> sum = at(at_vertex_[v]);
+            PixelVector<C> sum = at(sampleOf(uint32_t(v)));
             for (uint32_t i = first_share_[v]; i < first_share_[v + 1]; ++i)
                 sum += loadPixel<C>(shares + size_t(shared_[i]) * C);
             storePixel<C>(vertex_sums + v * C, sum);

@@ -49,12 +49,13 @@ public:
     void project(float* g, uint32_t c, float* vertex_sums, float* edge_sums) const;
 
 private:
-    // The supersample at the mean of two or three vertices' places (an edge's third nearer p,
-    // a triangle's centroid): the index is linear in the place, so the mean of the vertices'
-    // own indices (the sums are multiples of 3).
-    size_t third(uint32_t p, uint32_t q) const { return (2 * size_t(at_vertex_[p]) + at_vertex_[q]) / 3; }
+    // Supersample indices are linear in the place they sample, and vertex v's own is
+    // 3·third_of_[v] + 1; so the one at the mean of two or three vertices' places (an edge's
+    // third nearer p, a triangle's centroid) is a sum.
+    size_t sampleOf(uint32_t v) const { return 3 * size_t(third_of_[v]) + 1; }
+    size_t third(uint32_t p, uint32_t q) const { return 2 * size_t(third_of_[p]) + third_of_[q] + 1; }
     size_t centroid(uint32_t u, uint32_t v, uint32_t w) const {
-        return (size_t(at_vertex_[u]) + at_vertex_[v] + at_vertex_[w]) / 3;
+        return size_t(third_of_[u]) + third_of_[v] + third_of_[w] + 1;
     }
 
     template <uint32_t C>
@@ -65,7 +66,7 @@ private:
     uint32_t width_, height_, channels_;
     std::vector<EdgeVertices> edges_;
     const std::vector<Triangle>& triangles_;
-    std::vector<uint32_t> at_vertex_;  // each vertex's supersample (below 9·w·h: 32 bits to 477 M pixels)
+    std::vector<uint32_t> third_of_;  // per vertex (below 3·w·h)
     // Edge e's shares of its a's and b's projections go to shares_[2e] and [2e + 1] (`channels`
     // floats each, left uninitialised until project writes them). Vertex v gathers the shares
     // shared_[first_share_[v] .. first_share_[v + 1]), in edge order.
