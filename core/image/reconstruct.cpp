@@ -187,8 +187,7 @@ Surface solve(const SupersampleLattice& lattice, Surface surface, const Image& i
     const Bounds bounds = boundsOf(input);
     // Left uninitialised, so that their pages are first touched by the parallel passes.
     auto floats = [](size_t count) { return std::make_unique_for_overwrite<float[]>(count); };
-    const auto sub = floats(size_t(lattice.subWidth()) * lattice.subHeight() * c), residual = floats(input.pixels.size()),
-               vertex_steps = floats(size_t(vertices) * c), edge_steps = floats(size_t(edges) * c);
+    const auto sub = floats(size_t(lattice.subWidth()) * lattice.subHeight() * c), residual = floats(input.pixels.size());
 
     // SART's normalisers ⟨φ_u, Dᵀ1⟩, the same for every channel (the same operations on the
     // same values), so worked out on one; kept as each unknown's step per unit of projection,
@@ -196,16 +195,13 @@ Surface solve(const SupersampleLattice& lattice, Surface surface, const Image& i
     const auto vertex_scale = floats(vertices), edge_scale = floats(edges);
     std::fill_n(residual.get(), vertices, 1.0f);
     Degradation(input.width, input.height, 1, model).transpose(residual.get(), sub.get());
-    lattice.project(sub.get(), 1, vertex_scale.get(), edge_scale.get());
-    parallelFor(vertices, kElementGrain, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) vertex_scale[i] = kRelaxation / vertex_scale[i];
-    });
-    parallelFor(edges, kElementGrain, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) edge_scale[i] = edge_scale[i] > 0.0f ? kRelaxation / edge_scale[i] : 0.0f;
-    });
+    lattice.project<1>(
+        sub.get(), [&](size_t vertex, float sum) { vertex_scale[vertex] = kRelaxation / sum; },
+        [&](size_t edge, float sum) { edge_scale[edge] = sum > 0.0f ? kRelaxation / sum : 0.0f; });
 
-    // Each step moves every unknown by ω·⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩: a vertex value within its
-    // bounds and premultiplied colour at most alpha.
+    // Each step moves every unknown by ω·⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩ as soon as its projection is
+    // summed up (nothing else reads it): a vertex value within its bounds and premultiplied
+    // colour at most alpha.
     float* const v = surface.values.pixels.data();
     float* const b = surface.bubbles.data();
     for (uint32_t step = 0; step < iterations; ++step) {
@@ -215,25 +211,23 @@ Surface solve(const SupersampleLattice& lattice, Surface surface, const Image& i
             for (size_t i = begin; i < end; ++i) residual[i] = beyondTolerance(input.pixels[i] - residual[i], tolerance);
         });
         degradation.transpose(residual.get(), sub.get());
-        lattice.project(sub.get(), c, vertex_steps.get(), edge_steps.get());
         withChannelCount(c, [&](auto channels) {
             constexpr uint32_t cc = decltype(channels)::value;
-            parallelFor(vertices, kElementGrain, [&](size_t begin, size_t end) {
-                for (size_t vertex = begin; vertex < end; ++vertex) {
+            lattice.project<cc>(
+                sub.get(),
+                [&](size_t vertex, PixelVector<cc> step) {
                     const size_t p = vertex * cc;
-                    PixelVector<cc> moved = loadPixel<cc>(v + p) + vertex_scale[vertex] * loadPixel<cc>(vertex_steps.get() + p);
+                    PixelVector<cc> moved = loadPixel<cc>(v + p) + vertex_scale[vertex] * step;
                     const PixelVector<cc> low = loadPixel<cc>(bounds.low.get() + p), high = loadPixel<cc>(bounds.high.get() + p);
                     moved = moved < low ? low : moved;  // std::clamp, lane by lane
                     moved = high < moved ? high : moved;
                     storePixel<cc>(v + p, moved);
                     if (input.hasAlpha())
                         for (uint32_t k = 0; k + 1 < cc; ++k) v[p + k] = std::min(v[p + k], v[p + cc - 1]);
-                }
-            });
-            parallelFor(edges, kElementGrain, [&](size_t begin, size_t end) {
-                for (size_t e = begin; e < end; ++e)
-                    storePixel<cc>(b + e * cc, loadPixel<cc>(b + e * cc) + edge_scale[e] * loadPixel<cc>(edge_steps.get() + e * cc));
-            });
+                },
+                [&](size_t edge, PixelVector<cc> step) {
+                    storePixel<cc>(b + edge * cc, loadPixel<cc>(b + edge * cc) + edge_scale[edge] * step);
+                });
         });
     }
     return surface;

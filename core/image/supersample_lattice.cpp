@@ -11,16 +11,7 @@ namespace ddt {
 
 namespace {
 
-// The basis functions at the lattice's points: a hat function is 2/3 or 1/3 at an edge's
-// thirds and 1/3 at a centroid; a bubble 4·λp·λq is 4 · 2/3 · 1/3 at its edge's thirds and
-// 4 · 1/3 · 1/3 at its triangles' centroids.
-constexpr float kThird = 1.0f / 3.0f, kTwoThirds = 2.0f / 3.0f;
-constexpr float kBubbleAtThird = 8.0f / 9.0f, kBubbleAtCentroid = 4.0f / 9.0f;
-// A vertex gathers each triangle around it from its two sides there: half of 1/3 from each.
-constexpr float kHalfCentroid = 1.0f / 6.0f;
-
-// Elements per task: each is a few loads and stores.
-const size_t kGrain = 4096;
+const size_t kGrain = SupersampleLattice::kGrain;
 // Rows of supersamples per task.
 const size_t kRowGrain = 16;
 
@@ -101,55 +92,25 @@ void SupersampleLattice::evaluateWith(const float* values, const float* bubbles,
     std::copy_n(sub + (sub_h - 2) * sub_w * C, sub_w * C, sub + (sub_h - 1) * sub_w * C);
 }
 
-void SupersampleLattice::project(float* g, uint32_t c, float* vertex_sums, float* edge_sums) const {
+void SupersampleLattice::foldOuterRing(float* g, uint32_t c) const {
     assert(c <= channels_);
-    withChannelCount(c, [&](auto channels) { projectWith<decltype(channels)::value>(g, vertex_sums, edge_sums); });
-}
-
-template <uint32_t C>
-void SupersampleLattice::projectWith(float* g, float* vertex_sums, float* edge_sums) const {
-    // The outer ring into the ring inside: the first and last rows, then each row's end columns
-    // (a corner reaches the inner corner in two steps).
+    // The first and last rows, then each row's end columns (a corner reaches the inner corner
+    // in two steps).
     const size_t sub_w = subWidth(), sub_h = subHeight();
-    auto add = [](float* to, const float* from) { storePixel<C>(to, loadPixel<C>(to) + loadPixel<C>(from)); };
+    auto add = [c](float* to, const float* from) {
+        for (uint32_t k = 0; k < c; ++k) to[k] += from[k];
+    };
     parallelFor(sub_w, kGrain, [&](size_t begin, size_t end) {
         for (size_t x = begin; x < end; ++x) {
-            add(g + (sub_w + x) * C, g + x * C);
-            add(g + ((sub_h - 2) * sub_w + x) * C, g + ((sub_h - 1) * sub_w + x) * C);
+            add(g + (sub_w + x) * c, g + x * c);
+            add(g + ((sub_h - 2) * sub_w + x) * c, g + ((sub_h - 1) * sub_w + x) * c);
         }
     });
     parallelFor(sub_h - 2, kRowGrain * 4, [&](size_t begin, size_t end) {
         for (size_t y = begin + 1; y < end + 1; ++y) {
-            float* row = g + y * sub_w * C;
-            add(row + C, row);
-            add(row + (sub_w - 2) * C, row + (sub_w - 1) * C);
-        }
-    });
-    auto at = [&](size_t sample) { return loadPixel<C>(g + sample * C); };
-    // A triangle's centroid, or none on the hull's side.
-    auto centroid = [&](uint32_t a, uint32_t b, uint32_t third) {
-        return third == kNone ? PixelVector<C>{} : at(this->centroid(a, b, third));
-    };
-    // Each edge its bubble's sum and its shares of its vertices' sums; then each vertex its
-    // sample and its shares.
-    float* const shares = shares_.get();
-    parallelFor(edges_.size(), kGrain, [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e) {
-            const EdgeVertices& r = edges_[e];
-            const PixelVector<C> near_a = at(third(r.a, r.b)), near_b = at(third(r.b, r.a));
-            const PixelVector<C> centroids = centroid(r.a, r.b, r.l) + centroid(r.a, r.b, r.r);
-            storePixel<C>(edge_sums + e * C, kBubbleAtThird * (near_a + near_b) + kBubbleAtCentroid * centroids);
-            storePixel<C>(shares + 2 * e * C, kTwoThirds * near_a + kThird * near_b + kHalfCentroid * centroids);
-            storePixel<C>(shares + (2 * e + 1) * C,
-                          kThird * near_a + kTwoThirds * near_b + kHalfCentroid * centroids);
-        }
-    });
-    parallelFor(size_t(width_) * height_, kGrain, [&](size_t begin, size_t end) {
-        for (size_t v = begin; v < end; ++v) {
-            PixelVector<C> sum = at(sampleOf(uint32_t(v)));
-            for (uint32_t i = first_share_[v]; i < first_share_[v + 1]; ++i)
-                sum += loadPixel<C>(shares + size_t(shared_[i]) * C);
-            storePixel<C>(vertex_sums + v * C, sum);
+            float* row = g + y * sub_w * c;
+            add(row + c, row);
+            add(row + (sub_w - 2) * c, row + (sub_w - 1) * c);
         }
     });
 }

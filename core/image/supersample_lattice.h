@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "mesh.h"
+#include "parallel.h"
+#include "pixel_vector.h"
 
 namespace ddt {
 
@@ -42,13 +44,25 @@ public:
     // vertex) and `bubbles` (c per edge) at every supersample.
     void evaluate(const float* values, const float* bubbles, uint32_t c, float* sub) const;
 
-    // ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples (c floats
-    // each): c per vertex into vertex_sums, c per edge into edge_sums. g's outer ring is added
-    // into the ring inside it (the transpose of the clamping), so g is changed. It works in
-    // the lattice's own scratch: one call at a time.
-    void project(float* g, uint32_t c, float* vertex_sums, float* edge_sums) const;
+    // ⟨φ_u, g⟩ for every vertex value and bubble u, g given at the supersamples (C floats
+    // each), handed to at_vertex(v, sum) and at_edge(e, sum) (PixelVector<C>) as each is
+    // summed up, on the threads of core/parallel.h. g's outer ring is added into the ring
+    // inside it (the transpose of the clamping), so g is changed. It works in the lattice's own
+    // scratch: one call at a time.
+    template <uint32_t C, typename AtVertex, typename AtEdge>
+    void project(float* g, AtVertex at_vertex, AtEdge at_edge) const;
+
+    static constexpr size_t kGrain = 4096;  // elements per task: each is a few loads and stores
 
 private:
+    // The basis functions at the lattice's points: a hat function is 2/3 or 1/3 at an edge's
+    // thirds and 1/3 at a centroid; a bubble 4·λp·λq is 4 · 2/3 · 1/3 at its edge's thirds and
+    // 4 · 1/3 · 1/3 at its triangles' centroids.
+    static constexpr float kThird = 1.0f / 3.0f, kTwoThirds = 2.0f / 3.0f;
+    static constexpr float kBubbleAtThird = 8.0f / 9.0f, kBubbleAtCentroid = 4.0f / 9.0f;
+    // A vertex gathers each triangle around it from its two sides there: half of 1/3 from each.
+    static constexpr float kHalfCentroid = 1.0f / 6.0f;
+
     // Supersample indices are linear in the place they sample, and vertex v's own is
     // 3·third_of_[v] + 1; so the one at the mean of two or three vertices' places (an edge's
     // third nearer p, a triangle's centroid) is a sum.
@@ -60,8 +74,7 @@ private:
 
     template <uint32_t C>
     void evaluateWith(const float* values, const float* bubbles, float* sub) const;
-    template <uint32_t C>
-    void projectWith(float* g, float* vertex_sums, float* edge_sums) const;
+    void foldOuterRing(float* g, uint32_t c) const;
 
     uint32_t width_, height_, channels_;
     std::vector<EdgeVertices> edges_;
@@ -74,5 +87,35 @@ private:
     std::unique_ptr<uint32_t[]> shared_;
     std::unique_ptr<float[]> shares_;
 };
+
+// Each edge sums its bubble's projection and its shares of its two vertices'; then each vertex
+// its own sample and its shares.
+template <uint32_t C, typename AtVertex, typename AtEdge>
+void SupersampleLattice::project(float* g, AtVertex at_vertex, AtEdge at_edge) const {
+    foldOuterRing(g, C);
+    auto at = [&](size_t sample) { return loadPixel<C>(g + sample * C); };
+    auto centroid = [&](uint32_t a, uint32_t b, uint32_t third) {  // none on the hull's side
+        return third == kNone ? PixelVector<C>{} : at(this->centroid(a, b, third));
+    };
+    float* const shares = shares_.get();
+    parallelFor(edges_.size(), kGrain, [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e) {
+            const EdgeVertices& r = edges_[e];
+            const PixelVector<C> near_a = at(third(r.a, r.b)), near_b = at(third(r.b, r.a));
+            const PixelVector<C> centroids = centroid(r.a, r.b, r.l) + centroid(r.a, r.b, r.r);
+            at_edge(e, kBubbleAtThird * (near_a + near_b) + kBubbleAtCentroid * centroids);
+            storePixel<C>(shares + 2 * e * C, kTwoThirds * near_a + kThird * near_b + kHalfCentroid * centroids);
+            storePixel<C>(shares + (2 * e + 1) * C, kThird * near_a + kTwoThirds * near_b + kHalfCentroid * centroids);
+        }
+    });
+    parallelFor(size_t(width_) * height_, kGrain, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v) {
+            PixelVector<C> sum = at(sampleOf(uint32_t(v)));
+            for (uint32_t i = first_share_[v]; i < first_share_[v + 1]; ++i)
+                sum += loadPixel<C>(shares + size_t(shared_[i]) * C);
+            at_vertex(v, sum);
+        }
+    });
+}
 
 }  // namespace ddt

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "mesh.h"
+#include "pixel_vector.h"
 #include "supersample_lattice.h"
 #include "test_support.h"
 
@@ -55,6 +56,12 @@ std::vector<double> surfaceAtSupersamples(const Mesh& mesh, const std::vector<Tr
     return sub;
 }
 
+// A projection's consumer that keeps each sum, C floats per element.
+template <uint32_t C>
+auto sumsInto(std::vector<float>& sums) {
+    return [&sums](size_t i, ddt::PixelVector<C> sum) { ddt::storePixel<C>(sums.data() + i * C, sum); };
+}
+
 std::vector<float> randomValues(size_t count, std::mt19937& rng) {
     std::uniform_real_distribution<float> value(-1.0f, 1.0f);
     std::vector<float> values(count);
@@ -98,7 +105,10 @@ TEST_CASE("supersample lattice: the projection is the evaluation's transpose", "
             std::vector<float> sub(g.size()), projected = g;
             lattice.evaluate(values.data(), bubbles.data(), c, sub.data());
             std::vector<float> vertex_sums(values.size()), edge_sums(bubbles.size());
-            lattice.project(projected.data(), c, vertex_sums.data(), edge_sums.data());
+            if (c == 1)
+                lattice.project<1>(projected.data(), sumsInto<1>(vertex_sums), sumsInto<1>(edge_sums));
+            else
+                lattice.project<3>(projected.data(), sumsInto<3>(vertex_sums), sumsInto<3>(edge_sums));
             double left = 0.0, right = 0.0, scale = 0.0;
             for (size_t i = 0; i < g.size(); ++i) {
                 left += double(sub[i]) * g[i];
