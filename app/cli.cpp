@@ -400,11 +400,15 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         ->check(CLI::IsMember({"consistent", "plain"}))
         ->capture_default_str();
     app.add_option("--assume", settings.assume,
-                   "The downscale filter the consistent surface assumes made the input: mixed (unknown: the "
-                   "footprint and bicubic mixed), footprint (a camera's or an averaging resize's, a Gaussian of "
-                   "0.4 input pixels), box (area averaging), bicubic (Catmull-Rom, an editor's bicubic resize) or "
-                   "lanczos3; the right one gains up to 0.5 dB")
-        ->check([](const std::string& name) { return parseAssumedKernel(name) ? "" : "unknown filter " + name + "; use " + assumedKernelNames(); })
+                   "The downscale filter the consistent surface assumes made the input: auto (footprint for a "
+                   "JPEG file, mixed for any other), mixed (unknown: the footprint and bicubic mixed), footprint "
+                   "(a camera's or an averaging resize's, a Gaussian of 0.4 input pixels), box (area averaging), "
+                   "bicubic (Catmull-Rom, an editor's bicubic resize) or lanczos3; the right one gains up to 0.5 dB")
+        ->check([](const std::string& name) {
+            return name == kAutomaticAssumption || parseAssumedKernel(name)
+                       ? ""
+                       : "unknown filter " + name + "; use " + kAutomaticAssumption + ", " + assumedKernelNames();
+        })
         ->capture_default_str();
     app.add_option("--fallback", settings.fallback,
                    "Where the input has little contrast, blend the surface towards a convolution of the input: "

@@ -43,7 +43,8 @@ void printStats(const ddt::ImageJob& job, bool batch) {
     std::printf("time-comp      %.3f s  (build the mesh, upload, optimize%s)\n", report.times.comp_s,
                 report.simplify ? ", simplify" : "");
     if (report.times.reconstruct_s > 0.0)
-        std::printf("time-recon     %.3f s  (the consistent reconstruction, --reconstruct)\n", report.times.reconstruct_s);
+        std::printf("time-recon     %.3f s  (the consistent reconstruction, assuming %s)\n", report.times.reconstruct_s,
+                    report.assumed ? ddt::assumedKernelName(*report.assumed) : "?");
     std::printf("time-final     %.3f s  (render + save image; the paper's time-final saved the mesh)\n",
                 report.times.final_s);
     std::printf("time-sum       %.3f s\n",

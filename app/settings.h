@@ -54,7 +54,7 @@ struct Settings {
     uint64_t memory = 0;           // --memory: host bytes the run may hold; 0 = half the machine's memory
     std::string variant;       // flip rule of the Vulkan backend; "" = the default
     std::string reconstruct = "consistent";  // the surface: "consistent" or "plain" (core/image/reconstruct.h)
-    std::string assume = "mixed";            // the downscale filter the consistent surface assumes (core/image/assumed_kernel.h)
+    std::string assume = "auto";  // the downscale filter the consistent surface assumes (core/image/assumed_kernel.h)
     // lanczos3: blend towards a convolution where contrast is low (core/image/convolution_fallback.h);
     // "" (not given): lanczos3 with the consistent surface, none with the plain one, the paper's.
     std::string fallback;

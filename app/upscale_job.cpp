@@ -8,6 +8,7 @@
 
 #include "delaunay.h"
 #include "delaunay/sampled_upscale.h"
+#include "image_metadata.h"
 #include "indexed_mesh.h"
 #include "mesh_file.h"
 #include "point_file.h"
@@ -85,6 +86,12 @@ ImageJob::ImageJob(size_t index, const ImageTask& task, const Settings& settings
     : index_(index), task_(task), settings_(settings), reporter_(reporter), state_(std::make_unique<State>()) {}
 
 ImageJob::~ImageJob() = default;
+
+AssumedKernel ImageJob::assumedKernel() const {
+    if (settings_.assume != kAutomaticAssumption) return *parseAssumedKernel(settings_.assume);  // checked by the command line
+    const auto& metadata = state_->image.metadata;
+    return automaticAssumption(metadata ? metadata->format_name : "");
+}
 
 WriteOptions ImageJob::writeOptions() const {
     WriteOptions options;
@@ -232,7 +239,8 @@ void ImageJob::render(Backend& backend) {
         TileOptions options;
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
-        options.kernel = *parseAssumedKernel(settings_.assume);  // checked by the command line
+        options.kernel = assumedKernel();
+        if (options.reconstruct && !state_->samples && !settings_.simplifies()) report_.assumed = options.kernel;
         options.fallback = settings_.fallsBack();
         options.mesh = mesh ? &*mesh : nullptr;
         // The default surface is the consistent one; where it cannot apply, say so rather than

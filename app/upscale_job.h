@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "assumed_kernel.h"
 #include "backend.h"
 #include "band_stream.h"
 #include "batch_plan.h"
@@ -30,6 +31,7 @@ struct StageTimes {
 
 struct JobReport {
     OptimizeStats stats;
+    std::optional<AssumedKernel> assumed;  // what the consistent surface assumed, when it was made
     std::optional<ParallelSimplifyStats> simplify;  // with --simplify or --max-error
     StageTimes times;
     OutputSize out;
@@ -67,6 +69,8 @@ public:
 
 private:
     WriteOptions writeOptions() const;
+    // The filter --assume names, or for auto the one the input's file format suggests.
+    AssumedKernel assumedKernel() const;
     void render(Backend& backend);
     // Writes the task's mesh file from the stitched triangles of the optimised mesh.
     Image openPoints();

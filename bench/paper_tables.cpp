@@ -185,7 +185,7 @@ Table qualityTable(const BenchResults& results) {
     const Upscaler* consistent = nullptr;
     for (const Upscaler& u : results.upscalers)
         if (u.kind == UpscalerKind::Ddt && u.consistent && u.ddt.backend == "cpu" &&
-            u.assume == ddt::AssumedKernel::mixed && !u.fallback && !consistent)
+            !u.assume && !u.fallback && !consistent)
             consistent = &u;
     if (consistent) table.columns.push_back(consistent->label + " (protocol tables)");
     std::vector<std::string> sets = results.set_names;

@@ -23,11 +23,12 @@ Upscaler filter(const char* name, const char* label) {
     return u;
 }
 
+// `assume` none: the default's automatic choice (its key has no /assume- part).
 Upscaler ddtColumn(const DdtMethod& method, const std::string& label, bool consistent,
-                   ddt::AssumedKernel assume = ddt::AssumedKernel::mixed, bool fallback = false) {
+                   std::optional<ddt::AssumedKernel> assume = std::nullopt, bool fallback = false) {
     Upscaler u;
     u.key = method.key + (consistent ? "+consistent" : "");
-    if (assume != ddt::AssumedKernel::mixed) u.key += std::string("/assume-") + ddt::assumedKernelName(assume);
+    if (assume) u.key += std::string("/assume-") + ddt::assumedKernelName(*assume);
     if (fallback) u.key += "+fallback";
     u.assume = assume;
     u.fallback = fallback;
@@ -89,7 +90,7 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
         setup.upscalers.push_back(ddtColumn(cpu, std::string("CPU consistent, ") + ddt::assumedKernelName(kernel), true, kernel));
     // The convolution fallback (--fallback lanczos3) on the default surface (the default run)
     // and on the two assumptions `mixed` mixes.
-    setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent + fallback", true, ddt::AssumedKernel::mixed, true));
+    setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent + fallback", true, std::nullopt, true));
     setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent, footprint + fallback", true, ddt::AssumedKernel::footprint, true));
     setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent, bicubic + fallback", true, ddt::AssumedKernel::bicubic, true));
     return setup;

@@ -6,6 +6,7 @@
 // run here (no Vulkan device, a peer misaligned) keeps its place as "n/a" with the reason.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,9 @@ struct Upscaler {
     std::string oiio_filter;  // OiioFilter
     DdtMethod ddt;            // Ddt
     bool consistent = false;  // Ddt: the consistent reconstruction instead of the plain surface
-    ddt::AssumedKernel assume = ddt::AssumedKernel::mixed;  // Ddt, consistent: the filter it assumes
+    // Ddt, consistent: the filter it assumes; none: what ddtup's default (--assume auto)
+    // assumes of the input, by its file's format (ddt::automaticAssumption).
+    std::optional<ddt::AssumedKernel> assume;
     bool fallback = false;  // Ddt, consistent: blended towards Lanczos3 where contrast is low (--fallback lanczos3)
     std::string unavailable;  // "" if it runs here
 };

@@ -10,6 +10,7 @@
 #include "ddt_magnify.h"
 #include "edge_directed.h"
 #include "gmsd.h"
+#include "image_metadata.h"
 #include "protocol.h"
 #include "vips_nohalo.h"
 
@@ -43,7 +44,11 @@ std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends&
                                              const std::string& where) {
     std::map<std::string, ddt::Image> outputs;
     std::set<std::string> ddt_runs;  // method and assumed filter
-    auto runKey = [](const Upscaler& u) { return u.ddt.key + "/" + ddt::assumedKernelName(u.assume); };
+    auto runKey = [](const Upscaler& u) {
+        return u.ddt.key + "/" + (u.assume ? ddt::assumedKernelName(*u.assume) : ddt::kAutomaticAssumption);
+    };
+    // What the default assumes of `low` (a JPEG protocol's input was read back from a JPEG file).
+    const ddt::AssumedKernel automatic = ddt::automaticAssumption(low.metadata ? low.metadata->format_name : "");
     for (const Upscaler& u : results.upscalers) {
         if (!u.unavailable.empty() || (u.kind == UpscalerKind::Ddt && !ddt_runs.insert(runKey(u)).second)) continue;
         try {
@@ -68,7 +73,7 @@ std::map<std::string, ddt::Image> magnifyAll(BenchResults& results, DdtBackends&
                     if (v.kind == UpscalerKind::Ddt && runKey(v) == runKey(u) && v.unavailable.empty())
                         (v.fallback ? fallback : v.consistent ? consistent : plain) = &v;
                 DdtOutputs ddt = magnifyWithDdt(backends.forMethod(u.ddt), low, width, height, plain != nullptr,
-                                                consistent != nullptr, u.assume, fallback != nullptr);
+                                                consistent != nullptr, u.assume.value_or(automatic), fallback != nullptr);
                 if (plain) outputs[plain->key] = std::move(*ddt.plain);
                 if (ddt.consistent) outputs[consistent->key] = std::move(*ddt.consistent);
                 if (ddt.fallback) outputs[fallback->key] = std::move(*ddt.fallback);

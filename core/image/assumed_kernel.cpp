@@ -26,6 +26,10 @@ const char* assumedKernelName(AssumedKernel kernel) {
     return "";
 }
 
+AssumedKernel automaticAssumption(const std::string& format_name) {
+    return format_name == "jpeg" ? AssumedKernel::footprint : AssumedKernel::mixed;
+}
+
 std::optional<AssumedKernel> parseAssumedKernel(const std::string& name) {
     for (AssumedKernel kernel : kAll)
         if (name == assumedKernelName(kernel)) return kernel;

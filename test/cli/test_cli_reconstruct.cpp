@@ -54,7 +54,7 @@ TEST_CASE("cli: an unknown --reconstruct mode is refused with one line") {
     CHECK(folder.names() == before);
 }
 
-TEST_CASE("cli: --assume sets the consistent surface's filter: mixed by default, each filter its own picture") {
+TEST_CASE("cli: --assume sets the consistent surface's filter: mixed by default for a PNG, each filter its own picture") {
     TempFolder folder;
     const std::string input = ddt::test::testDataPath("crop32_astronaut.png");
     const std::vector<std::string> kernels = {"", "mixed", "footprint", "box", "bicubic", "lanczos3"};
@@ -74,6 +74,35 @@ TEST_CASE("cli: --assume sets the consistent surface's filter: mixed by default,
             INFO(kernels[a] << " against " << kernels[b]);
             CHECK(outputs[a].pixels != outputs[b].pixels);
         }
+}
+
+TEST_CASE("cli: by default a JPEG file is assumed to come through the footprint, and --stats says what was assumed") {
+    TempFolder folder;
+    const ddt::Image image = ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png"));
+    ddt::writeImage(folder / "in.jpg", image);
+    ddt::writeImage(folder / "in.png", image);
+    // The picture, and --stats' line on the reconstruction, for `input` with `assume` ("": the default).
+    auto run = [&](const std::string& input, const std::string& assume, std::string& stats) {
+        const std::string output = folder / ("out-" + input + "-" + (assume.empty() ? "default" : assume) + ".png");
+        std::vector<std::string> args = {folder / input, output, "-s", "3", "--backend", "cpu", "-q", "--stats"};
+        if (!assume.empty()) args.insert(args.end(), {"--assume", assume});
+        const Run result = runDdtup(args);
+        INFO(input << " " << assume << ": " << result.err);
+        REQUIRE(result.exit_code == 0);
+        const size_t line = result.out.find("time-recon");
+        REQUIRE(line != std::string::npos);
+        stats = result.out.substr(line, result.out.find('\n', line) - line);
+        return ddt::readImage(output);
+    };
+    std::string stats_default, stats_named;
+    CHECK(run("in.jpg", "", stats_default).pixels == run("in.jpg", "footprint", stats_named).pixels);
+    CHECK(stats_default.find("assuming footprint") != std::string::npos);
+    CHECK(run("in.jpg", "auto", stats_default).pixels != run("in.jpg", "mixed", stats_named).pixels);
+    CHECK(stats_named.find("assuming mixed") != std::string::npos);
+    CHECK(run("in.png", "", stats_default).pixels == run("in.png", "mixed", stats_named).pixels);
+    CHECK(stats_default.find("assuming mixed") != std::string::npos);
+    run("in.jpg", "bicubic", stats_named);
+    CHECK(stats_named.find("assuming bicubic") != std::string::npos);
 }
 
 TEST_CASE("cli: --assume is refused with one line when unknown or where no surface assumes a filter") {

@@ -386,3 +386,10 @@ TEST_CASE("reconstruct: tiled and untiled consistent upscales agree (CPU)") {
         CHECK(a.max_difference <= 1e-4f);
     }
 }
+
+TEST_CASE("reconstruct: the default assumption is the footprint for a JPEG file and mixed for anything else") {
+    CHECK(automaticAssumption("jpeg") == AssumedKernel::footprint);
+    CHECK(automaticAssumption("png") == AssumedKernel::mixed);
+    CHECK(automaticAssumption("openexr") == AssumedKernel::mixed);
+    CHECK(automaticAssumption("") == AssumedKernel::mixed);  // an image made in memory
+}
