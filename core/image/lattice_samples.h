@@ -1,5 +1,7 @@
 // The samples of a lattice triangle at exactly three output pixels per input pixel, without
-// scanning: the consistent reconstruction locates its supersamples this way (kSupersampling).
+// scanning: a render at exactly ×3 (and locateSamples there) finds them this way. (The
+// consistent reconstruction's supersamples, at the same places, need no locating at all:
+// core/image/supersample_lattice.h.)
 //
 // In a triangulation of the pixel grid every pixel centre is a vertex, so no lattice point
 // lies inside a triangle or on an edge but its corners, and by Pick's theorem twice its area

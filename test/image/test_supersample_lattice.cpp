@@ -69,22 +69,32 @@ std::vector<float> randomValues(size_t count, std::mt19937& rng) {
     return values;
 }
 
+// A scrambled w × h grid's lattice, random vertex values and bubbles (c channels), and the
+// lattice's surface at its supersamples.
+struct RandomSurface {
+    Mesh mesh;
+    std::vector<Triangle> triangles;
+    SupersampleLattice lattice;
+    std::vector<float> values, bubbles, sub;
+
+    RandomSurface(uint32_t w, uint32_t h, uint32_t c, std::mt19937& rng)
+        : mesh(ddt::test::scrambledGridMesh(w, h, rng)), triangles(ddt::listTriangles(mesh)),
+          lattice(w, h, c, mesh.vertices, triangles), values(randomValues(size_t(w) * h * c, rng)),
+          bubbles(randomValues(size_t(mesh.edgeCount()) * c, rng)), sub(size_t(9) * w * h * c) {
+        lattice.evaluate(values.data(), bubbles.data(), c, sub.data());
+    }
+};
+
 }  // namespace
 
 TEST_CASE("supersample lattice: the surface at every supersample of a scrambled grid", "[reconstruct]") {
     std::mt19937 rng(71);
     for (auto [w, h] : {std::pair{2u, 2u}, std::pair{13u, 9u}, std::pair{7u, 16u}})
         for (uint32_t c : {1u, 3u}) {
-            const Mesh mesh = ddt::test::scrambledGridMesh(w, h, rng);
-            const std::vector<Triangle> triangles = ddt::listTriangles(mesh);
-            const SupersampleLattice lattice(w, h, c, mesh.vertices, triangles);
-            const std::vector<float> values = randomValues(size_t(w) * h * c, rng);
-            const std::vector<float> bubbles = randomValues(size_t(mesh.edgeCount()) * c, rng);
-            std::vector<float> sub(size_t(9) * w * h * c);
-            lattice.evaluate(values.data(), bubbles.data(), c, sub.data());
-            const std::vector<double> expected = surfaceAtSupersamples(mesh, triangles, values, bubbles, c);
+            const RandomSurface s(w, h, c, rng);
+            const std::vector<double> expected = surfaceAtSupersamples(s.mesh, s.triangles, s.values, s.bubbles, c);
             double worst = 0.0;
-            for (size_t i = 0; i < sub.size(); ++i) worst = std::max(worst, std::abs(sub[i] - expected[i]));
+            for (size_t i = 0; i < s.sub.size(); ++i) worst = std::max(worst, std::abs(s.sub[i] - expected[i]));
             // Float rounding of at most seven products and sums of values in [−1, 1].
             CHECK(worst < 1e-5);
         }
@@ -96,26 +106,20 @@ TEST_CASE("supersample lattice: the projection is the evaluation's transpose", "
     std::mt19937 rng(72);
     for (auto [w, h] : {std::pair{2u, 3u}, std::pair{11u, 8u}})
         for (uint32_t c : {1u, 3u}) {
-            const Mesh mesh = ddt::test::scrambledGridMesh(w, h, rng);
-            const std::vector<Triangle> triangles = ddt::listTriangles(mesh);
-            const SupersampleLattice lattice(w, h, c, mesh.vertices, triangles);
-            const std::vector<float> values = randomValues(size_t(w) * h * c, rng);
-            const std::vector<float> bubbles = randomValues(size_t(mesh.edgeCount()) * c, rng);
-            const std::vector<float> g = randomValues(size_t(9) * w * h * c, rng);
-            std::vector<float> sub(g.size()), projected = g;
-            lattice.evaluate(values.data(), bubbles.data(), c, sub.data());
-            std::vector<float> vertex_sums(values.size()), edge_sums(bubbles.size());
+            const RandomSurface s(w, h, c, rng);
+            const std::vector<float> g = randomValues(s.sub.size(), rng);
+            std::vector<float> projected = g, vertex_sums(s.values.size()), edge_sums(s.bubbles.size());
             if (c == 1)
-                lattice.project<1>(projected.data(), sumsInto<1>(vertex_sums), sumsInto<1>(edge_sums));
+                s.lattice.project<1>(projected.data(), sumsInto<1>(vertex_sums), sumsInto<1>(edge_sums));
             else
-                lattice.project<3>(projected.data(), sumsInto<3>(vertex_sums), sumsInto<3>(edge_sums));
+                s.lattice.project<3>(projected.data(), sumsInto<3>(vertex_sums), sumsInto<3>(edge_sums));
             double left = 0.0, right = 0.0, scale = 0.0;
             for (size_t i = 0; i < g.size(); ++i) {
-                left += double(sub[i]) * g[i];
-                scale += std::abs(double(sub[i]) * g[i]);
+                left += double(s.sub[i]) * g[i];
+                scale += std::abs(double(s.sub[i]) * g[i]);
             }
-            for (size_t i = 0; i < values.size(); ++i) right += double(values[i]) * vertex_sums[i];
-            for (size_t i = 0; i < bubbles.size(); ++i) right += double(bubbles[i]) * edge_sums[i];
+            for (size_t i = 0; i < s.values.size(); ++i) right += double(s.values[i]) * vertex_sums[i];
+            for (size_t i = 0; i < s.bubbles.size(); ++i) right += double(s.bubbles[i]) * edge_sums[i];
             // Both sides are float sums of up to ~2000 terms: within 1e-5 of the terms' total size.
             CHECK(std::abs(left - right) < 1e-5 * scale);
         }
