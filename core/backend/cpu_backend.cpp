@@ -118,19 +118,18 @@ public:
     // 32-byte records per edge and the sweeps' state (16 bytes per edge, about three edges per
     // vertex), the renderer's triangle list (about two 24-byte triangles), the cost field (4)
     // and the input (4 per channel). Reconstructing (core/image/reconstruct.cpp), after the sweeps
-    // and the mesh are released: the triangle list, the lattice's 32-byte edge records, the
-    // triangles' centroids and each vertex's first slot (12), the cost field, the normalisers
-    // (one float per vertex and per edge, 16), and per channel 108 bytes of floats (the
-    // supersamples, 36; the vertices' shares from their edges, 24; the vertex values, bubbles,
-    // residuals and the projection's totals, 36; the bounds, 8; the input). While the lattice
-    // is made, the mesh's edge records (48) are there instead of the solver's arrays. The
-    // convolution fallback, with either surface, adds its copy of the input and
+    // and the mesh's neighbour records are released: the triangle list, the mesh's 16-byte
+    // edge records (the lattice's now), the lattice's lists of each vertex's shares (32), the
+    // cost field, each unknown's step scale (one float per vertex and per edge, 16), and per
+    // channel 92 bytes of floats (the supersamples, 36; the edges' shares of their vertices'
+    // projections, 24; the vertex values and bubbles, 16; the residuals and the bounds, 12;
+    // the input). The convolution fallback, with either surface, adds its copy of the input and
     // its weights, and while it makes them four floats per pixel (4 · channels + 20).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
         const uint64_t fallback = 4 * channels + 20;
         const uint64_t optimizing = 3 * (32 + 16) + 2 * 24 + 4 + 4 * channels + fallback;
-        const uint64_t reconstructing = 2 * 24 + 3 * 32 + 12 + 4 + 16 + 108 * channels + fallback;
+        const uint64_t reconstructing = 2 * 24 + 3 * 16 + 32 + 4 + 16 + 92 * channels + fallback;
         return vertices * (reconstruction ? std::max(optimizing, reconstructing) : optimizing);
     }
 
