@@ -184,7 +184,7 @@ bool sameRecords(const Mesh& a, const Mesh& b) {
     return a.positions == b.positions;
 }
 
-bool samePixels(const std::vector<float>& a, const std::vector<float>& b) {
+bool samePixels(std::span<const float> a, std::span<const float> b) {
     if (a.size() != b.size()) return false;
     for (size_t i = 0; i < a.size(); ++i)
         if (!(a[i] == b[i])) return false;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "backend.h"
@@ -65,7 +66,7 @@ std::string triangulationProblem(const Mesh& mesh);
 bool sameRecords(const Mesh& a, const Mesh& b);  // records and explicit positions
 
 // Exact float equality of two pixel arrays (NaN never equal).
-bool samePixels(const std::vector<float>& a, const std::vector<float>& b);
+bool samePixels(std::span<const float> a, std::span<const float> b);
 
 // A 300×200 crop of bench/data's astronaut photo: texture, soft and hard edges.
 Image photoCrop();

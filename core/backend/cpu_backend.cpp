@@ -25,7 +25,7 @@ class TakenSurface final : public HostSurface {
 public:
     TakenSurface(Surface surface, MeshRenderer&& tables, std::optional<ConvolutionFallback> fallback)
         : surface_(std::move(surface)),
-          renderer_(std::move(tables), surface_.values, surface_.bubbles.empty() ? nullptr : &surface_.bubbles),
+          renderer_(std::move(tables), surface_.values, surface_.bubbles.empty() ? nullptr : surface_.bubbles.data()),
           fallback_(std::move(fallback)) {}
     TakenSurface(const TakenSurface&) = delete;  // renderer_ refers to surface_
     TakenSurface& operator=(const TakenSurface&) = delete;
@@ -75,7 +75,7 @@ public:
         // The reconstruction is the mesh's last use: rendering reads the triangle tables.
         surface_ = reconstructSurface(std::move(mesh_), *image_, model, locator.triangles());
         mesh_released_ = true;
-        renderer_.emplace(std::move(locator), surface_->values, &surface_->bubbles);
+        renderer_.emplace(std::move(locator), surface_->values, surface_->bubbles.data());
     }
 
     void addFallback() override { fallback_.emplace(*image_); }
@@ -148,7 +148,7 @@ private:
         if (!renderer_) {
             requireMesh();
             if (surface_)
-                renderer_.emplace(mesh_, surface_->values, &surface_->bubbles);
+                renderer_.emplace(mesh_, surface_->values, surface_->bubbles.data());
             else
                 renderer_.emplace(mesh_, *image_);
         }

@@ -153,7 +153,7 @@ std::vector<float> degradationTaps(AssumedKernel kernel, double width) {
 Surface initialSurface(const Mesh& mesh, const Image& input) {
     const int w = int(input.width), h = int(input.height);
     const uint32_t c = input.channels;
-    Surface surface{input, std::vector<float>(size_t(mesh.edgeCount()) * c)};
+    Surface surface{input, UninitialisedVector<float>(size_t(mesh.edgeCount()) * c)};
     const DivideBy by_width(input.width);  // a vertex's row without a division instruction (a grid is ≥ 2 wide)
     auto row = [&](uint32_t vertex) { return int(by_width.quotient(vertex)); };
     withChannelCount(c, [&](auto channels) {

@@ -63,6 +63,7 @@
 #include "assumed_kernel.h"
 #include "image.h"
 #include "mesh.h"
+#include "uninitialised_vector.h"
 
 namespace ddt {
 
@@ -94,7 +95,7 @@ std::vector<float> degradationTaps(AssumedKernel kernel, double width);
 // A quadratic surface on a mesh: vertex values and one bubble per edge (render.h).
 struct Surface {
     Image values;                // the vertex values, like the input image
-    std::vector<float> bubbles;  // edgeCount() × channels
+    UninitialisedVector<float> bubbles;  // edgeCount() × channels
 };
 
 // The starting surface: the input's values and the cubic-midpoint bubbles.

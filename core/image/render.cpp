@@ -64,10 +64,10 @@ int64_t snappedSample(int64_t s, uint32_t out_size) {
     return int64_t((2 * (unsigned __int128)(s) * kPositionOne + twice_out) / (2 * twice_out));
 }
 
-MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles)
-    : image_(image), bubbles_(bubbles), width_(mesh.width), height_(mesh.height), positions_(mesh.positions) {
+MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const float* bubbles)
+    : image_(image), bubbles_(bubbles), width_(mesh.width), height_(mesh.height), by_width_(std::max(mesh.width, 2u)),
+      positions_(mesh.positions) {
     assert(image.pixels.size() >= size_t(mesh.vertexCount()) * image.channels);
-    assert(!bubbles || bubbles->size() == size_t(mesh.edgeCount()) * image.channels);
     // The triangles sorted by top row (counting sort, stable), so a band of output rows visits
     // only nearby triangles. Chunks of edges are counted and placed on the threads, each
     // chunk's triangles after the earlier chunks' in every row: the order one pass would give.
@@ -108,16 +108,16 @@ MeshRenderer::MeshRenderer(const Mesh& mesh, const Image& image, const std::vect
 }
 
 std::pair<uint32_t, uint32_t> MeshRenderer::rowsOf(const Triangle& t) const {
-    const uint32_t w = width_;
-    if (positions_.empty()) return {std::min({t.v0, t.v1, t.v2}) / w, std::max({t.v0, t.v1, t.v2}) / w};
+    if (positions_.empty())
+        return {by_width_.quotient(std::min({t.v0, t.v1, t.v2})), by_width_.quotient(std::max({t.v0, t.v1, t.v2}))};
     const int32_t y0 = positions_[t.v0].y, y1 = positions_[t.v1].y, y2 = positions_[t.v2].y;
     const uint32_t top = uint32_t(std::min({y0, y1, y2})) >> kPositionBits;
     const uint32_t bottom = (uint32_t(std::max({y0, y1, y2})) + kPositionOne - 1) >> kPositionBits;
     return {top, bottom};
 }
 
-MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles)
-    : image_(image), bubbles_(bubbles), width_(tables.width_), height_(tables.height_),
+MeshRenderer::MeshRenderer(MeshRenderer&& tables, const Image& image, const float* bubbles)
+    : image_(image), bubbles_(bubbles), width_(tables.width_), height_(tables.height_), by_width_(tables.by_width_),
       positions_(std::move(tables.positions_)),
       triangles_(std::move(tables.triangles_)), first_in_row_(std::move(tables.first_in_row_)),
       tallest_(tables.tallest_) {
@@ -334,7 +334,7 @@ void MeshRenderer::renderWindow(const RenderWindow& window, float* rows, size_t 
         const size_t row_floats = row_stride ? row_stride : size_t(window.width()) * c;
         const size_t x_begin = window.x_begin, y_begin = window.y_begin;
         const float* values = image_.pixels.data();
-        const float* bubbles = bubbles_ ? bubbles_->data() : nullptr;
+        const float* bubbles = bubbles_;
         const bool alpha = image_.hasAlpha();
         const auto [first, end] = trianglesAround(window);
         visitSamples(window, first, end, [&](uint32_t i) {
@@ -411,7 +411,7 @@ void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, 
     });
 }
 
-Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles) {
+Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const float* bubbles) {
     Image result;
     result.width = out.width;
     result.height = out.height;

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "divide_by.h"
 #include "image.h"
 #include "mesh.h"
 
@@ -76,10 +77,10 @@ public:
     // `image` holds the vertex values (premultiplied), pixel v for vertex v: the image the
     // mesh's grid was made of, or for a mesh of points one value per point (an n × 1 image);
     // `bubbles`, if not null, edgeCount() × channels values. All must outlive the renderer.
-    MeshRenderer(const Mesh& mesh, const Image& image, const std::vector<float>* bubbles = nullptr);
+    MeshRenderer(const Mesh& mesh, const Image& image, const float* bubbles = nullptr);
     // A renderer of the same mesh as `tables` for another surface, taking over its triangle
     // tables instead of building them again.
-    MeshRenderer(MeshRenderer&& tables, const Image& image, const std::vector<float>* bubbles = nullptr);
+    MeshRenderer(MeshRenderer&& tables, const Image& image, const float* bubbles = nullptr);
 
     // Renders the window into `rows`: window.width() × channels floats per row, or
     // `row_stride` floats from one row's start to the next (a window of a wider band).
@@ -101,8 +102,9 @@ private:
     void visitSamples(const RenderWindow& window, uint32_t first, uint32_t end, Visit visit) const;
 
     const Image& image_;
-    const std::vector<float>* bubbles_;
+    const float* bubbles_;
     uint32_t width_ = 0, height_ = 0;        // the mesh's frame (its crop of the input)
+    DivideBy by_width_;                      // a grid vertex's row (a grid is at least 2 wide)
     std::vector<Position> positions_;        // the mesh's explicit positions (empty: the grid's)
     std::vector<Triangle> triangles_;        // sorted by their top row
     std::vector<uint32_t> first_in_row_;     // index of the first triangle per top row, + end
@@ -120,6 +122,6 @@ void renderInParallel(const MeshRenderer& renderer, const RenderWindow& window, 
 constexpr uint32_t kRowsPerRenderBand = 16;
 
 // Renders the whole image in memory (tests, bench); `bubbles` as for MeshRenderer.
-Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const std::vector<float>* bubbles = nullptr);
+Image renderImage(const Mesh& mesh, const Image& image, OutputSize out, const float* bubbles = nullptr);
 
 }  // namespace ddt

@@ -72,7 +72,7 @@ std::vector<double> filterTaps(AssumedKernel kernel) {
 // D(surface) at every input pixel, for a grey image, with these taps per axis.
 std::vector<double> degraded(const Mesh& mesh, const Surface& surface, const std::vector<double>& taps) {
     const uint32_t w = mesh.width, h = mesh.height;
-    const Image sub = renderImage(mesh, surface.values, {3 * w, 3 * h}, &surface.bubbles);
+    const Image sub = renderImage(mesh, surface.values, {3 * w, 3 * h}, surface.bubbles.data());
     const int r = int(taps.size() / 2);
     std::vector<double> result(size_t(w) * h, 0.0);
     for (uint32_t y = 0; y < h; ++y)
@@ -221,7 +221,7 @@ TEST_CASE("reconstruct: on a wavy input the residual drops well below plain DDT'
     // rising above the input (bounded overshoot wins), so only part of the residual can go.
     const Image input = wavyImage(1.0);
     const Mesh mesh = optimisedMesh(input);
-    const Surface plain{input, std::vector<float>(size_t(mesh.edgeCount()), 0.0f)};  // linear: the paper's surface
+    const Surface plain{input, UninitialisedVector<float>(size_t(mesh.edgeCount()), 0.0f)};  // linear: the paper's surface
     for (double scale : {2.0, 4.0, 8.0}) {
         const Residual before = interiorResidualOf(input, degraded(mesh, plain, scale));
         const Residual after = interiorResidualOf(
@@ -236,7 +236,7 @@ TEST_CASE("reconstruct: a flat image stays exactly flat") {
         const Image input = test::makeImage(17, 11, channels, std::vector<float>(17 * 11 * channels, 0.375f));
         const Mesh mesh = optimisedMesh(input);
         const Surface surface = reconstructSurface(mesh, input, degradationFor(3.3, 3.3));
-        const Image out = renderImage(mesh, surface.values, scaledOutputSize(17, 11, 3.3), &surface.bubbles);
+        const Image out = renderImage(mesh, surface.values, scaledOutputSize(17, 11, 3.3), surface.bubbles.data());
         CAPTURE(channels);
         CHECK(std::all_of(out.pixels.begin(), out.pixels.end(), [](float v) { return v == 0.375f; }));
     }
@@ -251,7 +251,7 @@ TEST_CASE("reconstruct: a step edge keeps its plateaus and never overshoots them
     const Mesh mesh = optimisedMesh(input);
     const double scale = 4.0;
     const Surface surface = reconstructSurface(mesh, input, degradationFor(scale, scale));
-    const Image out = renderImage(mesh, surface.values, scaledOutputSize(20, 12, scale), &surface.bubbles);
+    const Image out = renderImage(mesh, surface.values, scaledOutputSize(20, 12, scale), surface.bubbles.data());
     for (uint32_t y = 0; y < out.height; ++y)
         for (uint32_t x = 0; x < out.width; ++x) {
             const float v = out.pixels[size_t(y) * out.width + x];
@@ -274,7 +274,7 @@ TEST_CASE("reconstruct: s = 1 is the identity, and the footprint's surface moves
         CHECK(degradationFor(1.0, 1.0, kernel).identity());
         const Surface at_one = reconstructSurface(mesh, input, degradationFor(1.0, 1.0, kernel));
         CHECK(test::samePixels(at_one.values.pixels, input.pixels));
-        const Image out = renderImage(mesh, at_one.values, {input.width, input.height}, &at_one.bubbles);
+        const Image out = renderImage(mesh, at_one.values, {input.width, input.height}, at_one.bubbles.data());
         CHECK(test::samePixels(out.pixels, input.pixels));
     }
 
@@ -301,7 +301,7 @@ TEST_CASE("reconstruct: premultiplied colour never exceeds alpha, and values sta
         for (uint32_t k = 0; k < 3; ++k) input.pixels[p * 4 + k] *= input.pixels[p * 4 + 3];
     const Mesh mesh = optimisedMesh(input);
     const Surface surface = reconstructSurface(mesh, input, degradationFor(2.5, 2.5));
-    const Image out = renderImage(mesh, surface.values, scaledOutputSize(40, 30, 2.5), &surface.bubbles);
+    const Image out = renderImage(mesh, surface.values, scaledOutputSize(40, 30, 2.5), surface.bubbles.data());
     bool ok = true;
     for (size_t p = 0; p < size_t(out.width) * out.height; ++p) {
         const float* v = &out.pixels[p * 4];

@@ -62,7 +62,7 @@ Image grey(const Image& rgb) {
 // Core's rows of `window` over the surface `surface` of `mesh`: rendered, then blended.
 std::vector<float> coreBlend(const Image& image, const Mesh& mesh, const RenderWindow& window,
                              const Surface* surface = nullptr) {
-    const MeshRenderer renderer = surface ? MeshRenderer(mesh, surface->values, &surface->bubbles)
+    const MeshRenderer renderer = surface ? MeshRenderer(mesh, surface->values, surface->bubbles.data())
                                           : MeshRenderer(mesh, image);
     std::vector<float> rows(size_t(window.width()) * window.height() * image.channels);
     renderer.renderWindow(window, rows.data());

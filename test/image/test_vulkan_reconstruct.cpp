@@ -97,7 +97,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh", "[vulk
         Mesh mesh;
         const std::vector<float> device = vulkanUpscale(backend, image, out, &mesh);
         const Surface surface = reconstructSurface(mesh, image, modelFor(image, out));
-        const Image reference = renderImage(mesh, surface.values, out, &surface.bubbles);
+        const Image reference = renderImage(mesh, surface.values, out, surface.bubbles.data());
         const float difference = test::compareSamples(device, reference.pixels).max_difference;
         CHECK(difference <= kCoreTolerance);
         largest = std::max(largest, difference);
@@ -108,7 +108,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference on the same mesh", "[vulk
     Mesh mesh;
     const std::vector<float> device = vulkanUpscale(backend, photo, out, &mesh);
     const Surface surface = reconstructSurface(mesh, photo, modelFor(photo, out));
-    const float difference = test::compareSamples(device, renderImage(mesh, surface.values, out, &surface.bubbles).pixels).max_difference;
+    const float difference = test::compareSamples(device, renderImage(mesh, surface.values, out, surface.bubbles.data()).pixels).max_difference;
     CHECK(difference <= kCoreTolerance);
     largest = std::max(largest, difference);
     WARN("largest Vulkan-core difference: " << largest);
@@ -130,7 +130,7 @@ TEST_CASE("vulkan reconstruct: equals core's reference under every assumed filte
             Mesh mesh;
             const std::vector<float> device = vulkanUpscale(backend, image, out, &mesh, kernel);
             const Surface surface = reconstructSurface(mesh, image, modelFor(image, out, kernel));
-            CHECK(test::compareSamples(device, renderImage(mesh, surface.values, out, &surface.bubbles).pixels).max_difference <= kCoreTolerance);
+            CHECK(test::compareSamples(device, renderImage(mesh, surface.values, out, surface.bubbles.data()).pixels).max_difference <= kCoreTolerance);
         }
     CHECK(backend.validationMessages() == 0);
 }
