@@ -94,7 +94,7 @@ std::vector<float> degradationTaps(AssumedKernel kernel, double width);
 
 // A quadratic surface on a mesh: vertex values and one bubble per edge (render.h).
 struct Surface {
-    Image values;                // the vertex values, like the input image
+    Image values;                        // the vertex values, like the input image
     UninitialisedVector<float> bubbles;  // edgeCount() × channels
 };
 
