@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
 #include "channel_count.h"
 #include "degradation.h"
@@ -56,7 +55,7 @@ float beyondTolerance(float residual, float tolerance) {
 // The range each vertex value must stay in: its 3 × 3 input neighbourhood's, within [0, 1]
 // for integer sample types.
 struct Bounds {
-    std::unique_ptr<float[]> low, high;  // made uninitialised, first touched by the parallel pass
+    UninitialisedVector<float> low, high;  // first written by the parallel pass
 };
 
 // Separable: the 3-wide range of each row, then of three rows of those, a pixel's channels at
@@ -67,8 +66,7 @@ template <uint32_t C>
 Bounds boundsWith(const Image& input) {
     const uint32_t w = input.width, h = input.height;
     const bool integer = boundedToUnit(input.sample_type);
-    Bounds bounds{std::make_unique_for_overwrite<float[]>(input.pixels.size()),
-                  std::make_unique_for_overwrite<float[]>(input.pixels.size())};
+    Bounds bounds{UninitialisedVector<float>(input.pixels.size()), UninitialisedVector<float>(input.pixels.size())};
     auto lower = [](PixelVector<C> a, PixelVector<C> b) { return b < a ? b : a; };
     auto higher = [](PixelVector<C> a, PixelVector<C> b) { return a < b ? b : a; };
     parallelFor(h, kGrain, [&](size_t begin, size_t end) {
@@ -101,8 +99,8 @@ Bounds boundsWith(const Image& input) {
                     lo = higher(lo, PixelVector<C>{} + 0.0f);
                     hi = lower(hi, PixelVector<C>{} + 1.0f);
                 }
-                storePixel<C>(bounds.low.get() + (y * w + x) * C, lo);
-                storePixel<C>(bounds.high.get() + (y * w + x) * C, hi);
+                storePixel<C>(bounds.low.data() + (y * w + x) * C, lo);
+                storePixel<C>(bounds.high.data() + (y * w + x) * C, hi);
             }
         }
     });
@@ -161,7 +159,7 @@ Surface initialSurface(const Mesh& mesh, const Image& input) {
         auto at = [&](int x, int y) {
             return loadPixel<cc>(input.pixels.data() + (size_t(clampIndex(y, h)) * w + clampIndex(x, w)) * cc);
         };
-        parallelFor(mesh.edgeCount(), 4096, [&](size_t begin, size_t end) {
+        parallelFor(mesh.edgeCount(), kElementGrain, [&](size_t begin, size_t end) {
             for (size_t e = begin; e < end; ++e) {
                 const int py = row(mesh.vertices[e].a), px = int(mesh.vertices[e].a) - py * w;
                 const int qy = row(mesh.vertices[e].b), qx = int(mesh.vertices[e].b) - qy * w;
@@ -175,7 +173,6 @@ Surface initialSurface(const Mesh& mesh, const Image& input) {
     return surface;
 }
 
-
 namespace {
 
 // SART on the lattice from `surface`, the initial one.
@@ -186,17 +183,16 @@ Surface solve(const SupersampleLattice& lattice, Surface surface, const Image& i
     const float tolerance = quantisationTolerance(input.sample_type);
     const Bounds bounds = boundsOf(input);
     // Left uninitialised, so that their pages are first touched by the parallel passes.
-    auto floats = [](size_t count) { return std::make_unique_for_overwrite<float[]>(count); };
-    const auto sub = floats(size_t(lattice.subWidth()) * lattice.subHeight() * c), residual = floats(input.pixels.size());
+    UninitialisedVector<float> sub(size_t(lattice.subWidth()) * lattice.subHeight() * c), residual(input.pixels.size());
 
     // SART's normalisers ⟨φ_u, Dᵀ1⟩, the same for every channel (the same operations on the
     // same values), so worked out on one; kept as each unknown's step per unit of projection,
     // ω / ⟨φ_u, Dᵀ1⟩ (0 for a bubble whose normaliser is not positive: it stays).
-    const auto vertex_scale = floats(vertices), edge_scale = floats(edges);
-    std::fill_n(residual.get(), vertices, 1.0f);
-    Degradation(input.width, input.height, 1, model).transpose(residual.get(), sub.get());
+    UninitialisedVector<float> vertex_scale(vertices), edge_scale(edges);
+    std::fill_n(residual.data(), vertices, 1.0f);
+    Degradation(input.width, input.height, 1, model).transpose(residual.data(), sub.data());
     lattice.project<1>(
-        sub.get(), [&](size_t vertex, float sum) { vertex_scale[vertex] = kRelaxation / sum; },
+        sub.data(), [&](size_t vertex, float sum) { vertex_scale[vertex] = kRelaxation / sum; },
         [&](size_t edge, float sum) { edge_scale[edge] = sum > 0.0f ? kRelaxation / sum : 0.0f; });
 
     // Each step moves every unknown by ω·⟨φ_u, Dᵀr⟩ / ⟨φ_u, Dᵀ1⟩ as soon as its projection is
@@ -205,20 +201,20 @@ Surface solve(const SupersampleLattice& lattice, Surface surface, const Image& i
     float* const v = surface.values.pixels.data();
     float* const b = surface.bubbles.data();
     for (uint32_t step = 0; step < iterations; ++step) {
-        lattice.evaluate(v, b, c, sub.get());
-        degradation.apply(sub.get(), residual.get());  // D(S), made the residual in place
-        parallelFor(input.pixels.size(), kElementGrain, [&](size_t begin, size_t end) {
+        lattice.evaluate(v, b, c, sub.data());
+        degradation.apply(sub.data(), residual.data());  // D(S), made the residual in place
+        parallelFor(residual.size(), kElementGrain, [&](size_t begin, size_t end) {
             for (size_t i = begin; i < end; ++i) residual[i] = beyondTolerance(input.pixels[i] - residual[i], tolerance);
         });
-        degradation.transpose(residual.get(), sub.get());
+        degradation.transpose(residual.data(), sub.data());
         withChannelCount(c, [&](auto channels) {
             constexpr uint32_t cc = decltype(channels)::value;
             lattice.project<cc>(
-                sub.get(),
+                sub.data(),
                 [&](size_t vertex, PixelVector<cc> step) {
                     const size_t p = vertex * cc;
                     PixelVector<cc> moved = loadPixel<cc>(v + p) + vertex_scale[vertex] * step;
-                    const PixelVector<cc> low = loadPixel<cc>(bounds.low.get() + p), high = loadPixel<cc>(bounds.high.get() + p);
+                    const PixelVector<cc> low = loadPixel<cc>(bounds.low.data() + p), high = loadPixel<cc>(bounds.high.data() + p);
                     moved = moved < low ? low : moved;  // std::clamp, lane by lane
                     moved = high < moved ? high : moved;
                     storePixel<cc>(v + p, moved);
@@ -239,8 +235,8 @@ Surface reconstructSurface(const Mesh& mesh, const Image& input, const Degradati
     Surface surface = initialSurface(mesh, input);
     if (model.identity() || iterations == 0) return surface;  // D is the identity: already consistent
     const std::vector<Triangle> triangles = listTriangles(mesh);
-    return solve(SupersampleLattice(mesh.width, mesh.height, input.channels, mesh.vertices, triangles), std::move(surface), input,
-                 model, iterations);
+    const SupersampleLattice lattice(mesh.width, mesh.height, input.channels, mesh.vertices, triangles);
+    return solve(lattice, std::move(surface), input, model, iterations);
 }
 
 Surface reconstructSurface(Mesh&& mesh, const Image& input, const DegradationModel& model,

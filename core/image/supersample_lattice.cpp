@@ -11,7 +11,6 @@ namespace ddt {
 
 namespace {
 
-const size_t kGrain = SupersampleLattice::kGrain;
 // Rows of supersamples per task.
 const size_t kRowGrain = 16;
 
@@ -20,8 +19,7 @@ const size_t kRowGrain = 16;
 SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t channels,
                                        std::vector<EdgeVertices> edges, const std::vector<Triangle>& triangles)
     : width_(width), height_(height), channels_(channels), edges_(std::move(edges)), triangles_(triangles),
-      third_of_(size_t(width) * height), shared_(std::make_unique_for_overwrite<uint32_t[]>(2 * edges_.size())),
-      shares_(std::make_unique_for_overwrite<float[]>(2 * edges_.size() * channels)) {
+      third_of_(size_t(width) * height), shared_(2 * edges_.size()), shares_(2 * edges_.size() * channels) {
     // Vertex (x, y)'s supersample is at column 3x + 1 and row 3y + 1 of the 3w-wide grid:
     // (3y + 1) · 3w + 3x + 1 = 3 · (3wy + w + x) + 1.
     parallelFor(height, kRowGrain, [&](size_t begin, size_t end) {
@@ -67,14 +65,13 @@ void SupersampleLattice::evaluateWith(const float* values, const float* bubbles,
     parallelFor(height_, kRowGrain, [&](size_t begin, size_t end) {
         for (uint32_t y = uint32_t(begin); y < end; ++y)
             for (uint32_t v = y * width_; v < (y + 1) * width_; ++v) store(sampleOf(v), value(v));
-        const size_t last = end == height_;  // the last band takes what the proportion rounds off
-        for (size_t e = edges * begin / height_, e_end = last ? edges : edges * end / height_; e < e_end; ++e) {
+        for (size_t e = edges * begin / height_; e < edges * end / height_; ++e) {
             const uint32_t a = edges_[e].a, b = edges_[e].b;
             const PixelVector<C> va = value(a), vb = value(b), lifted = kBubbleAtThird * bubble(uint32_t(e));
             store(third(a, b), kTwoThirds * va + kThird * vb + lifted);
             store(third(b, a), kThird * va + kTwoThirds * vb + lifted);
         }
-        for (size_t i = triangles * begin / height_, i_end = last ? triangles : triangles * end / height_; i < i_end; ++i) {
+        for (size_t i = triangles * begin / height_; i < triangles * end / height_; ++i) {
             const Triangle& t = triangles_[i];
             store(centroid(t.v0, t.v1, t.v2), kThird * (value(t.v0) + value(t.v1) + value(t.v2)) +
                                      kBubbleAtCentroid * (bubble(t.e0) + bubble(t.e1) + bubble(t.e2)));

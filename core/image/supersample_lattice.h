@@ -18,12 +18,12 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "mesh.h"
 #include "parallel.h"
 #include "pixel_vector.h"
+#include "uninitialised_vector.h"
 
 namespace ddt {
 
@@ -84,8 +84,8 @@ private:
     // floats each, left uninitialised until project writes them). Vertex v gathers the shares
     // shared_[first_share_[v] .. first_share_[v + 1]), in edge order.
     std::vector<uint32_t> first_share_;
-    std::unique_ptr<uint32_t[]> shared_;
-    std::unique_ptr<float[]> shares_;
+    UninitialisedVector<uint32_t> shared_;
+    mutable UninitialisedVector<float> shares_;
 };
 
 // Each edge sums its bubble's projection and its shares of its two vertices'; then each vertex
@@ -97,7 +97,7 @@ void SupersampleLattice::project(float* g, AtVertex at_vertex, AtEdge at_edge) c
     auto centroid = [&](uint32_t a, uint32_t b, uint32_t third) {  // none on the hull's side
         return third == kNone ? PixelVector<C>{} : at(this->centroid(a, b, third));
     };
-    float* const shares = shares_.get();
+    float* const shares = shares_.data();
     parallelFor(edges_.size(), kGrain, [&](size_t begin, size_t end) {
         for (size_t e = begin; e < end; ++e) {
             const EdgeVertices& r = edges_[e];
