@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "convolution_fallback.h"
 #include "memory_size.h"
 #include "parallel.h"
 #include "tiling.h"
@@ -168,7 +169,7 @@ OptimizeStats shapeTile(Job& job, Backend& backend, const Tile& tile, uint32_t i
         backend.reconstruct(degradationFor(double(job.out.width) / job.image.width,
                                            double(job.out.height) / job.image.height, job.kernel));
     }
-    if (job.fallback) backend.addFallback();
+    if (job.fallback) backend.addFallback(grainShareFor(job.kernel));
     return stats;
 }
 

@@ -1,5 +1,7 @@
 #include "ddt_magnify.h"
 
+#include "convolution_fallback.h"
+
 namespace bench {
 
 namespace {
@@ -39,7 +41,7 @@ DdtOutputs magnifyWithDdt(ddt::Backend& backend, const ddt::Image& low, uint32_t
         backend.reconstruct(ddt::degradationFor(double(width) / low.width, double(height) / low.height, assume));
         if (consistent) outputs.consistent = render(backend, low, width, height);
         if (fallback) {
-            backend.addFallback();
+            backend.addFallback(ddt::grainShareFor(assume));
             outputs.fallback = render(backend, low, width, height);
         }
     } catch (const ddt::UserError& error) {

@@ -156,6 +156,7 @@ struct PushConstants {
     uint taps_y_radius;
     uint integer_samples;      // reconstruction, fallback blend: 1 bounds the values to [0, 1] (8- and 16-bit input)
     float quantisation_tolerance;  // reconstruction: residuals count beyond this (core/image/reconstruct.h)
+    float grain_share;             // fallback weights: the share grain keeps (core/image/convolution_fallback.h)
 };
 
 // Workgroups for `count` items: kItemsPerInvocation per invocation, more only past
@@ -170,7 +171,7 @@ uint groupsFor(uint count) {
 
 #ifdef __cplusplus
 static_assert(sizeof(Control) == 16 * 4, "Control layout");
-static_assert(sizeof(PushConstants) == 28 * 4, "PushConstants layout");
+static_assert(sizeof(PushConstants) == 29 * 4, "PushConstants layout");
 }  // namespace ddt
 #endif
 #endif

@@ -17,26 +17,28 @@ static_assert(kFallbackWeightFlat == kWeightFlat && kFallbackWeightEdge == kWeig
 static_assert(2 + kFallbackGaussianRadius == kFallbackReach && kFallbackTaps / 2 <= kFallbackReach,
               "core/image/convolution_fallback.h's reach covers the kernels'");
 
-void VulkanBackend::addFallback() {
+void VulkanBackend::addFallback(float grain_share) {
     State& s = *state_;
     assert(s.explicit_positions.empty());  // the grid's mesh: vertex v is pixel v of the prepared image
     VulkanContext& c = *s.context;
     const uint32_t pixels = s.vertex_count;
     destroyBuffer(c, s.fallback_weights);
     destroyBuffer(c, s.fallback_across);
-    s.fallback_weights = createBuffer(c, uint64_t(pixels) * 4, Placement::Device, VK_FORMAT_R32_SFLOAT);
-    s.fallback_across = createBuffer(c, uint64_t(pixels) * 4, Placement::Device, VK_FORMAT_R32_SFLOAT);
+    // rgba32f: the structure tensor's three products per pixel while the weights are made.
+    s.fallback_weights = createBuffer(c, uint64_t(pixels) * 16, Placement::Device, VK_FORMAT_R32G32B32A32_SFLOAT);
+    s.fallback_across = createBuffer(c, uint64_t(pixels) * 16, Placement::Device, VK_FORMAT_R32G32B32A32_SFLOAT);
     s.writeDescriptors();
     {
         CommandBatch batch(c);
         const FallbackKernels& k = s.kernels.fallback;
-        for (VkPipeline kernel : {k.energy, k.smooth_x, k.weights})
-            dispatch(batch.buffer(), kernel, s.bindings(), s.push(), groupsFor(pixels));
+        PushConstants p = s.push();
+        p.grain_share = grain_share;
+        for (VkPipeline kernel : {k.energy, k.smooth_x, k.weights}) dispatch(batch.buffer(), kernel, s.bindings(), p, groupsFor(pixels));
         batch.submitAndWait();
     }
-    // The energy smoothed along x served only to make the weights: back to a placeholder.
+    // The tensor smoothed along x served only to make the weights: back to a placeholder.
     destroyBuffer(c, s.fallback_across);
-    s.fallback_across = createBuffer(c, 4, Placement::Device, VK_FORMAT_R32_SFLOAT);
+    s.fallback_across = createBuffer(c, 16, Placement::Device, VK_FORMAT_R32G32B32A32_SFLOAT);
     s.writeDescriptors();
     s.fallback = true;
 }

@@ -67,9 +67,9 @@ VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(const JobSize&
     MemoryNeed need;
     // Per vertex: luma, alpha, and the pixel as one rgba32f texel whatever the channels; its
     // position as an rg32i texel where explicit; the convolution fallback's weight and, while
-    // it makes them, their pass along x (counted whether or not it is asked for, as the CPU
-    // backend counts its own).
-    need.bytes = edges * per_edge + vertices * (4 + 4 + 16 + (job.positioned ? 8 : 0) + 4 + 4) + kBandBytes +
+    // it makes them, its structure tensor's pass along x, each an rgba32f texel (counted whether
+    // or not it is asked for, as the CPU backend counts its own).
+    need.bytes = edges * per_edge + vertices * (4 + 4 + 16 + (job.positioned ? 8 : 0) + 16 + 16) + kBandBytes +
                  (reconstruction ? surfaceBufferBytes(vertices, edges) : 0);
     if (edges >= kCopyEntry) need.problem = "more edges than the kernels can index";
     else if (elements > context->properties.limits.maxTexelBufferElements)
@@ -129,8 +129,8 @@ void VulkanBackend::State::createBuffers(const Image& img) {
     positions = createBuffer(c, explicit_positions.empty() ? 8 : vertices * 8, device, VK_FORMAT_R32G32_SINT);
     // A placeholder until the first render sizes it.
     band = createBuffer(c, 16, Placement::Readback, VK_FORMAT_R32G32B32A32_SFLOAT);
-    fallback_weights = createBuffer(c, 4, device, VK_FORMAT_R32_SFLOAT);
-    fallback_across = createBuffer(c, 4, device, VK_FORMAT_R32_SFLOAT);
+    fallback_weights = createBuffer(c, 16, device, VK_FORMAT_R32G32B32A32_SFLOAT);
+    fallback_across = createBuffer(c, 16, device, VK_FORMAT_R32G32B32A32_SFLOAT);
     surface = createSurfacePlaceholders(c);
 
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, kBindingCount},

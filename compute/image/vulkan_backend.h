@@ -53,7 +53,7 @@ public:
     OptimizeStats optimize() override;
     void reconstruct(const DegradationModel& model) override;
     // The surface's weights made on the device; renderWindow blends each band there (device_fallback.cpp).
-    void addFallback() override;
+    void addFallback(float grain_share) override;
     void renderWindow(const RenderWindow& window, float* rows) override;
     Mesh mesh() override;
     ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) override;

@@ -48,8 +48,9 @@ public:
     virtual void reconstruct(const DegradationModel& model) = 0;
     // Blends the surface towards a Lanczos3 convolution of the prepared image where it has
     // little contrast (core/image/convolution_fallback.h), in renderWindow and in a surface
-    // taken over, until the next prepare. After optimize and reconstruct.
-    virtual void addFallback() = 0;
+    // taken over, until the next prepare. After optimize and reconstruct. `grain_share` is
+    // grainShareFor the surface's assumed downscale.
+    virtual void addFallback(float grain_share) = 0;
     // Renders `window` (see core/image/render.h) of the prepared image, which is the crop at
     // (window.crop_x, window.crop_y) of the whole input: window.width() × channels floats per row.
     virtual void renderWindow(const RenderWindow& window, float* rows) = 0;

@@ -78,7 +78,7 @@ public:
         renderer_.emplace(std::move(locator), surface_->values, surface_->bubbles.data());
     }
 
-    void addFallback() override { fallback_.emplace(*image_); }
+    void addFallback(float grain_share) override { fallback_.emplace(*image_, grain_share); }
 
     void renderWindow(const RenderWindow& window, float* rows) override {
         BandFinish blend;
@@ -124,10 +124,11 @@ public:
     // channel 92 bytes of floats (the supersamples, 36; the edges' shares of their vertices'
     // projections, 24; the vertex values and bubbles, 16; the residuals and the bounds, 12;
     // the input). The convolution fallback, with either surface, adds its copy of the input and
-    // its weights, and while it makes them four floats per pixel (4 · channels + 20).
+    // its weights, and while it makes them the structure tensor and its pass along x, three
+    // floats per pixel each (4 · channels + 4 + 24).
     uint64_t memoryNeeded(uint32_t width, uint32_t height, uint32_t channels, bool reconstruction) const override {
         const uint64_t vertices = uint64_t(width) * height;
-        const uint64_t fallback = 4 * channels + 20;
+        const uint64_t fallback = 4 * channels + 4 + 24;
         const uint64_t optimizing = 3 * (32 + 16) + 2 * 24 + 4 + 4 * channels + fallback;
         const uint64_t reconstructing = 2 * 24 + 3 * 16 + 32 + 4 + 16 + 92 * channels + fallback;
         return vertices * (reconstruction ? std::max(optimizing, reconstructing) : optimizing);

@@ -64,29 +64,54 @@ std::vector<LanczosTaps> axisTaps(uint32_t begin, uint32_t end, uint32_t out_siz
     return taps;
 }
 
-// `field` smoothed along one axis by the Gaussian of σ = 1, with clamped edges.
-std::vector<float> gaussianAlong(const std::vector<float>& field, uint32_t width, uint32_t height, bool along_x) {
-    std::array<float, 2 * kGaussianRadius + 1> g;
+// The gradient's structure tensor at one pixel: the products of its components.
+struct Tensor {
+    float xx = 0.0f, yy = 0.0f, xy = 0.0f;
+};
+
+// The Gaussian of σ = 1 over radius 3, normalised.
+std::array<float, 2 * kGaussianRadius + 1> gaussianTaps() {
+    std::array<float, 2 * kGaussianRadius + 1> taps;
     float total = 0.0f;
-    for (int k = -kGaussianRadius; k <= kGaussianRadius; ++k) total += g[k + kGaussianRadius] = std::exp(-0.5f * k * k);
-    for (float& v : g) v /= total;
-    std::vector<float> result(field.size());
-    for (uint32_t y = 0; y < height; ++y)
-        for (uint32_t x = 0; x < width; ++x) {
-            float sum = 0.0f;
-            for (int k = -kGaussianRadius; k <= kGaussianRadius; ++k) {
-                const uint32_t xx = along_x ? clampIndex(int64_t(x) + k, width) : x;
-                const uint32_t yy = along_x ? y : clampIndex(int64_t(y) + k, height);
-                sum += g[k + kGaussianRadius] * field[size_t(yy) * width + xx];
-            }
-            result[size_t(y) * width + x] = sum;
-        }
-    return result;
+    for (int k = -kGaussianRadius; k <= kGaussianRadius; ++k) total += taps[k + kGaussianRadius] = std::exp(-0.5f * k * k);
+    for (float& v : taps) v /= total;
+    return taps;
+}
+
+// `field` (width × height) smoothed by the Gaussian along one axis at (x, y), with clamped edges.
+Tensor smoothedAt(const std::vector<Tensor>& field, uint32_t width, uint32_t height, uint32_t x, uint32_t y,
+                  bool along_x) {
+    static const std::array<float, 2 * kGaussianRadius + 1> taps = gaussianTaps();
+    Tensor sum;
+    for (int k = -kGaussianRadius; k <= kGaussianRadius; ++k) {
+        const uint32_t xx = along_x ? clampIndex(int64_t(x) + k, width) : x;
+        const uint32_t yy = along_x ? y : clampIndex(int64_t(y) + k, height);
+        const Tensor& t = field[size_t(yy) * width + xx];
+        const float tap = taps[k + kGaussianRadius];
+        sum.xx += tap * t.xx;
+        sum.yy += tap * t.yy;
+        sum.xy += tap * t.xy;
+    }
+    return sum;
+}
+
+// The surface's weight for a smoothed tensor: T is its trace, |g|² smoothed, and its
+// coherence ((λ₁ − λ₂) / (λ₁ + λ₂))² is 1 along a straight edge and near 0 in grain.
+float weightOf(const Tensor& t, float grain_share) {
+    const float energy = t.xx + t.yy;
+    const float contrast = std::clamp((std::log10(energy + 1e-9f) - kLogFlat) / (kLogEdge - kLogFlat), 0.0f, 1.0f);
+    if (contrast == 0.0f) return kWeightFlat;  // also where the coherence is 0 / 0
+    const float difference = t.xx - t.yy;
+    // At most 1 but for rounding: xx · yy ≥ xy² holds for the smoothed sums.
+    const float coherence = std::min((difference * difference + 4.0f * t.xy * t.xy) / (energy * energy), 1.0f);
+    return kWeightFlat + (kWeightEdge - kWeightFlat) * contrast * (grain_share + (1.0f - grain_share) * coherence);
 }
 
 }  // namespace
 
-std::vector<float> surfaceWeights(const Image& image) {
+float grainShareFor(AssumedKernel kernel) { return kernel == AssumedKernel::footprint ? 1.0f : kGrainShare; }
+
+std::vector<float> surfaceWeights(const Image& image, float grain_share) {
     const uint32_t w = image.width, h = image.height, c = image.channels;
     const uint32_t colours = image.hasAlpha() ? c - 1 : c;
     std::vector<float> mean(size_t(w) * h);
@@ -96,7 +121,7 @@ std::vector<float> surfaceWeights(const Image& image) {
         mean[p] = sum / float(colours);
     }
     auto at = [&](int64_t x, int64_t y) { return mean[size_t(clampIndex(y, h)) * w + clampIndex(x, w)]; };
-    std::vector<float> energy(mean.size());
+    std::vector<Tensor> tensor(mean.size());
     for (uint32_t y = 0; y < h; ++y)
         for (uint32_t x = 0; x < w; ++x) {
             const int64_t X = x, Y = y;
@@ -104,17 +129,21 @@ std::vector<float> surfaceWeights(const Image& image) {
                               2 * at(X - 1, Y) - at(X - 1, Y + 1)) / 8.0f;
             const float gy = (at(X - 1, Y + 1) + 2 * at(X, Y + 1) + at(X + 1, Y + 1) - at(X - 1, Y - 1) -
                               2 * at(X, Y - 1) - at(X + 1, Y - 1)) / 8.0f;
-            energy[size_t(y) * w + x] = gx * gx + gy * gy;
+            tensor[size_t(y) * w + x] = {gx * gx, gy * gy, gx * gy};
         }
-    std::vector<float> smoothed = gaussianAlong(gaussianAlong(energy, w, h, true), w, h, false);
-    for (float& v : smoothed) {
-        const float t = std::clamp((std::log10(v + 1e-9f) - kLogFlat) / (kLogEdge - kLogFlat), 0.0f, 1.0f);
-        v = kWeightFlat + (kWeightEdge - kWeightFlat) * t;
-    }
-    return smoothed;
+    mean = {};
+    std::vector<Tensor> across(tensor.size());
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) across[size_t(y) * w + x] = smoothedAt(tensor, w, h, x, y, true);
+    tensor = {};
+    std::vector<float> weights(across.size());
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) weights[size_t(y) * w + x] = weightOf(smoothedAt(across, w, h, x, y, false), grain_share);
+    return weights;
 }
 
-ConvolutionFallback::ConvolutionFallback(const Image& input) : input_(input), weights_(surfaceWeights(input)) {}
+ConvolutionFallback::ConvolutionFallback(const Image& input, float grain_share)
+    : input_(input), weights_(surfaceWeights(input, grain_share)) {}
 
 void ConvolutionFallback::blend(const RenderWindow& window, float* rows, size_t row_stride) const {
     const uint32_t c = input_.channels, crop_w = input_.width, crop_h = input_.height, width = window.width();

@@ -8,9 +8,15 @@
 // flat regions to 0.9 on strong edges, as a function of the input's local gradient energy.
 //
 // The surface's weight at input pixel p: with the gradient g of the colour channels' mean (a
-// Sobel operator, divided by 8 so that g is per pixel) and T = |g|² smoothed by a Gaussian of
-// σ = 1 pixel (radius 3),
-//     w(p) = kWeightFlat + (kWeightEdge − kWeightFlat) · clamp((log10 T − kLogFlat) / (kLogEdge − kLogFlat), 0, 1).
+// Sobel operator, divided by 8 so that g is per pixel), its structure tensor J = g gᵀ smoothed
+// by a Gaussian of σ = 1 pixel (radius 3), T = trace J (the smoothed |g|²) and the coherence
+// C = ((λ₁ − λ₂) / (λ₁ + λ₂))² of J's eigenvalues (1 along a straight edge, near 0 in grain),
+//     w(p) = kWeightFlat + (kWeightEdge − kWeightFlat) · clamp((log10 T − kLogFlat) / (kLogEdge − kLogFlat), 0, 1)
+//                                                   · (kGrainShare + (1 − kGrainShare) · C).
+// The coherence term is why grain of high contrast (leaves, gravel, raindrops) leans on the
+// convolution while edges keep the surface: the mesh's facets and the consistent step's
+// sharpening help along a line and show as creases across grain. The grain's share follows
+// the assumed downscale (grainShareFor).
 // An output sample takes w bilinearly from its input position and becomes
 //     w · surface + (1 − w) · Lanczos3(input),
 // kept to [0, 1] for integer sample types and colour within alpha, as the surface is.
@@ -24,6 +30,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "assumed_kernel.h"
 #include "image.h"
 #include "render.h"
 
@@ -33,19 +40,29 @@ constexpr float kWeightFlat = 0.1f;
 constexpr float kWeightEdge = 0.9f;
 constexpr float kLogFlat = -4.25f;
 constexpr float kLogEdge = -1.5f;
+// The share of the contrast's weight that grain without orientation (C = 0) keeps.
+constexpr float kGrainShare = 0.4f;
+
+// The grain's share for a surface reconstructed under `kernel`: 1 (no coherence term) under
+// the footprint, which the default assumes of JPEG files, kGrainShare under any other. Chosen
+// on half a of the held-out photographs (bench/README.md, "Grain"): the coherence term lifts
+// the rows of Lanczos3, bicubic and bilinear shrinks under `mixed`, and costs the JPEG rows,
+// whose surface under the footprint fits their grain.
+float grainShareFor(AssumedKernel kernel);
 
 // The input pixels a sample of the fallback reaches beyond the one it lies in.
 constexpr uint32_t kFallbackReach = 5;
 
-// The surface's weight w(p) at every pixel of `image` (row-major).
-std::vector<float> surfaceWeights(const Image& image);
+// The surface's weight w(p) at every pixel of `image` (row-major), with `grain_share` in place
+// of kGrainShare.
+std::vector<float> surfaceWeights(const Image& image, float grain_share);
 
 // Blends rendered rows of a window towards the Lanczos3 convolution of the input the window's
 // mesh was made of (its crop at window.crop_x, crop_y).
 class ConvolutionFallback {
 public:
     // `input` is the crop the surface was made of; it is copied, so the caller may drop it.
-    explicit ConvolutionFallback(const Image& input);
+    ConvolutionFallback(const Image& input, float grain_share);
 
     // `rows` as MeshRenderer::renderWindow writes them for `window`.
     void blend(const RenderWindow& window, float* rows, size_t row_stride = 0) const;

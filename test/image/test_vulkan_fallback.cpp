@@ -61,12 +61,12 @@ Image grey(const Image& rgb) {
 
 // Core's rows of `window` over the surface `surface` of `mesh`: rendered, then blended.
 std::vector<float> coreBlend(const Image& image, const Mesh& mesh, const RenderWindow& window,
-                             const Surface* surface = nullptr) {
+                             const Surface* surface = nullptr, float grain_share = kGrainShare) {
     const MeshRenderer renderer = surface ? MeshRenderer(mesh, surface->values, surface->bubbles.data())
                                           : MeshRenderer(mesh, image);
     std::vector<float> rows(size_t(window.width()) * window.height() * image.channels);
     renderer.renderWindow(window, rows.data());
-    ConvolutionFallback(image).blend(window, rows.data());
+    ConvolutionFallback(image, grain_share).blend(window, rows.data());
     return rows;
 }
 
@@ -89,27 +89,29 @@ TEST_CASE("vulkan fallback: blends the grid's plain surface as core's Convolutio
     VulkanBackend backend = makeBackend();
     float largest = 0.0f;
     for (const Case& c : cases)
-        for (double scale : {2.0, 3.7}) {
-            const Image& image = c.image;
-            const OutputSize out = scaledOutputSize(image.width, image.height, scale);
-            const RenderWindow window = wholeRows(image.width, image.height, out, 0, out.height);
-            INFO(c.name << " ×" << scale);
-            backend.prepare(image);
-            const std::vector<float> plain = vulkanRows(backend, window, image.channels);
-            backend.addFallback();
-            const std::vector<float> device = vulkanRows(backend, window, image.channels);
-            const std::vector<float> core = coreBlend(image, buildGridMesh(image.width, image.height), window);
-            const float difference = test::compareSamples(device, core).max_difference;
-            CHECK(difference <= kCoreTolerance);
-            largest = std::max(largest, difference);
-            CHECK(test::compareSamples(device, plain).max_difference > 0.01f);  // the blend did move the surface
-            if (image.hasAlpha())
-                for (size_t p = 0; p < device.size(); p += 4)
-                    for (uint32_t k = 0; k < 3; ++k) REQUIRE(device[p + k] <= device[p + 3]);
-            // prepare turns the fallback off again.
-            backend.prepare(image);
-            CHECK(test::compareSamples(vulkanRows(backend, window, image.channels), plain).max_difference == 0.0f);
-        }
+        for (double scale : {2.0, 3.7})
+            for (float grain_share : {kGrainShare, 1.0f}) {  // the two shares grainShareFor gives
+                const Image& image = c.image;
+                const OutputSize out = scaledOutputSize(image.width, image.height, scale);
+                const RenderWindow window = wholeRows(image.width, image.height, out, 0, out.height);
+                INFO(c.name << " ×" << scale << ", grain share " << grain_share);
+                backend.prepare(image);
+                const std::vector<float> plain = vulkanRows(backend, window, image.channels);
+                backend.addFallback(grain_share);
+                const std::vector<float> device = vulkanRows(backend, window, image.channels);
+                const std::vector<float> core =
+                    coreBlend(image, buildGridMesh(image.width, image.height), window, nullptr, grain_share);
+                const float difference = test::compareSamples(device, core).max_difference;
+                CHECK(difference <= kCoreTolerance);
+                largest = std::max(largest, difference);
+                CHECK(test::compareSamples(device, plain).max_difference > 0.01f);  // the blend did move the surface
+                if (image.hasAlpha())
+                    for (size_t p = 0; p < device.size(); p += 4)
+                        for (uint32_t k = 0; k < 3; ++k) REQUIRE(device[p + k] <= device[p + 3]);
+                // prepare turns the fallback off again.
+                backend.prepare(image);
+                CHECK(test::compareSamples(vulkanRows(backend, window, image.channels), plain).max_difference == 0.0f);
+            }
     WARN("largest Vulkan-core difference: " << largest);
     CHECK(backend.validationMessages() == 0);
 }
@@ -125,11 +127,13 @@ TEST_CASE("vulkan fallback: blends the consistent surface as core's ConvolutionF
     VulkanBackend backend = makeBackend();
     backend.prepare(image);
     backend.reconstruct(model);
-    backend.addFallback();
+    backend.addFallback(grainShareFor(AssumedKernel::footprint));
     const std::vector<float> device = vulkanRows(backend, window, image.channels);
     const Mesh mesh = buildGridMesh(image.width, image.height);
     const Surface surface = reconstructSurface(mesh, image, model);
-    const float difference = test::compareSamples(device, coreBlend(image, mesh, window, &surface)).max_difference;
+    const float difference =
+        test::compareSamples(device, coreBlend(image, mesh, window, &surface, grainShareFor(AssumedKernel::footprint)))
+            .max_difference;
     WARN("consistent surface: Vulkan-core difference " << difference);
     CHECK(difference <= kCoreTolerance);
     CHECK(backend.validationMessages() == 0);
@@ -145,7 +149,7 @@ TEST_CASE("vulkan fallback: the bands of a huge magnification blend as core", "[
     VulkanBackend backend = makeBackend();
     backend.prepare(image);
     backend.optimize();
-    backend.addFallback();
+    backend.addFallback(kGrainShare);
     const std::vector<float> device = vulkanRows(backend, window, image.channels);
     CHECK(test::compareSamples(device, coreBlend(image, backend.mesh(), window)).max_difference <= kCoreTolerance);
     CHECK(backend.validationMessages() == 0);
@@ -159,7 +163,7 @@ TEST_CASE("vulkan fallback: a tile's window blends as core and as the untiled im
     const OutputSize out = scaledOutputSize(image.width, image.height, 3.7);
     VulkanBackend backend = makeBackend();
     backend.prepare(image);
-    backend.addFallback();
+    backend.addFallback(kGrainShare);
     const std::vector<float> whole =
         vulkanRows(backend, wholeRows(image.width, image.height, out, 0, out.height), image.channels);
     const uint32_t side = 32, y0 = 32;
@@ -175,7 +179,7 @@ TEST_CASE("vulkan fallback: a tile's window blends as core and as the untiled im
     const RenderWindow window{image.width, image.height, out, tile.crop.x0, tile.crop.y0,
                               tile.output.x0, tile.output.x1, tile.output.y0, tile.output.y1};
     backend.prepare(crop);
-    backend.addFallback();
+    backend.addFallback(kGrainShare);
     const std::vector<float> device = vulkanRows(backend, window, image.channels);
     CHECK(test::compareSamples(device, coreBlend(crop, buildGridMesh(crop.width, crop.height), window)).max_difference <= kCoreTolerance);
     std::vector<float> untiled;

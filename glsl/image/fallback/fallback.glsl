@@ -3,8 +3,9 @@
 #include "fallback_constants.h"
 #include "raster.h"
 
-layout(binding = kBindingFallbackWeights, r32f) uniform imageBuffer fallback_weights;
-layout(binding = kBindingFallbackAcross, r32f) uniform imageBuffer fallback_across;
+// rgba32f: the structure tensor (xx, yy, xy) while the weights are made, then the weight in x.
+layout(binding = kBindingFallbackWeights, rgba32f) uniform imageBuffer fallback_weights;
+layout(binding = kBindingFallbackAcross, rgba32f) uniform imageBuffer fallback_across;
 
 const float kPi = 3.14159265358979;
 

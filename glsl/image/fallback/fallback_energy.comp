@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // The first step of the surface's weights (core's surfaceWeights): at every input pixel the
-// gradient energy |g|², g by the Sobel operator / 8 on the colour channels' mean, with
-// clamped edges, into fallback_weights, which fallback_weights.comp overwrites.
+// gradient's structure tensor (gx², gy², gx gy), g by the Sobel operator / 8 on the colour
+// channels' mean, with clamped edges, into fallback_weights, which fallback_weights.comp
+// overwrites.
 #include "../common.glsl"
 #include "fallback.glsl"
 
@@ -23,6 +24,6 @@ void main() {
                           2 * meanAt(x - 1, y) - meanAt(x - 1, y + 1)) / 8.0;
         const float gy = (meanAt(x - 1, y + 1) + 2 * meanAt(x, y + 1) + meanAt(x + 1, y + 1) - meanAt(x - 1, y - 1) -
                           2 * meanAt(x, y - 1) - meanAt(x + 1, y - 1)) / 8.0;
-        imageStore(fallback_weights, int(i), vec4(gx * gx + gy * gy));
+        imageStore(fallback_weights, int(i), vec4(gx * gx, gy * gy, gx * gy, 0.0));
     }
 }

@@ -1,8 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The surface's weight at every input pixel, into fallback_weights: the energy smoothed along x
-// (fallback_smooth_x.comp) smoothed along y, T, mapped as core's surfaceWeights:
-//     w = kWeightFlat + (kWeightEdge − kWeightFlat) · clamp((log10 T − kLogFlat) / (kLogEdge − kLogFlat), 0, 1).
+// The surface's weight at every input pixel, into fallback_weights: the structure tensor smoothed
+// along x (fallback_smooth_x.comp) smoothed along y, J, mapped as core's surfaceWeights, with
+// T = trace J and the coherence C = ((λ₁ − λ₂) / (λ₁ + λ₂))²:
+//     w = kWeightFlat + (kWeightEdge − kWeightFlat) · clamp((log10 T − kLogFlat) / (kLogEdge − kLogFlat), 0, 1)
+//                                                 · (s + (1 − s) · C), s the push constant grain_share.
 #include "../common.glsl"
 #include "fallback.glsl"
 
@@ -12,11 +14,18 @@ void main() {
     for (uint i = gl_GlobalInvocationID.x; i < count; i += invocationStride()) {
         const uint x = i % push.width;
         const int64_t y = i / push.width;
-        float sum = 0.0;
+        vec3 j = vec3(0.0);  // (xx, yy, xy)
         for (int k = -kFallbackGaussianRadius; k <= kFallbackGaussianRadius; ++k)
-            sum += taps[k + kFallbackGaussianRadius] * imageLoad(fallback_across, int(clampIndex(y + k, push.height) * push.width + x)).x;
-        const float log10_energy = log2(sum + 1e-9) / log2(10.0);  // 1e-9: log of a flat region's 0
+            j += taps[k + kFallbackGaussianRadius] * imageLoad(fallback_across, int(clampIndex(y + k, push.height) * push.width + x)).xyz;
+        const float energy = j.x + j.y;
+        const float log10_energy = log2(energy + 1e-9) / log2(10.0);  // 1e-9: log of a flat region's 0
         const float t = clamp((log10_energy - kFallbackLogFlat) / (kFallbackLogEdge - kFallbackLogFlat), 0.0, 1.0);
-        imageStore(fallback_weights, int(i), vec4(kFallbackWeightFlat + (kFallbackWeightEdge - kFallbackWeightFlat) * t));
+        float weight = kFallbackWeightFlat;
+        if (t > 0.0) {  // elsewhere the coherence may be 0 / 0
+            const float difference = j.x - j.y;
+            const float coherence = min((difference * difference + 4.0 * j.z * j.z) / (energy * energy), 1.0);
+            weight += (kFallbackWeightEdge - kFallbackWeightFlat) * t * (push.grain_share + (1.0 - push.grain_share) * coherence);
+        }
+        imageStore(fallback_weights, int(i), vec4(weight));
     }
 }
