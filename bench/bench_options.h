@@ -20,6 +20,7 @@ struct BenchOptions {
     uint32_t scaling_repeats = 3;
     std::string tables = "all";   // "paper" (Tables 1–3, Fig. 13), "protocols" (bench/README.md) or "all"
     std::string protocol_filter;  // an OIIO filter for the held-back protocol C; "": none
+    std::vector<std::string> columns;  // the protocol tables' columns by key, with Lanczos3; empty: all
     bool quick = false;  // CI: two small crops, one factor, one repeat, small Fig. 13
 };
 

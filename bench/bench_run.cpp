@@ -239,7 +239,7 @@ void runBench(const BenchOptions& options) {
     if (options.tables != "paper") {
         results.protocols = benchProtocols(options.protocol_filter, options.quick);
         UpscalerSetup setup = protocolUpscalers(results.devices.empty() ? nullptr : &results.devices.front());
-        results.upscalers = std::move(setup.upscalers);
+        results.upscalers = selectedColumns(std::move(setup.upscalers), options.columns);
         for (const std::string& note : setup.notes) addNote(results, note);
     }
     printHeader(results, options, images.size());

@@ -1,11 +1,13 @@
 #include "protocol_methods.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "ddt_magnify.h"
 #include "edge_directed.h"
 #include "ramp_alignment.h"
+#include "user_error.h"
 #include "vips_nohalo.h"
 
 namespace bench {
@@ -94,6 +96,19 @@ UpscalerSetup protocolUpscalers(const BenchDevice* device) {
     setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent, footprint + fallback", true, ddt::AssumedKernel::footprint, true));
     setup.upscalers.push_back(ddtColumn(cpu, "CPU consistent, bicubic + fallback", true, ddt::AssumedKernel::bicubic, true));
     return setup;
+}
+
+std::vector<Upscaler> selectedColumns(std::vector<Upscaler> all, const std::vector<std::string>& keys) {
+    if (keys.empty()) return all;
+    std::string known;
+    for (const Upscaler& u : all) known += (known.empty() ? "" : ", ") + u.key;
+    for (const std::string& key : keys)
+        if (std::none_of(all.begin(), all.end(), [&](const Upscaler& u) { return u.key == key; }))
+            throw ddt::UserError("--columns " + key + ": no such column; the columns are " + known);
+    std::erase_if(all, [&](const Upscaler& u) {
+        return u.key != "filter/lanczos3" && std::find(keys.begin(), keys.end(), u.key) == keys.end();
+    });
+    return all;
 }
 
 }  // namespace bench

@@ -39,4 +39,8 @@ struct UpscalerSetup {
 // Probes every peer and DDT backend; `device` null: no Vulkan device.
 UpscalerSetup protocolUpscalers(const BenchDevice* device);
 
+// The columns of `all` whose keys `keys` names (`--columns`), and Lanczos3, every table's
+// reference; all of them if `keys` is empty. An unknown key is a UserError naming the known ones.
+std::vector<Upscaler> selectedColumns(std::vector<Upscaler> all, const std::vector<std::string>& keys);
+
 }  // namespace bench
