@@ -33,7 +33,8 @@ void VulkanBackend::addFallback(float grain_share) {
         const FallbackKernels& k = s.kernels.fallback;
         PushConstants p = s.push();
         p.grain_share = grain_share;
-        for (VkPipeline kernel : {k.energy, k.smooth_x, k.weights}) dispatch(batch.buffer(), kernel, s.bindings(), p, groupsFor(pixels));
+        for (VkPipeline kernel : {k.energy, k.smooth_x, k.weights})
+            dispatch(batch.buffer(), kernel, s.bindings(), p, groupsFor(pixels));
         batch.submitAndWait();
     }
     // The tensor smoothed along x served only to make the weights: back to a placeholder.

@@ -138,7 +138,8 @@ std::vector<float> surfaceWeights(const Image& image, float grain_share) {
     tensor = {};
     std::vector<float> weights(across.size());
     for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) weights[size_t(y) * w + x] = weightOf(smoothedAt(across, w, h, x, y, false), grain_share);
+        for (uint32_t x = 0; x < w; ++x)
+            weights[size_t(y) * w + x] = weightOf(smoothedAt(across, w, h, x, y, false), grain_share);
     return weights;
 }
 

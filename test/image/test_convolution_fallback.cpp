@@ -1,8 +1,8 @@
 // The convolution fallback (core/image/convolution_fallback.h): the surface's weight follows
 // the input's local contrast and its orientation, against a double-precision eigenvalue
-// formula written here; grain leans on the convolution more than a line does; where it is low, the output is the weighted mean of the surface
-// and a Lanczos3 convolution written here from its textbook formula; tiles render the whole
-// image's pixels bit for bit.
+// formula written here; grain leans on the convolution more than a line does; where contrast
+// is low, the output is the weighted mean of the surface and a Lanczos3 convolution written
+// here from its textbook formula; tiles render the whole image's pixels bit for bit.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -56,7 +56,8 @@ double lanczosAt(const Image& image, OutputSize out, uint32_t X, uint32_t Y, uin
 std::vector<double> textbookWeights(const Image& image, double grain_share) {
     const int64_t w = image.width, h = image.height;
     auto mean = [&](int64_t x, int64_t y) {
-        const float* p = image.row(uint32_t(std::clamp<int64_t>(y, 0, h - 1))) + size_t(std::clamp<int64_t>(x, 0, w - 1)) * image.channels;
+        const float* p = image.row(uint32_t(std::clamp<int64_t>(y, 0, h - 1))) +
+                         size_t(std::clamp<int64_t>(x, 0, w - 1)) * image.channels;
         double sum = 0.0;
         for (uint32_t k = 0; k < image.channels; ++k) sum += p[k];
         return sum / image.channels;
@@ -81,7 +82,8 @@ std::vector<double> textbookWeights(const Image& image, double grain_share) {
             for (int64_t b = -3; b <= 3; ++b)
                 for (int64_t a = -3; a <= 3; ++a) {
                     const double tap = std::exp(-0.5 * double(a * a)) * std::exp(-0.5 * double(b * b)) / (total * total);
-                    const auto& t = tensor[size_t(std::clamp<int64_t>(y + b, 0, h - 1) * w + std::clamp<int64_t>(x + a, 0, w - 1))];
+                    const int64_t xx = std::clamp<int64_t>(x + a, 0, w - 1), yy = std::clamp<int64_t>(y + b, 0, h - 1);
+                    const auto& t = tensor[size_t(yy * w + xx)];
                     for (int i = 0; i < 3; ++i) j[i] += tap * t[i];
                 }
             const double half_sum = (j[0] + j[1]) / 2.0;
@@ -89,7 +91,8 @@ std::vector<double> textbookWeights(const Image& image, double grain_share) {
             const double large = half_sum + radius, small = half_sum - radius;
             const double contrast = std::clamp((std::log10(j[0] + j[1]) - kLogFlat) / (kLogEdge - kLogFlat), 0.0, 1.0);
             const double coherence = large + small > 0.0 ? std::pow((large - small) / (large + small), 2.0) : 0.0;
-            weights.push_back(kWeightFlat + (kWeightEdge - kWeightFlat) * contrast * (grain_share + (1.0 - grain_share) * coherence));
+            const double orientation = grain_share + (1.0 - grain_share) * coherence;
+            weights.push_back(kWeightFlat + (kWeightEdge - kWeightFlat) * contrast * orientation);
         }
     return weights;
 }

@@ -13,7 +13,8 @@ void main() {
         const uint row = i - uint(x);
         vec3 sum = vec3(0.0);
         for (int k = -kFallbackGaussianRadius; k <= kFallbackGaussianRadius; ++k)
-            sum += taps[k + kFallbackGaussianRadius] * imageLoad(fallback_weights, int(row + clampIndex(x + k, push.width))).xyz;
+            sum += taps[k + kFallbackGaussianRadius] *
+                   imageLoad(fallback_weights, int(row + clampIndex(x + k, push.width))).xyz;
         imageStore(fallback_across, int(i), vec4(sum, 0.0));
     }
 }

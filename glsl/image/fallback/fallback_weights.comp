@@ -16,7 +16,8 @@ void main() {
         const int64_t y = i / push.width;
         vec3 j = vec3(0.0);  // (xx, yy, xy)
         for (int k = -kFallbackGaussianRadius; k <= kFallbackGaussianRadius; ++k)
-            j += taps[k + kFallbackGaussianRadius] * imageLoad(fallback_across, int(clampIndex(y + k, push.height) * push.width + x)).xyz;
+            j += taps[k + kFallbackGaussianRadius] *
+                 imageLoad(fallback_across, int(clampIndex(y + k, push.height) * push.width + x)).xyz;
         const float energy = j.x + j.y;
         const float log10_energy = log2(energy + 1e-9) / log2(10.0);  // 1e-9: log of a flat region's 0
         const float t = clamp((log10_energy - kFallbackLogFlat) / (kFallbackLogEdge - kFallbackLogFlat), 0.0, 1.0);
@@ -24,7 +25,8 @@ void main() {
         if (t > 0.0) {  // elsewhere the coherence may be 0 / 0
             const float difference = j.x - j.y;
             const float coherence = min((difference * difference + 4.0 * j.z * j.z) / (energy * energy), 1.0);
-            weight += (kFallbackWeightEdge - kFallbackWeightFlat) * t * (push.grain_share + (1.0 - push.grain_share) * coherence);
+            const float orientation = push.grain_share + (1.0 - push.grain_share) * coherence;
+            weight += (kFallbackWeightEdge - kFallbackWeightFlat) * t * orientation;
         }
         imageStore(fallback_weights, int(i), vec4(weight));
     }
