@@ -17,7 +17,9 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
     if (options.tile && options.tile < std::max(image.width, image.height))
         throw UserError("simplification needs the image in one piece, and " + std::to_string(image.width) + "×" +
                         std::to_string(image.height) + " is larger than --tile");
-    if (std::string problem = untiledMemoryProblem(backend, image.width, image.height, image.channels); !problem.empty())
+    if (std::string problem = untiledMemoryProblem(backend, image.width, image.height, image.channels,
+                                                   backend.simplifyMemoryNeeded(image.width, image.height, image.channels));
+        !problem.empty())
         throw UserError("simplification needs the image in one piece: " + problem);
     if (image.width > kMaxPositionedSide || image.height > kMaxPositionedSide)
         throw UserError("simplification places vertices on a fixed-point grid for sides up to " +

@@ -76,6 +76,13 @@ public:
     // The most a job that cannot be tiled (a mask's, a simplification's) may hold: the device's
     // memory, or on the CPU backend the run's budget rather than the working set tiles are sized for.
     virtual uint64_t memoryLimit() const { return memoryAvailable(); }
+    // What simplify holds beyond memoryNeeded for a width × height input, in the memory
+    // memoryLimit counts: the CPU backend's serial simplification (greedy_simplify.h); 0 where
+    // the simplification's buffers are the device's own, which it checks as it allocates them.
+    virtual uint64_t simplifyMemoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const {
+        (void)width, (void)height, (void)channels;
+        return 0;
+    }
 
     // The image given to prepare.
     virtual const Image& preparedImage() const = 0;

@@ -138,6 +138,9 @@ public:
     // so the process's size does not grow with the input.
     uint64_t memoryAvailable() const override { return std::min(kWorkingMemory, memory_limit_); }
     uint64_t memoryLimit() const override { return memory_limit_; }
+    uint64_t simplifyMemoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const override {
+        return uint64_t(width) * height * simplifyBytesPerPixel(channels);
+    }
 
 private:
     void requireMesh() const {

@@ -63,6 +63,15 @@ TEST_CASE("cli memory: --memory caps what a job in one piece may hold, and bad s
     CHECK(result.header().width == 800);
     CHECK(result.header().height == 800);
 
+    // Simplification holds about 0.8 kB per pixel beside the mesh (greedy_simplify.h): 400² RGB
+    // needs about 162 MiB in all, over 64M's 56 MiB although the mask's job fits there, and
+    // under 256M's 224.
+    fs::remove(out);
+    requireOneLineError(runDdtup({input, "--simplify", "0.5", out, "--backend", "cpu", "--memory", "64M", "-q"}), 1, input,
+                        "more than the 56 MiB");
+    CHECK_FALSE(fs::exists(out));
+    CHECK(runDdtup({input, "--simplify", "0.5", out, "--backend", "cpu", "--memory", "256M", "-q"}).exit_code == 0);
+
     for (const char* bad : {"12Q", "1M", "abc", "-5G", "2GG"})
         requireOneLineError(runDdtup({input, out, "--memory", bad}), 2, std::string("--memory ") + bad, "512M or 4G");
 }
