@@ -79,8 +79,7 @@ public:
     // What simplify holds beyond memoryNeeded for a width × height input, in the memory
     // memoryLimit counts: the CPU backend's serial simplification (greedy_simplify.h); 0 where
     // the simplification's buffers are the device's own, which it checks as it allocates them.
-    virtual uint64_t simplifyMemoryNeeded(uint32_t width, uint32_t height, uint32_t channels) const {
-        (void)width, (void)height, (void)channels;
+    virtual uint64_t simplifyMemoryNeeded(uint32_t /*width*/, uint32_t /*height*/, uint32_t /*channels*/) const {
         return 0;
     }
 
