@@ -44,9 +44,8 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& values, uint32_t target, double 
 // a vector that may have doubled: 125), the copy of the values (4 per channel) and the colour
 // fit's sample of each pixel (24). Measured: 733 to 786 bytes per pixel above the same run
 // without --simplify (400², 1000 × 750 and 2000 × 1500 RGB photographs; 811 counted here).
-constexpr uint64_t kSimplifyBytesPerPixelBesidesChannels = 3 * (32 + 16) + 232 + 8 + 4 + 3 * (4 + 125) + 24;
 constexpr uint64_t simplifyBytesPerPixel(uint32_t channels) {
-    return kSimplifyBytesPerPixelBesidesChannels + 4 * uint64_t(channels);
+    return 3 * (32 + 16) + 232 + 8 + 4 + 3 * (4 + 125) + 4 * uint64_t(channels) + 24;
 }
 
 }  // namespace ddt
