@@ -132,7 +132,8 @@ private:
 
 struct Job {
     BackendPool& backends;
-    const Image& image;
+    const PackedImage& input;  // the whole input, made floats a crop at a time
+    const Image& image;        // its header (size, channels, sample type)
     OutputSize out;
     bool reconstruct;
     AssumedKernel kernel;
@@ -154,8 +155,9 @@ struct Job {
 OptimizeStats shapeTile(Job& job, Backend& backend, const Tile& tile, uint32_t index, uint32_t total, Image& crop) {
     job.step(index, total, TilePhase::Optimize);
     const bool whole = tile.crop.width() == job.image.width && tile.crop.height() == job.image.height;
-    if (!whole) crop = cropOf(job.image, tile.crop);
-    backend.prepare(whole ? job.image : crop);
+    const Image* floats = whole ? job.input.floats() : nullptr;  // an untiled float input needs no copy
+    if (!floats) crop = job.input.crop(tile.crop);
+    backend.prepare(floats ? *floats : crop);
     const OptimizeStats stats = backend.optimize();
     if (job.strip_mesh) {
         const Mesh mesh = backend.mesh();  // before the reconstruction, which may give it up
@@ -329,8 +331,9 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
     return kMinTileSide;  // the retry below reports that nothing fits
 }
 
-OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, const TileOptions& options,
+OptimizeStats upscaleRows(Backend& backend, const PackedImage& input, OutputSize out, const TileOptions& options,
                           const Sink& sink, const TileStepCallback& on_step) {
+    const Image& image = input.header();
     // A core's last samples must lie inside its crop's hull, or they would stay unwritten.
     const uint32_t overlap = std::max(1u, options.overlap);
     const uint32_t largest_side = std::max(image.width, image.height);
@@ -341,7 +344,7 @@ OptimizeStats upscaleRows(Backend& backend, const Image& image, OutputSize out, 
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
     BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
-    Job job{backends, image, out, options.reconstruct, options.kernel, options.fallback, on_step, rows, nullptr, {}, {}};
+    Job job{backends, input, image, out, options.reconstruct, options.kernel, options.fallback, on_step, rows, nullptr, {}, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

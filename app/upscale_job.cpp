@@ -74,7 +74,7 @@ struct ImageJob::State {
     std::optional<PointSamples> points;  // a point file's, from open() to decode()
     Frame frame;                         // a point file's
     uint32_t channels = 0;
-    Image image;                  // the input; for a point file, its vertex values (point_mesh.h)
+    PackedImage input;            // the input; for a point file, its vertex values (point_mesh.h)
     std::optional<Mesh> samples;  // --mask or a point file: the known samples' triangulation
     std::optional<ImageWriter> writer;
     std::optional<BandStream> bands;  // from process() to write()
@@ -89,7 +89,7 @@ ImageJob::~ImageJob() = default;
 
 AssumedKernel ImageJob::assumedKernel() const {
     if (settings_.assume != kAutomaticAssumption) return *parseAssumedKernel(settings_.assume);  // checked by the command line
-    const auto& metadata = state_->image.metadata;
+    const auto& metadata = state_->input.header().metadata;
     return automaticAssumption(metadata ? metadata->format_name : "");
 }
 
@@ -162,10 +162,10 @@ uint64_t ImageJob::hostMemory() const {
         return n * (2 * sizeof(float) * state_->channels + 2 * 3 * 32);
     }
     const Image& header = state_->reader->header();
-    const uint64_t input_floats = uint64_t(header.width) * header.height * header.channels;
-    // The image and a tile's crop of it at most as large; the output's bands have a budget
-    // of their own.
-    return sizeof(float) * 2 * input_floats;
+    const uint64_t samples = uint64_t(header.width) * header.height * header.channels;
+    // The image as kept and a tile's crop of it in floats, at most as large; the output's bands
+    // have a budget of their own.
+    return (state_->reader->keptSampleBytes() + sizeof(float)) * samples;
 }
 
 void ImageJob::decode() {
@@ -174,7 +174,7 @@ void ImageJob::decode() {
         try {
             SampledPoints sampled = triangulatePoints(*state_->points, state_->frame);
             state_->samples = std::move(sampled.mesh);
-            state_->image = std::move(sampled.values);
+            state_->input = PackedImage(std::move(sampled.values));
         } catch (const UserError& error) {
             throw UserError(inputName(task_.input) + ": " + error.what());
         }
@@ -182,11 +182,17 @@ void ImageJob::decode() {
         report_.times.init_s += secondsSince(start);
         return;
     }
-    state_->image = state_->reader->read();
+    state_->input = state_->reader->readPacked();
     for (const std::string& note : state_->reader->notes()) reporter_.notice(task_.input, note);
     state_->reader.reset();
-    if (!task_.mask.empty()) state_->samples = triangulateKnown(task_.mask, state_->image);
+    if (!task_.mask.empty()) state_->samples = triangulateKnown(task_.mask, state_->input.header());
     report_.times.init_s += secondsSince(start);
+}
+
+const Image& ImageJob::inputFloats() {
+    if (const Image* floats = state_->input.floats()) return *floats;
+    state_->input = PackedImage(std::move(state_->input).unpack());
+    return state_->input.header();
 }
 
 void ImageJob::streamOutput(MemoryBudget& budget) { state_->bands.emplace(budget); }
@@ -204,7 +210,8 @@ void ImageJob::process(Backend& backend) {
 
 void ImageJob::render(Backend& backend) {
     const OutputSize out = report_.out;
-    const size_t row_floats = size_t(out.width) * state_->image.channels;
+    const Image& header = state_->input.header();
+    const size_t row_floats = size_t(out.width) * header.channels;
     auto sink = [&](OutputRows&& rows) {
         const size_t floats = rows.rows() * row_floats;
         state_->bands->send(std::move(rows), floats);
@@ -234,7 +241,7 @@ void ImageJob::render(Backend& backend) {
         }
     };
     std::optional<StitchedMesh> mesh;
-    if (!task_.mesh.empty()) mesh.emplace(state_->image.width, state_->image.height);
+    if (!task_.mesh.empty()) mesh.emplace(header.width, header.height);
     try {
         TileOptions options;
         options.tile = settings_.tile;
@@ -250,26 +257,26 @@ void ImageJob::render(Backend& backend) {
                                               "one, the default, needs " +
                                               (state_->samples ? "every pixel's value)" : "the full mesh)"));
         if (state_->samples) {
-            report_.stats = upscaleFromSamples(backend, state_->image, std::move(*state_->samples), out, sink, on_step);
+            report_.stats = upscaleFromSamples(backend, inputFloats(), std::move(*state_->samples), out, sink, on_step);
             state_->samples.reset();
         } else if (settings_.simplifies()) {
-            SimplifiedUpscale simplified = upscaleSimplified(backend, state_->image, out, settings_.simplify,
+            SimplifiedUpscale simplified = upscaleSimplified(backend, inputFloats(), out, settings_.simplify,
                                                              settings_.max_error, options, sink, on_step);
             report_.stats = simplified.optimize;
             report_.simplify = simplified.simplify;
-            state_->image = std::move(simplified.values);  // the mesh file's colours; the input is not read again
+            state_->input = PackedImage(std::move(simplified.values));  // the mesh file's colours; the input is not read again
         } else
-            report_.stats = upscaleRows(backend, state_->image, out, options, sink, on_step);
+            report_.stats = upscaleRows(backend, state_->input, out, options, sink, on_step);
     } catch (const UserError& error) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }
     timeOf(phase) += secondsSince(mark);
     if (mesh) writeMesh(mesh->take(), mesh->takePositions());
-    state_->image.pixels = {};  // the next image may need the memory
+    state_->input.release();  // the next image may need the memory
 }
 
 void ImageJob::writeMesh(std::vector<uint32_t> triangles, std::vector<Position> positions) {
-    const Image& image = state_->image;
+    const Image& image = inputFloats();
     if (std::string problem = StitchedMesh::check(triangles, image.width, image.height, positions); !problem.empty())
         throw UserError(task_.mesh + ": the tiles' meshes do not join (" + problem +
                         "); a larger --tile, or none, avoids it");

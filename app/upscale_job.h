@@ -74,6 +74,9 @@ private:
     void render(Backend& backend);
     // Writes the task's mesh file from the stitched triangles of the optimised mesh.
     Image openPoints();
+    // The whole input as floats, for the paths that take it whole (samples, simplification,
+    // the mesh file's colours); an input kept as codes is unpacked from then on.
+    const Image& inputFloats();
     void writeMesh(std::vector<uint32_t> triangles, std::vector<Position> positions);
 
     struct State;

@@ -24,6 +24,13 @@ std::optional<SampleType> parseSampleType(const std::string& text) {
     return std::nullopt;
 }
 
+void premultiply(float* pixels, size_t count, uint32_t channels) {
+    for (size_t i = 0; i < count; i += channels) {
+        const float alpha = pixels[i + channels - 1];
+        for (uint32_t k = 0; k + 1 < channels; ++k) pixels[i + k] *= alpha;
+    }
+}
+
 std::string inputName(const std::string& path) { return path == kStandardStream ? "standard input" : path; }
 std::string outputName(const std::string& path) { return path == kStandardStream ? "standard output" : path; }
 

@@ -48,4 +48,7 @@ struct Image {
     float* row(uint32_t y) { return pixels.data() + y * rowFloats(); }
 };
 
+// Multiplies colour by alpha (the last of `channels`) in place, over `count` samples.
+void premultiply(float* pixels, size_t count, uint32_t channels);
+
 }  // namespace ddt

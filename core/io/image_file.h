@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image.h"
+#include "packed_image.h"
 
 namespace ddt {
 
@@ -29,12 +30,20 @@ public:
     // The upright size, layout, sample type and metadata; `pixels` is empty.
     const Image& header() const { return header_; }
     // Decodes the pixels (premultiplied when there is alpha). Throws UserError for a truncated
-    // or corrupt file, or NaN or infinite samples. Call once.
+    // or corrupt file, or NaN or infinite samples. Call one of the two, once.
     Image read();
+    // The same pixels, kept in the file's sample type where it is 8 or 16 bits (packed_image.h).
+    PackedImage readPacked();
+    // Bytes per sample readPacked keeps: 1 or 2 for codes, 4 for floats.
+    uint32_t keptSampleBytes() const;
     // One-line remarks for the user ("PATH: has more than one image (pages or frames); using the first").
     const std::vector<std::string>& notes() const { return notes_; }
 
 private:
+    // Every sample of the image as `Sample`s, upright.
+    template <class Sample>
+    std::vector<Sample> decode();
+
     struct State;
     std::unique_ptr<State> state_;
     Image header_;

@@ -27,13 +27,6 @@ AlphaStorage outputAlphaStorage(const std::string& format, const Image& like) {
     return straight.count(format) ? AlphaStorage::Straight : AlphaStorage::Premultiplied;
 }
 
-void premultiply(std::vector<float>& pixels, uint32_t channels) {
-    for (size_t i = 0; i < pixels.size(); i += channels) {
-        float alpha = pixels[i + channels - 1];
-        for (uint32_t k = 0; k + 1 < channels; ++k) pixels[i + k] *= alpha;
-    }
-}
-
 // Attributes of the input that describe its old pixels, layout or file, not the new image.
 const char* const kStaleAttributes[] = {
     "oiio:UnassociatedAlpha", "tiff:UnassociatedAlpha", "oiio:BitsPerSample", "Exif:PixelXDimension",

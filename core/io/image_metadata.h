@@ -25,8 +25,6 @@ struct ImageMetadata {
 AlphaStorage inputAlphaStorage(const OIIO::ImageSpec& spec, const std::string& format);
 // How a file of `format` is written; TIFF keeps `like`'s choice.
 AlphaStorage outputAlphaStorage(const std::string& format, const Image& like);
-// Multiplies colour by alpha (the last channel) in place.
-void premultiply(std::vector<float>& pixels, uint32_t channels);
 
 // Copies `like`'s metadata to `spec`, the output's: resolution scaled with the magnification,
 // attributes of the old file dropped, compression settings only to the same format.

@@ -102,14 +102,16 @@ bool hasSeveralImages(OIIO::ImageInput& input) {
 // EXIF orientation 5..8 turn the stored image a quarter: the upright size is the stored size swapped.
 bool swapsSides(int orientation) { return orientation >= 5 && orientation <= 8; }
 
-// Turns and mirrors the pixels as EXIF orientation 2..8 asks, so that they are upright.
+// Turns and mirrors `stored` (samples of `type`, the stored size) as EXIF orientation 2..8
+// asks, so that they are upright, into `upright` (as large).
 // Not ImageBufAlgo::reorient: OIIO 2.4 swaps 5 and 7 there (OpenImageIO issue #4661).
-void makeUpright(Image& image, int orientation) {
+void makeUpright(const void* stored_samples, void* upright_samples, OIIO::TypeDesc type, const Image& header,
+                 int orientation) {
     namespace iba = OIIO::ImageBufAlgo;
     const bool swapped = swapsSides(orientation);
-    const OIIO::ImageSpec stored_spec(int(swapped ? image.height : image.width), int(swapped ? image.width : image.height),
-                                      int(image.channels), OIIO::TypeDesc::FLOAT);
-    const OIIO::ImageBuf stored(stored_spec, image.pixels.data());
+    const OIIO::ImageSpec stored_spec(int(swapped ? header.height : header.width), int(swapped ? header.width : header.height),
+                                      int(header.channels), type);
+    const OIIO::ImageBuf stored(stored_spec, const_cast<void*>(stored_samples));
     OIIO::ImageBuf upright, half_turned;
     bool ok = false;
     switch (orientation) {
@@ -122,7 +124,7 @@ void makeUpright(Image& image, int orientation) {
         case 8: ok = iba::rotate270(upright, stored); break;
     }
     if (!ok) throw std::runtime_error("orienting the image: " + upright.geterror());
-    upright.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data());
+    upright.get_pixels(OIIO::ROI::All(), type, upright_samples);
 }
 
 // Rows decoded per call, a whole number of TIFF strips. OIIO 2.4's TIFF reader goes on through
@@ -136,20 +138,31 @@ int decodeBandRows(const OIIO::ImageSpec& spec) {
     return std::min(spec.height, (1023 / rows_per_strip + 1) * rows_per_strip);
 }
 
-// Decodes the current image as floats, its channels interleaved; tiled files as OIIO does.
-bool decodePixels(OIIO::ImageInput& input, float* pixels) {
+// Decodes the current image as samples of `type`, its channels interleaved; tiled files as OIIO does.
+bool decodePixels(OIIO::ImageInput& input, OIIO::TypeDesc type, void* pixels) {
     const OIIO::ImageSpec& spec = input.spec();
-    if (spec.tile_width) return input.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels);
+    if (spec.tile_width) return input.read_image(0, 0, 0, spec.nchannels, type, pixels);
     const int band = decodeBandRows(spec);
-    const size_t row_floats = size_t(spec.width) * spec.nchannels;
+    const size_t row_bytes = size_t(spec.width) * spec.nchannels * type.size();
     for (int y = 0; y < spec.height; y += band) {
         const int end = std::min(spec.height, y + band);
-        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
-                                  pixels + size_t(y) * row_floats) ||
+        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels, type,
+                                  static_cast<char*>(pixels) + size_t(y) * row_bytes) ||
             input.has_error())
             return false;
     }
     return true;
+}
+
+// The float the codec makes of each code of `Code` (its conversion when asked for floats), so
+// that unpacked codes equal a float read bit for bit.
+template <class Code>
+std::vector<float> valuesOfCodes(OIIO::TypeDesc type) {
+    std::vector<Code> codes(size_t(1) << (8 * sizeof(Code)));
+    for (size_t code = 0; code < codes.size(); ++code) codes[code] = Code(code);
+    std::vector<float> values(codes.size());
+    OIIO::convert_pixel_values(type, codes.data(), OIIO::TypeDesc::FLOAT, values.data(), int(codes.size()));
+    return values;
 }
 
 bool allFinite(const std::vector<float>& pixels) {
@@ -166,6 +179,7 @@ struct ImageReader::State {
     std::unique_ptr<OIIO::ImageInput> input;
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
     int orientation = 1;
+    OIIO::TypeDesc codes = OIIO::TypeDesc::UNKNOWN;  // UINT8 or UINT16: the samples are kept as such
 };
 
 ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<State>()) {
@@ -243,36 +257,64 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     header_.channels = uint32_t(spec.nchannels);
     header_.sample_type = sampleTypeOf(spec.format);
     header_.metadata = metadata;
+    // Signed and mixed per-channel types are converted to floats as they are read.
+    if (spec.channelformats.empty() && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16))
+        s.codes = spec.format;
 }
 
 ImageReader::~ImageReader() = default;
 
-Image ImageReader::read() {
+template <class Sample>
+std::vector<Sample> ImageReader::decode() {
+    const OIIO::TypeDesc type = OIIO::BaseTypeFromC<Sample>::value;
     State& s = *state_;
     if (!s.input) throw std::logic_error("ImageReader::read called twice");
-    Image image = header_;
+    std::vector<Sample> samples;
     try {
-        image.pixels.resize(size_t(image.width) * image.height * image.channels);
+        samples.resize(size_t(header_.width) * header_.height * header_.channels);
     } catch (const std::bad_alloc&) {
-        throw UserError(s.name + ": too large to hold in memory (" + std::to_string(image.width) + "×" +
-                        std::to_string(image.height) + ")");
+        throw UserError(s.name + ": too large to hold in memory (" + std::to_string(header_.width) + "×" +
+                        std::to_string(header_.height) + ")");
     }
     bool ok;
     {
         QuietStderr quiet;
-        ok = decodePixels(*s.input, image.pixels.data());
+        ok = decodePixels(*s.input, type, samples.data());
     }
     // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
     if (!ok || s.input->has_error())
         throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
     s.input.reset();
     s.stdin_copy.reset();
+    if (s.orientation != 1) makeUpright(samples.data(), samples.data(), type, header_, s.orientation);
+    return samples;
+}
+
+PackedImage ImageReader::readPacked() {
+    const bool straight = header_.hasAlpha() && state_->alpha_storage == AlphaStorage::Straight;
+    // 8- and 16-bit files are kept as their codes (packed_image.h); anything else as floats.
+    if (state_->codes == OIIO::TypeDesc::UINT8) {
+        std::vector<uint8_t> codes = decode<uint8_t>();
+        return PackedImage(header_, std::move(codes), valuesOfCodes<uint8_t>(state_->codes), straight);
+    }
+    if (state_->codes == OIIO::TypeDesc::UINT16) {
+        std::vector<uint16_t> codes = decode<uint16_t>();
+        return PackedImage(header_, std::move(codes), valuesOfCodes<uint16_t>(state_->codes), straight);
+    }
+    Image image = header_;
+    image.pixels = decode<float>();
     // Interpolating across a NaN or an infinity spreads it over the whole neighbourhood.
     if ((image.sample_type == SampleType::Half || image.sample_type == SampleType::Float) && !allFinite(image.pixels))
-        throw UserError(s.name + ": contains NaN or infinite values");
-    if (s.orientation != 1) makeUpright(image, s.orientation);
-    if (image.hasAlpha() && s.alpha_storage == AlphaStorage::Straight) premultiply(image.pixels, image.channels);
-    return image;
+        throw UserError(state_->name + ": contains NaN or infinite values");
+    if (straight) premultiply(image.pixels.data(), image.pixels.size(), image.channels);
+    return PackedImage(std::move(image));
+}
+
+Image ImageReader::read() { return readPacked().unpack(); }
+
+uint32_t ImageReader::keptSampleBytes() const {
+    const OIIO::TypeDesc codes = state_->codes;
+    return codes == OIIO::TypeDesc::UNKNOWN ? uint32_t(sizeof(float)) : uint32_t(codes.size());
 }
 
 Image readImage(const std::string& path) { return ImageReader(path).read(); }

@@ -81,7 +81,7 @@ std::vector<float> upscale(Backend& backend, const Image& image, OutputSize out,
     std::vector<float> result(row_floats * out.height, -1.0f);
     uint32_t next_row = 0;
     upscaleRows(
-        backend, image, out, options,
+        backend, PackedImage(image), out, options,
         [&](OutputRows&& rows) {
             // Every row once, in order.
             REQUIRE(rows.y_begin == next_row);
@@ -291,7 +291,7 @@ void checkLargeUpscale(uint32_t side_px) {
     float low = 1.0f, high = 0.0f;
     const auto start = std::chrono::steady_clock::now();
     const OptimizeStats stats = upscaleRows(
-        backend, image, out, {},
+        backend, PackedImage(image), out, {},
         [&](OutputRows&& rows) {
             REQUIRE(rows.y_begin == next_row);
             next_row = rows.y_end;

@@ -627,6 +627,86 @@ TEST_CASE("image: EXIF orientation is applied, and the output is written upright
     }
 }
 
+// What ImageReader::read must return for `raw` (OIIO's own float read of the stored image):
+// upright by `orientation` (1 or 6, a quarter turn clockwise: upright (x, y) is stored
+// (y, stored height − 1 − x)), colour times alpha where the file stores it straight.
+std::vector<float> expectedPixels(const RawFile& raw, int orientation, bool straight) {
+    const uint32_t c = uint32_t(raw.spec.nchannels), stored_width = uint32_t(raw.spec.width),
+                   stored_height = uint32_t(raw.spec.height);
+    const bool turned = orientation == 6;
+    const uint32_t width = turned ? stored_height : stored_width, height = turned ? stored_width : stored_height;
+    std::vector<float> pixels(raw.pixels.size());
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const uint32_t sx = turned ? y : x, sy = turned ? stored_height - 1 - x : y;
+            const float* from = &raw.pixels[(size_t(sy) * stored_width + sx) * c];
+            float* to = &pixels[(size_t(y) * width + x) * c];
+            const bool alpha = c == 2 || c == 4;
+            for (uint32_t k = 0; k < c; ++k) to[k] = straight && alpha && k + 1 < c ? from[k] * from[c - 1] : from[k];
+        }
+    return pixels;
+}
+
+// 8- and 16-bit inputs are kept as their codes and made floats a crop at a time
+// (core/image/packed_image.h): every crop must hold exactly the floats OIIO reads, upright and
+// premultiplied, and the codes must take a quarter or a half of the floats' bytes.
+TEST_CASE("image: inputs kept as 8- or 16-bit codes give crops equal to the file's floats") {
+    TempFolder folder;
+    struct Case {
+        const char* name;
+        uint32_t channels;
+        OIIO::TypeDesc type;
+        int orientation;
+        uint32_t kept_bytes;
+    };
+    const Case cases[] = {
+        {"rgba8.png", 4, OIIO::TypeDesc::UINT8, 1, 1},  {"grey-alpha16.png", 2, OIIO::TypeDesc::UINT16, 1, 2},
+        {"rgb16.tif", 3, OIIO::TypeDesc::UINT16, 6, 2}, {"photo.jpg", 3, OIIO::TypeDesc::UINT8, 6, 1},
+        {"float.exr", 4, OIIO::TypeDesc::FLOAT, 1, 4},
+    };
+    std::mt19937 random(7);
+    for (const Case& test : cases) {
+        INFO(test.name);
+        const std::string path = folder / test.name;
+        const uint32_t width = 37, height = 23;
+        std::vector<float> stored(size_t(width) * height * test.channels);
+        for (float& value : stored) value = float(random() % 1000) / 999.0f;
+        auto output = OIIO::ImageOutput::create(path);
+        REQUIRE(output);
+        OIIO::ImageSpec spec(int(width), int(height), int(test.channels), test.type);
+        if (test.channels % 2 == 0) {
+            spec.alpha_channel = int(test.channels) - 1;
+            spec.attribute("oiio:UnassociatedAlpha", 1);
+        }
+        if (test.orientation != 1) spec.attribute("Orientation", test.orientation);
+        REQUIRE(output->open(path, spec));
+        REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, stored.data()));
+        REQUIRE(output->close());
+
+        const RawFile raw = readRaw(path);
+        const bool straight = raw.spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
+        const std::vector<float> expected = expectedPixels(raw, test.orientation, straight);
+
+        ddt::ImageReader reader(path);
+        CHECK(reader.keptSampleBytes() == test.kept_bytes);
+        const ddt::PackedImage packed = reader.readPacked();
+        const Image& header = packed.header();
+        CHECK(packed.bytes() == size_t(width) * height * test.channels * test.kept_bytes);
+        for (const ddt::PixelRect rect : {ddt::PixelRect{0, 0, header.width, header.height}, ddt::PixelRect{3, 5, 17, 21},
+                                          ddt::PixelRect{header.width - 1, header.height - 2, header.width, header.height}}) {
+            INFO("crop " << rect.x0 << "," << rect.y0 << " to " << rect.x1 << "," << rect.y1);
+            const Image crop = packed.crop(rect);
+            REQUIRE(crop.width == rect.width());
+            REQUIRE(crop.height == rect.height());
+            for (uint32_t y = 0; y < crop.height; ++y)
+                for (size_t i = 0; i < crop.rowFloats(); ++i) {
+                    const size_t at = (size_t(rect.y0 + y) * header.width + rect.x0) * test.channels + i;
+                    REQUIRE(crop.row(y)[i] == expected[at]);
+                }
+        }
+    }
+}
+
 TEST_CASE("image: of several images in a file the first is read, with a note") {
     TempFolder folder;
     const Image first = makeImage(6, 4, 3, SampleType::UInt8), second = makeImage(6, 4, 3, SampleType::UInt8);
