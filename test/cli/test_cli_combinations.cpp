@@ -2,10 +2,12 @@
 // that shapes a run (tiles, a mesh file, simplification, the cost, the surface, the fallback,
 // the backend):
 // each cell either works — exit 0 and an output of the magnified size — or is refused — one
-// line naming the option, exit 2 and no output. docs/USAGE.md's "Combinations" lists the
-// same cells: a cell that changes changes both.
+// line naming the option, exit 2 and no output. The README's "What combines" table marks the
+// same cells (checked below) and docs/USAGE.md's "Combinations" gives the reasons: a cell that
+// changes changes all three.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -44,7 +46,27 @@ struct Option {
     // Per kind (image, mask, points, volume): "" where the option works, else what the one
     // line of its refusal says.
     std::string refusal[4];
+    std::string readme_row;  // the first cell of the README's row for it
 };
+
+// The options of the matrix; a mesh file is written to `mesh_file`.
+std::vector<Option> matrixOptions(const std::string& mesh_file) {
+    const std::string whole = "one piece; --tile does not apply", volumes = "does not apply to volumes";
+    const std::string cost_and_backend = "`--cost W`, `--backend cpu`/`vulkan`";
+    return {
+        {{"--tile", "64"}, {"", whole, whole, ""}, "`--tile N`"},
+        {{"--mesh", mesh_file}, {"", "do not combine yet", "do not combine yet", volumes}, "`--mesh F`"},
+        {{"--simplify", "0.5"}, {"", "do not combine yet", "do not combine yet", volumes}, "`--simplify R`, `--max-error E`"},
+        {{"--cost", "variance"}, {"", "", "", ""}, cost_and_backend},
+        {{"--reconstruct", "plain"}, {"", "", "", volumes}, "`--reconstruct plain`"},
+        {{"--reconstruct", "consistent"}, {"", "needs every pixel's value", "needs a full image", volumes},
+         "`--reconstruct consistent`"},
+        {{"--fallback", "lanczos3"}, {"", "have no input to convolve", "no pixel grid to convolve", volumes},
+         "`--fallback lanczos3`"},
+        {{"--backend", "cpu"}, {"", "", "", ""}, cost_and_backend},
+        {{"--backend", "vulkan"}, {"", "", "", ""}, cost_and_backend},
+    };
+}
 
 // The inputs of each kind, written once per test run into `folder`.
 struct Inputs {
@@ -121,21 +143,41 @@ TEST_CASE("cli: every input kind with every option either works or is refused wi
     TempFolder folder;
     const Inputs inputs(folder);
     const std::string mesh_file = folder / "mesh.ply";
-    const std::string whole = "one piece; --tile does not apply";
-    const std::vector<Option> options = {
-        {{"--tile", "64"}, {"", whole, whole, ""}},
-        {{"--mesh", mesh_file},
-         {"", "do not combine yet", "do not combine yet", "does not apply to volumes"}},
-        {{"--simplify", "0.5"}, {"", "do not combine yet", "do not combine yet", "does not apply to volumes"}},
-        {{"--cost", "variance"}, {"", "", "", ""}},
-        {{"--reconstruct", "plain"}, {"", "", "", "does not apply to volumes"}},
-        {{"--reconstruct", "consistent"},
-         {"", "needs every pixel's value", "needs a full image", "does not apply to volumes"}},
-        {{"--fallback", "lanczos3"},
-         {"", "have no input to convolve", "no pixel grid to convolve", "does not apply to volumes"}},
-        {{"--backend", "cpu"}, {"", "", "", ""}},
-        {{"--backend", "vulkan"}, {"", "", "", ""}},
-    };
+    const std::vector<Option> options = matrixOptions(mesh_file);
     for (Kind kind : {Kind::image, Kind::mask, Kind::points, Kind::volume})
         for (const Option& option : options) checkCell(inputs, kind, option, mesh_file);
+}
+
+// The README's table is what users read: each of its cells must say ✓ exactly where the
+// matrix above runs the option, ✗ where it is refused.
+TEST_CASE("cli: the README's table of combinations marks the cells the matrix tests") {
+    std::ifstream readme(std::string(DDTUP_TEST_DATA) + "/../../README.md");
+    REQUIRE(readme);
+    std::vector<std::string> rows;  // the table's, under the heading "What combines"
+    bool in_section = false;
+    for (std::string line; std::getline(readme, line);) {
+        if (line.rfind("#", 0) == 0) in_section = line == "### What combines";
+        if (in_section && line.rfind("| `", 0) == 0) rows.push_back(line);
+    }
+    for (const Option& option : matrixOptions("mesh.ply")) {
+        INFO(option.readme_row);
+        const std::string start = "| " + option.readme_row + " |";
+        const auto row = std::find_if(rows.begin(), rows.end(), [&](const std::string& r) { return r.rfind(start, 0) == 0; });
+        REQUIRE(row != rows.end());
+        std::vector<std::string> cells;
+        for (size_t at = start.size(); at < row->size();) {
+            const size_t end = row->find('|', at);
+            if (end == std::string::npos) break;
+            std::string cell = row->substr(at, end - at);
+            cell.erase(0, cell.find_first_not_of(' '));
+            cells.push_back(cell);
+            at = end + 1;
+        }
+        REQUIRE(cells.size() == 4);
+        for (Kind kind : {Kind::image, Kind::mask, Kind::points, Kind::volume}) {
+            INFO(kindName(kind));
+            const bool works = option.refusal[int(kind)].empty();
+            CHECK(cells[size_t(kind)].rfind(works ? "✓" : "✗", 0) == 0);
+        }
+    }
 }
