@@ -86,8 +86,6 @@ std::string validateMask(const CLI::App& app, const Settings& settings) {
         return "--mask gives one image's mask, --mask-dir a batch's: give one of them";
     const std::string option = settings.mask.empty() ? "--mask-dir" : "--mask";
     if (settings.simplifies()) return option + " and simplification (--simplify, --max-error) do not combine yet";
-    if (!settings.mesh.empty())
-        return option + " and --mesh do not combine yet (the mesh file's border ring assumes the image's rectangle)";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return option + " renders the linear surface on the known pixels' triangulation; --reconstruct consistent needs "
                "every pixel's value";
@@ -132,7 +130,6 @@ std::string validatePoints(const CLI::App& app, const Settings& settings) {
     if (!any_points) return app.count("--frame") ? "--frame applies to point files (.csv, .ply)" : "";
     if (settings.masked()) return "--mask and --mask-dir apply to images: a point file lists only known samples";
     if (settings.simplifies()) return "point files and simplification (--simplify, --max-error) do not combine yet";
-    if (!settings.mesh.empty()) return "point files and --mesh do not combine yet";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return "a point file is rendered linearly on its triangulation; --reconstruct consistent needs a full image";
     if (settings.tile) return "a point file is triangulated in one piece; --tile does not apply";

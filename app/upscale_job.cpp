@@ -118,7 +118,9 @@ void ImageJob::open() {
         // A simplified mesh of V vertices has fewer than 2V triangles (a triangulated disk),
         // plus its ring's, at most two per hull pixel and corner.
         // With --max-error alone the count is known only at the end, where it is checked again.
-        const uint64_t faces = settings_.simplifies()
+        // A point file's mesh has fewer than 2 triangles a point; a mask's, fewer than the grid's.
+        const uint64_t faces = state_->points ? 2 * uint64_t(state_->points->size())
+                               : settings_.simplifies()
                                    ? 2 * simplifiedVertexCount(header.width, header.height, settings_.simplify) +
                                          4 * (uint64_t(header.width) + header.height) + 8
                                    : indexedFaceCount(header.width, header.height);
@@ -240,8 +242,9 @@ void ImageJob::render(Backend& backend) {
             told_tiles = true;
         }
     };
-    std::optional<StitchedMesh> mesh;
-    if (!task_.mesh.empty()) mesh.emplace(header.width, header.height);
+    std::optional<StitchedMesh> mesh;  // the tiles' meshes, for --mesh
+    if (!task_.mesh.empty() && !state_->samples) mesh.emplace(header.width, header.height);
+    std::optional<Mesh> sample_mesh;  // the optimised sample mesh, for --mesh
     try {
         TileOptions options;
         options.tile = settings_.tile;
@@ -257,7 +260,9 @@ void ImageJob::render(Backend& backend) {
                                               "one, the default, needs " +
                                               (state_->samples ? "every pixel's value)" : "the full mesh)"));
         if (state_->samples) {
-            report_.stats = upscaleFromSamples(backend, inputFloats(), std::move(*state_->samples), out, sink, on_step);
+            if (!task_.mesh.empty()) sample_mesh.emplace();
+            report_.stats = upscaleFromSamples(backend, inputFloats(), std::move(*state_->samples), out, sink, on_step,
+                                               sample_mesh ? &*sample_mesh : nullptr);
             state_->samples.reset();
         } else if (settings_.simplifies()) {
             SimplifiedUpscale simplified = upscaleSimplified(backend, inputFloats(), out, settings_.simplify,
@@ -271,27 +276,41 @@ void ImageJob::render(Backend& backend) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }
     timeOf(phase) += secondsSince(mark);
-    if (mesh) writeMesh(mesh->take(), mesh->takePositions());
+    if (mesh) writeTiledMesh(mesh->take(), mesh->takePositions());
+    if (sample_mesh) {
+        // A point file's frame, else the image's.
+        const OutputSize frame = state_->frame.width ? OutputSize{state_->frame.width, state_->frame.height}
+                                                     : OutputSize{header.width, header.height};
+        writeMesh(indexedSampleMeshOf(*sample_mesh, inputFloats(), frame, out, settings_.mesh_height), frame,
+                  "; the known samples' hull only: outside it the image takes the nearest rendered pixel");
+    }
     state_->input.release();  // the next image may need the memory
 }
 
-void ImageJob::writeMesh(std::vector<uint32_t> triangles, std::vector<Position> positions) {
+void ImageJob::writeTiledMesh(std::vector<uint32_t> triangles, std::vector<Position> positions) {
     const Image& image = inputFloats();
     if (std::string problem = StitchedMesh::check(triangles, image.width, image.height, positions); !problem.empty())
         throw UserError(task_.mesh + ": the tiles' meshes do not join (" + problem +
                         "); a larger --tile, or none, avoids it");
+    writeMesh(indexedMeshOf(triangles, positions, image, report_.out, settings_.mesh_height),
+              {image.width, image.height}, "");
+}
+
+void ImageJob::writeMesh(const IndexedMesh& indexed, OutputSize frame, const std::string& coverage) {
+    const Image& image = inputFloats();
     const OutputSize out = report_.out;
     char details[256];
     std::snprintf(details, sizeof(details),
                   "sx = %.9g, sy = %.9g; y up in PLY and OBJ (y = %u - that), down in SVG; colours straight, %s "
                   "samples; z = luma * %.9g",
-                  double(out.width) / image.width, double(out.height) / image.height, out.height,
+                  double(out.width) / frame.width, double(out.height) / frame.height, out.height,
                   sampleTypeName(image.sample_type), settings_.mesh_height);
     const std::string comment = std::string("ddtup ") + DDTUP_VERSION + ": the optimised DDT mesh of " +
                                 inputName(task_.input) + " for a " + std::to_string(out.width) + "x" +
                                 std::to_string(out.height) + " output; x, y in output pixels, the vertex at input " +
-                                "position (x, y) (pixel centres at integers) at ((x + 0.5) sx, (y + 0.5) sy) from the top left; " + details;
-    writeMeshFile(task_.mesh, indexedMeshOf(triangles, positions, image, out, settings_.mesh_height), comment);
+                                "position (x, y) (pixel centres at integers) at ((x + 0.5) sx, (y + 0.5) sy) from the top left; " + details +
+                                coverage;
+    writeMeshFile(task_.mesh, indexed, comment);
 }
 
 bool ImageJob::write() {

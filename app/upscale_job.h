@@ -17,6 +17,7 @@
 #include "reporter.h"
 #include "settings.h"
 #include "image_file.h"
+#include "indexed_mesh.h"
 
 namespace ddt {
 
@@ -77,7 +78,11 @@ private:
     // The whole input as floats, for the paths that take it whole (samples, simplification,
     // the mesh file's colours); an input kept as codes is unpacked from then on.
     const Image& inputFloats();
-    void writeMesh(std::vector<uint32_t> triangles, std::vector<Position> positions);
+    // Checks that the tiles' meshes join, then writes them as --mesh asks.
+    void writeTiledMesh(std::vector<uint32_t> triangles, std::vector<Position> positions);
+    // Writes --mesh's file: `indexed` over `frame` (input pixels), with `coverage` appended to
+    // the comment that states the conventions.
+    void writeMesh(const IndexedMesh& indexed, OutputSize frame, const std::string& coverage);
 
     struct State;
     size_t index_;

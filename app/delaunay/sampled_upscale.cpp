@@ -20,7 +20,8 @@ std::vector<uint32_t> knownPixels(const Image& mask) {
 }
 
 OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh initial, OutputSize out,
-                                 const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step) {
+                                 const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step,
+                                 Mesh* optimized) {
     // The output is rendered whole (the fill outside the hull reaches across it) beside the mesh.
     const uint64_t output_bytes = uint64_t(out.width) * out.height * image.channels * sizeof(float);
     if (std::string problem = untiledMemoryProblem(backend, image.width, image.height, image.channels, output_bytes);
@@ -29,7 +30,7 @@ OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh init
     if (on_step) on_step({0, 1, TilePhase::Optimize});
     backend.prepareFrom(image, std::move(initial));
     const OptimizeStats stats = backend.optimize();
-    const Mesh mesh = backend.mesh();
+    Mesh mesh = backend.mesh();
     if (on_step) on_step({0, 1, TilePhase::Render});
     Image rendered = renderSampledMesh(mesh, image, out);
     const size_t row_floats = size_t(out.width) * image.channels;
@@ -39,6 +40,7 @@ OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh init
         std::memcpy(band.floats.get(), rendered.row(y), band.rows() * row_floats * sizeof(float));
         sink(std::move(band));
     }
+    if (optimized) *optimized = std::move(mesh);
     return stats;
 }
 

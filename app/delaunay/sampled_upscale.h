@@ -21,9 +21,10 @@ namespace ddt {
 std::vector<uint32_t> knownPixels(const Image& mask);
 
 // Optimizes `initial` (a triangulation of some of `image`'s pixels) on `backend` and sends the
-// output of size `out` to `sink` in bands. Throws UserError when the image is too large for the
-// backend in one piece.
+// output of size `out` to `sink` in bands; the optimised mesh goes to `optimized` if given (for
+// `--mesh`). Throws UserError when the image is too large for the backend in one piece.
 OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh initial, OutputSize out,
-                                 const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step = {});
+                                 const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step = {},
+                                 Mesh* optimized = nullptr);
 
 }  // namespace ddt

@@ -13,9 +13,11 @@ namespace {
 // counter-clockwise whatever order they are given in.
 class MeshBuilder {
 public:
-    MeshBuilder(const Image& input, OutputSize out, double height)
-        : input_(input), sx_(double(out.width) / input.width), sy_(double(out.height) / input.height),
-          height_(height) {
+    // Positions in the frame of `input`'s pixels; `frame` overrides it where the values are
+    // not an image of the frame (a point file's, one value per vertex).
+    MeshBuilder(const Image& input, OutputSize out, double height, OutputSize frame = {})
+        : input_(input), sx_(double(out.width) / (frame.width ? frame.width : input.width)),
+          sy_(double(out.height) / (frame.height ? frame.height : input.height)), height_(height) {
         mesh_.channels = input.channels;
         mesh_.colour_type = input.sample_type;
         mesh_.out = out;
@@ -23,8 +25,11 @@ public:
 
     // A vertex at (x, y) of the output, y down, with the colour of input pixel (px, py).
     uint32_t addVertex(double x, double y, uint32_t px, uint32_t py) {
+        return addVertex(x, y, input_.row(py) + size_t(px) * input_.channels);
+    }
+    // A vertex at (x, y) of the output, y down, with the colour `pixel` (premultiplied).
+    uint32_t addVertex(double x, double y, const float* pixel) {
         const uint32_t c = input_.channels;
-        const float* pixel = input_.row(py) + size_t(px) * c;
         float straight[4];
         const float alpha = input_.hasAlpha() ? pixel[c - 1] : 1.0f;
         for (uint32_t k = 0; k < c; ++k)
@@ -113,6 +118,21 @@ IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const std::vec
     corner(w - 1, 0, top.second, right.first, W, 0.0);
     corner(0, h - 1, bottom.first, left.second, 0.0, H);
     corner(w - 1, h - 1, bottom.second, right.second, W, H);
+    return builder.take();
+}
+
+IndexedMesh indexedSampleMeshOf(const Mesh& mesh, const Image& values, OutputSize frame, OutputSize out, double height) {
+    MeshBuilder builder(values, out, height, frame);
+    const uint32_t c = values.channels;
+    // The vertices the triangles use, in id order: a mask's known pixels, a point file's points.
+    std::vector<uint32_t> index(mesh.vertexCount(), kNone);
+    forEachTriangle(mesh, [&](const Triangle& t) { index[t.v0] = index[t.v1] = index[t.v2] = 0; });
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v)
+        if (index[v] != kNone) {
+            const Position p = positionOf(mesh, v);
+            index[v] = builder.addVertex(builder.outputX(p), builder.outputY(p), values.pixels.data() + size_t(v) * c);
+        }
+    forEachTriangle(mesh, [&](const Triangle& t) { builder.addFace(index[t.v0], index[t.v1], index[t.v2]); });
     return builder.take();
 }
 

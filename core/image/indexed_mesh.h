@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "image.h"
+#include "mesh.h"
 #include "render.h"
 
 namespace ddt {
@@ -50,6 +51,15 @@ struct IndexedMesh {
 // A vertex at input position (x, y) lies at output ((x + 0.5)·sx, H − (y + 0.5)·sy).
 IndexedMesh indexedMeshOf(const std::vector<uint32_t>& triangles, const std::vector<Position>& positions,
                           const Image& input, OutputSize out, double height = 0.0);
+
+// The mesh file of a sample mesh (a mask's known pixels, a point file's points; core/delaunay/)
+// optimised: its triangles only, without a ring, as the hull of the samples need not reach
+// the image's rectangle (the raster fills outside the hull from its nearest rendered pixels,
+// core/delaunay/sampled_render.h, which no mesh of these formats can say). `values` holds
+// the vertex values by id, premultiplied: a frame-sized image (ids y · width + x) or one value
+// per vertex; positions are the mesh's, in the `frame` of input pixels that `out` magnifies.
+IndexedMesh indexedSampleMeshOf(const Mesh& mesh, const Image& values, OutputSize frame, OutputSize out,
+                                double height = 0.0);
 
 // The triangles indexedMeshOf makes from a triangulation of all a width × height grid's
 // vertices: the grid's 2(w − 1)(h − 1), two per hull segment and two per corner (a simplified

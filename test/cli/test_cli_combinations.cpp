@@ -55,7 +55,7 @@ std::vector<Option> matrixOptions(const std::string& mesh_file) {
     const std::string cost_and_backend = "`--cost W`, `--backend cpu`/`vulkan`";
     return {
         {{"--tile", "64"}, {"", whole, whole, ""}, "`--tile N`"},
-        {{"--mesh", mesh_file}, {"", "do not combine yet", "do not combine yet", volumes}, "`--mesh F`"},
+        {{"--mesh", mesh_file}, {"", "", "", volumes}, "`--mesh F`"},
         {{"--simplify", "0.5"}, {"", "do not combine yet", "do not combine yet", volumes}, "`--simplify R`, `--max-error E`"},
         {{"--cost", "variance"}, {"", "", "", ""}, cost_and_backend},
         {{"--reconstruct", "plain"}, {"", "", "", volumes}, "`--reconstruct plain`"},

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "image_file.h"
 #include "metrics.h"
@@ -42,6 +43,36 @@ TEST_CASE("cli mesh: PLY and OBJ files that assimp reads, with the grid, its rin
         CHECK(assimpCount(work / name, "Faces") == 2 * 31 * 31 + 8 * 31 + 8);
     }
     CHECK(work.names() == std::set<std::string>{"mesh.obj", "mesh.ply", "out.png"});
+}
+
+// A mask's and a point file's meshes: their samples' triangles, no ring (indexed_mesh.h).
+TEST_CASE("cli mesh: a mask's and a point file's mesh files hold their samples, as assimp reads them") {
+    TempFolder work;
+    // Known: the even columns of the 32 × 32 input, 16 × 32 pixels in a 31 × 31 hull.
+    std::vector<float> mask(32 * 32, 0.0f);
+    for (uint32_t i = 0; i < 32 * 32; ++i) mask[i] = i % 2 == 0 ? 1.0f : 0.0f;
+    ddt::writeImage(work / "mask.png", ddt::test::makeImage(32, 32, 1, mask));
+    std::ofstream(work / "points.csv") << "0,0,0.1\n9.5,0,0.5\n0,7.25,0.9\n9.5,7.25,0.3\n4,3,0.7\n";
+    const std::pair<std::vector<std::string>, long> cases[] = {
+        {{kInput, "--mask", work / "mask.png"}, 16 * 32},
+        {{work / "points.csv"}, 5},
+    };
+    for (const auto& [input, vertices] : cases) {
+        INFO(input.front());
+        for (const std::string name : {"mesh.ply", "mesh.obj"}) {
+            INFO(name);
+            std::vector<std::string> args = input;
+            args.insert(args.end(), {"-s", "2", work / "out.png", "--mesh", work / name, "--backend", "cpu", "-q"});
+            const Run run = runDdtup(args);
+            REQUIRE(run.exit_code == 0);
+            CHECK(assimpCount(work / name, "Vertices") == vertices);
+            // A triangulation of v points, b of them on the hull's boundary, has 2v − b − 2
+            // triangles. The mask's boundary: the top and bottom rows' 16 pixels and the side
+            // columns' 30 between them; the points': the four corners around the centre.
+            const long boundary = vertices == 5 ? 4 : 2 * 16 + 2 * 30;
+            CHECK(assimpCount(work / name, "Faces") == 2 * vertices - boundary - 2);
+        }
+    }
 }
 
 TEST_CASE("cli mesh: the Vulkan backend's mesh file has the CPU backend's layout", "[vulkan]") {

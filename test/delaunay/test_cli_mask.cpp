@@ -125,7 +125,6 @@ TEST_CASE("cli mask: bad masks and combinations are refused in one line", "[dela
     writeImage(mask, maskImage(32, 32, [](uint32_t x, uint32_t) { return x % 2 == 0; }));
     requireOneLineError(runDdtup({input, input, "--mask", mask, "-o", work / "dir"}), 2, "--mask", "one input");
     requireOneLineError(runDdtup({input, "--mask", mask, out, "--simplify", "0.5"}), 2, "--mask", "simplification");
-    requireOneLineError(runDdtup({input, "--mask", mask, out, "--mesh", work / "m.ply"}), 2, "--mask", "--mesh");
     requireOneLineError(runDdtup({input, "--mask", mask, out, "--tile", "64"}), 2, "--mask", "--tile");
     requireOneLineError(runDdtup({input, "--mask", mask, out, "--reconstruct", "consistent"}), 2, "--mask", "consistent");
     const std::string before = readFile(mask);

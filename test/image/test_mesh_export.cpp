@@ -8,10 +8,14 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <random>
 #include <sstream>
 
 #include "backend.h"
+#include "delaunay.h"
+#include "delaunay/point_mesh.h"
+#include "sampled_render.h"
 #include "greedy_simplify.h"
 #include "indexed_mesh.h"
 #include "mesh_file.h"
@@ -48,8 +52,8 @@ double twiceFaceArea(const IndexedMesh& m, uint32_t f) {
 }
 
 // The mesh's value at (x, y) (file frame), by barycentric interpolation in the face that
-// holds the point; fails the test if no face does.
-std::vector<double> valueAt(const IndexedMesh& m, double x, double y) {
+// holds the point; nullopt if no face does.
+std::optional<std::vector<double>> valueInside(const IndexedMesh& m, double x, double y) {
     for (uint32_t f = 0; f < m.faceCount(); ++f) {
         const double* p = &m.positions[3 * size_t(m.faces[3 * f])];
         const double* q = &m.positions[3 * size_t(m.faces[3 * f + 1])];
@@ -67,8 +71,14 @@ std::vector<double> valueAt(const IndexedMesh& m, double x, double y) {
                        l2 * m.colours[size_t(m.faces[3 * f + 2]) * m.channels + k];
         return value;
     }
-    FAIL("no face holds (" << x << ", " << y << ")");
-    return {};
+    return std::nullopt;
+}
+
+// valueInside, failing the test where no face holds the point.
+std::vector<double> valueAt(const IndexedMesh& m, double x, double y) {
+    std::optional<std::vector<double>> value = valueInside(m, x, y);
+    if (!value) FAIL("no face holds (" << x << ", " << y << ")");
+    return *value;
 }
 
 // Where the renderer samples output column or row i of a mesh with explicit positions
@@ -184,6 +194,61 @@ TEST_CASE("mesh export: a simplified mesh's file has only its vertices and is st
                 valueAt(m, snappedSample(x, w, out.width), out.height - snappedSample(y, h, out.height));
             for (uint32_t k = 0; k < 3; ++k) CHECK(value[k] == Approx(plain.row(y)[x * 3 + k]).margin(1e-6));  // as above
         }
+}
+
+// A mask's mesh (pixel ids, implicit positions, a frame-sized values image) and a point
+// file's (explicit positions, one value per vertex): the file holds exactly the mesh's
+// vertices and triangles, no ring, and wherever an output sample lies in the samples' hull
+// its surface is the raster's.
+TEST_CASE("mesh export: a sample mesh's file holds its samples, and inside their hull is their render") {
+    std::mt19937 rng(17);
+    const uint32_t w = 11, h = 8;
+    const OutputSize frame{w, h}, out{27, 19};
+    // Known: every pixel but the top-left corner's triangle and a 3 × 2 hole.
+    std::vector<uint32_t> known;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            if (x + y >= 3 && !(x >= 5 && x < 8 && y >= 3 && y < 5)) known.push_back(y * w + x);
+    const Mesh mask_mesh = delaunayOfPixels(w, h, known);
+    const Image mask_values = randomImage(rng, w, h, 3);
+
+    PointSamples points;
+    points.channels = 3;
+    std::uniform_real_distribution<double> px(0.0, w - 1.0), py(0.0, h - 1.0), level(0.0, 1.0);
+    for (int i = 0; i < 40; ++i) {
+        points.x.push_back(px(rng));
+        points.y.push_back(py(rng));
+        for (int k = 0; k < 3; ++k) points.values.push_back(float(level(rng)));
+    }
+    const SampledPoints sampled = triangulatePoints(points, {w, h});
+    REQUIRE(!sampled.mesh.positions.empty());  // the explicit form
+
+    const std::pair<const Mesh*, const Image*> cases[] = {{&mask_mesh, &mask_values}, {&sampled.mesh, &sampled.values}};
+    for (const auto& [mesh, values] : cases) {
+        const bool positioned = !mesh->positions.empty();
+        INFO((positioned ? "point file" : "mask"));
+        const IndexedMesh m = indexedSampleMeshOf(*mesh, *values, frame, out);
+        CHECK(m.vertexCount() == (positioned ? 40u : uint32_t(known.size())));
+        CHECK(m.faceCount() == listTriangles(*mesh).size());
+        for (uint32_t f = 0; f < m.faceCount(); ++f) CHECK(twiceFaceArea(m, f) > 0.0);
+        const Image raster = renderSampledMesh(*mesh, *values, out);
+        uint32_t inside = 0;
+        for (uint32_t y = 0; y < out.height; ++y)
+            for (uint32_t x = 0; x < out.width; ++x) {
+                INFO("output pixel (" << x << ", " << y << ")");
+                // The renderer samples explicit positions on its 1/1024-pixel grid.
+                const double fx = positioned ? snappedSample(x, w, out.width) : x + 0.5;
+                const double fy = positioned ? snappedSample(y, h, out.height) : y + 0.5;
+                const std::optional<std::vector<double>> value = valueInside(m, fx, out.height - fy);
+                if (!value) continue;
+                ++inside;
+                for (uint32_t k = 0; k < 3; ++k)
+                    // The same interpolation with weights computed two ways, rounded to float.
+                    CHECK((*value)[k] == Approx(raster.row(y)[x * 3 + k]).margin(1e-6));
+            }
+        CHECK(inside > out.width * out.height / 3);  // the hull holds a good share of the samples
+        CHECK(inside < out.width * out.height);      // and not all: no ring to the rectangle
+    }
 }
 
 TEST_CASE("mesh export: straight colours, and z from luma times the height") {
