@@ -120,7 +120,10 @@ std::vector<float> magnifyVolumeValues(const Volume& volume, const std::array<ui
         stats.optimize_s += secondsSince(start);
 
         start = std::chrono::steady_clock::now();
-        resampleTetsInto(mesh, values, brick.window, out.data());
+        if (options.resample)
+            options.resample(mesh, values, brick.window, out.data());
+        else
+            resampleTetsInto(mesh, values, brick.window, out.data());
         stats.resample_s += secondsSince(start);
     }
     return out;
