@@ -7,6 +7,7 @@
 
 #include "parallel.h"
 #include "volume/tet_device.h"
+#include "volume/tet_resample_device.h"
 #include "vulkan_backend.h"
 
 namespace ddt {
@@ -116,6 +117,15 @@ VolumeEngine makeVolumeEngine(const Settings& settings) {
         stats.iterations = rule.rounds;
         stats.capped = rule.capped;
         return stats;
+    };
+    // A window the kernel cannot take (an output row longer than a slab, more slots than a texel
+    // buffer holds) goes to core whole: the same voxels, on the CPU.
+    engine.resample = [context](const TetMesh& mesh, const std::vector<float>& values, const TetResampleWindow& window,
+                                float* out) {
+        if (tetResampleDeviceProblem(*context, mesh, window).empty())
+            resampleTetsVulkan(*context, mesh, values, window, out);
+        else
+            resampleTetsInto(mesh, values, window, out);
     };
     return engine;
 }

@@ -37,13 +37,15 @@ struct AutomaticDevice {
 };
 AutomaticDevice automaticDevice();
 
-// What flips the volumes of a run (app/volume/): the serial generalized Lawson on the CPU, or
-// the parallel rule on a Vulkan device (compute/volume/tet_device.h), chosen by --backend as
-// for images. Throws UserError when Vulkan was asked for and no usable device exists.
+// What flips and resamples the volumes of a run (app/volume/): the serial generalized Lawson
+// and core's resampling on the CPU, or the parallel rule (compute/volume/tet_device.h) and the
+// resampling kernel (compute/volume/tet_resample_device.h) on a Vulkan device, chosen by
+// --backend as for images. Throws UserError when Vulkan was asked for and no usable device exists.
 struct VolumeEngine {
     BackendChoice choice;
-    std::shared_ptr<VulkanContext> context;  // the device's, held by `optimize` too
+    std::shared_ptr<VulkanContext> context;  // the device's, held by `optimize` and `resample` too
     TetOptimizer optimize;                   // empty: the serial generalized Lawson
+    TetResampler resample;                   // empty: core's resampleTetsInto
 };
 VolumeEngine makeVolumeEngine(const Settings& settings);
 

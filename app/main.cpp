@@ -73,7 +73,8 @@ void printVolumeStats(const ddt::ImageTask& task, const ddt::VolumeReport& repor
     std::printf("time-init      %.3f s  (read the volume)\n", report.read_s);
     std::printf("time-comp      %.3f s  (build the tetrahedral meshes, optimize: %s)\n", report.stats.optimize_s,
                 report.on_device ? "the parallel rule on the Vulkan device" : "the serial generalized Lawson, CPU");
-    std::printf("time-resample  %.3f s  (each output voxel in its tetrahedron)\n", report.stats.resample_s);
+    std::printf("time-resample  %.3f s  (each output voxel in its tetrahedron%s)\n", report.stats.resample_s,
+                report.on_device ? ", on the Vulkan device" : "");
     std::printf("time-final     %.3f s  (write the volume%s)\n", report.write_s, "");
     std::printf("time-sum       %.3f s\n", report.read_s + report.stats.optimize_s + report.stats.resample_s + report.write_s);
     if (batch) std::printf("\n");

@@ -68,6 +68,7 @@ VolumeReport magnifyVolume(size_t index, const ImageTask& task, const Settings& 
     options.weight = settings.cost == "face-scf" ? TetWeight::face_scf : TetWeight::variance;
     options.brick_side = settings.tile;
     options.optimize = engine.optimize;
+    options.resample = engine.resample;
     report.on_device = bool(engine.optimize);
     Volume output;
     output.size = report.out;

@@ -1,7 +1,7 @@
 // One volume's way through a run: read, magnify (core/volume/volume_magnify.h: tetrahedralize,
 // optimize by bistellar flips, resample; in bricks when large or --tile asks), write, and the
-// middle slices when asked. Volumes run one after another; the flips on the engine --backend
-// chooses (app/backend_factory.h: the serial CPU optimizer or a Vulkan device), the rest on the CPU.
+// middle slices when asked. Volumes run one after another; the flips and the resampling on the
+// engine --backend chooses (app/backend_factory.h: the CPU, or a Vulkan device), the rest on the CPU.
 #pragma once
 
 #include <array>
@@ -20,7 +20,7 @@ struct VolumeReport {
     std::array<uint32_t, 3> in{};
     std::array<uint32_t, 3> out{};
     VolumeMagnifyStats stats;
-    bool on_device = false;  // the flips ran the parallel rule on a Vulkan device
+    bool on_device = false;  // the flips (the parallel rule) and the resampling ran on a Vulkan device
     double read_s = 0.0;   // read and check the file
     double write_s = 0.0;  // the output file and the slices
 };

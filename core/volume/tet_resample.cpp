@@ -148,15 +148,18 @@ TetResampleWindow wholeWindow(const TetMesh& mesh, const std::array<uint32_t, 3>
 }
 
 // Calls sample(t, index, f, total) (f: std::array<Wide, 4>, int64_t or __int128) for every
-// output sample of the window and the tet t that owns it, on the threads of core/parallel.h.
+// output sample of the window and the tet t that owns it, on the threads of core/parallel.h;
+// over every slot, or only over `slots` when given.
 template <typename Sample>
-void visitOwners(const TetMesh& mesh, const TetResampleWindow& window, TetArithmetic arithmetic, Sample sample) {
+void visitOwners(const TetMesh& mesh, const TetResampleWindow& window, TetArithmetic arithmetic,
+                 const std::vector<uint32_t>* slots, Sample sample) {
     assert(checkTetResampleSize(window.size, window.new_size).empty());
     const SampleGrid grid = sampleGridOf(window.size, window.new_size);
     const uint32_t slice = mesh.size[0] * mesh.size[1];
     const DivideBy by_x(mesh.size[0]), by_xy(slice);
-    parallelFor(mesh.slotCount(), kTetsPerChunk, [&](size_t begin, size_t end) {
-        for (size_t t = begin; t < end; ++t) {
+    parallelFor(slots ? slots->size() : mesh.slotCount(), kTetsPerChunk, [&](size_t begin, size_t end) {
+        for (size_t item = begin; item < end; ++item) {
+            const size_t t = slots ? (*slots)[item] : item;
             if (!mesh.inUse(uint32_t(t))) continue;
             // The vertices' index coordinates, their box, and the samples' box within it.
             std::array<std::array<uint32_t, 3>, 4> index;
@@ -219,8 +222,13 @@ std::vector<float> resampleTets(const TetMesh& mesh, const std::vector<float>& v
 
 void resampleTetsInto(const TetMesh& mesh, const std::vector<float>& values, const TetResampleWindow& window,
                       float* out, TetArithmetic arithmetic) {
+    resampleTetSlotsInto(mesh, values, window, nullptr, out, arithmetic);
+}
+
+void resampleTetSlotsInto(const TetMesh& mesh, const std::vector<float>& values, const TetResampleWindow& window,
+                          const std::vector<uint32_t>* slots, float* out, TetArithmetic arithmetic) {
     assert(values.size() == mesh.vertexCount());
-    visitOwners(mesh, window, arithmetic, [&](uint32_t t, size_t index, const auto& f, const auto& total) {
+    visitOwners(mesh, window, arithmetic, slots, [&](uint32_t t, size_t index, const auto& f, const auto& total) {
         const TetVertices& ids = mesh.vertices[t];
         // Divided, not multiplied by 1 / total: a weight f_i = total is then exactly 1.
         double sum = 0.0;
@@ -232,7 +240,7 @@ void resampleTetsInto(const TetMesh& mesh, const std::vector<float>& values, con
 std::vector<uint32_t> tetSampleOwners(const TetMesh& mesh, const std::array<uint32_t, 3>& new_size,
                                       TetArithmetic arithmetic) {
     std::vector<uint32_t> owners(size_t(new_size[0]) * new_size[1] * new_size[2], kNoTet);
-    visitOwners(mesh, wholeWindow(mesh, new_size), arithmetic, [&](uint32_t t, size_t index, const auto&, const auto&) {
+    visitOwners(mesh, wholeWindow(mesh, new_size), arithmetic, nullptr, [&](uint32_t t, size_t index, const auto&, const auto&) {
         std::atomic_ref<uint32_t> owner(owners[index]);
         uint32_t expected = kNoTet;
         if (!owner.compare_exchange_strong(expected, t)) owner.store(kManyTets);

@@ -49,9 +49,10 @@
 // tested in int64 (a tet w voxels wide has E_a = 2 · m_a · w: a Kuhn tet, w = 1, fits while
 // mx · my · mz < 2^56, e.g. 2^18 output voxels per axis), any other in __int128. The box's
 // extents D_a = 2 · m_a · (n_a − 1) bound every E_a, and checkTetResampleSize requires
-// 6 · Dx · Dy · Dz < 2^126 (e.g. 2^16 input voxels magnified ×64 along every axis fits). A GLSL
-// kernel, which has no 128-bit integers, keeps to int64 by working in bricks (coordinates
-// relative to a brick's corner bound the differences the same way).
+// 6 · Dx · Dy · Dz < 2^126 (e.g. 2^16 input voxels magnified ×64 along every axis fits). The
+// GLSL kernel (glsl/volume/tet_resample.comp), which has no 128-bit integers, tests in int64
+// exactly the tets that pass this bound and defers the others to resampleTetSlotsInto on the
+// host: the bound is on a tet's own extents, so bricks would not widen it.
 #pragma once
 
 #include <array>
@@ -96,6 +97,13 @@ struct TetResampleWindow {
 // Resamples the window's output voxels into `out` (the whole output, new_size voxels, x fastest).
 void resampleTetsInto(const TetMesh& mesh, const std::vector<float>& values, const TetResampleWindow& window,
                       float* out, TetArithmetic arithmetic = TetArithmetic::narrowest);
+
+// resampleTetsInto over the tets of `slots` only (every slot when null): the samples they own,
+// and no others, are written. For a device that resamples most tets and leaves a few to core
+// (compute/volume/tet_resample_device.h).
+void resampleTetSlotsInto(const TetMesh& mesh, const std::vector<float>& values, const TetResampleWindow& window,
+                          const std::vector<uint32_t>* slots, float* out,
+                          TetArithmetic arithmetic = TetArithmetic::narrowest);
 
 // The owner of every output sample as resampleTets decides it (tests): the owning tet's slot,
 // kNoTet where no tet claims the sample, kManyTets where more than one does.

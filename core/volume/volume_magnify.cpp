@@ -119,8 +119,15 @@ std::vector<float> magnifyVolumeValues(const Volume& volume, const std::array<ui
         ++stats.bricks;
         stats.optimize_s += secondsSince(start);
 
+        // The resampling reads only the tets' vertices: the neighbours' 16 bytes a slot go
+        // first, so that the resampler's own memory (a device's copy of the vertices, the
+        // output) comes within what the flips took.
+        std::vector<TetNeighbours>().swap(mesh.neighbours);
         start = std::chrono::steady_clock::now();
-        resampleTetsInto(mesh, values, brick.window, out.data());
+        if (options.resample)
+            options.resample(mesh, values, brick.window, out.data());
+        else
+            resampleTetsInto(mesh, values, brick.window, out.data());
         stats.resample_s += secondsSince(start);
     }
     return out;

@@ -1,7 +1,7 @@
 // The volume pipeline's core, shared by ddtup and the bench: tetrahedralize (Kuhn), optimize by
 // bistellar flips (the serial generalized Lawson, core/volume/tet_lawson.h), resample every
-// output voxel in its tet (core/volume/tet_resample.h) — the whole volume as one mesh, or in
-// bricks with overlap, as 2-D images go in tiles.
+// output voxel in its tet (core/volume/tet_resample.h, or a device's kernel equal to it) — the
+// whole volume as one mesh, or in bricks with overlap, as 2-D images go in tiles.
 //
 // Bricks. Along each axis the input's index range [0, n − 1] is cut at multiples of the brick
 // side into cores [c_k, c_k+1) (the last one closed). Output voxel i' belongs to the brick whose
@@ -38,10 +38,14 @@ constexpr uint32_t kBrickMargin = 8;
 // Flips one mesh to a local optimum of the field's cost with the weight. core/ has the serial
 // generalized Lawson; the app passes a Vulkan device's parallel rule (core/ links no Vulkan).
 using TetOptimizer = std::function<TetLawsonStats(TetMesh&, const TetCostField&, TetWeight)>;
+// Resamples one mesh's window into the whole output (resampleTetsInto's contract); the app
+// passes a Vulkan device's kernel, equal to core's bit for bit.
+using TetResampler = std::function<void(const TetMesh&, const std::vector<float>&, const TetResampleWindow&, float*)>;
 
 struct VolumeMagnifyOptions {
     TetWeight weight = TetWeight::variance;
     TetOptimizer optimize;  // empty: optimizeTetMeshSerial
+    TetResampler resample;  // empty: resampleTetsInto
     // The brick side in input voxels; 0: one mesh up to kMaxVoxelsInOneMesh, else bricks of
     // kDefaultBrickSide.
     uint32_t brick_side = 0;
