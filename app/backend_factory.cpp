@@ -46,6 +46,14 @@ ChosenBackend cpuBackend(const Settings& settings, std::string reason) {
     return {makeCpuBackend(options, settings.memory), {"cpu", "", "", threadCount(), std::move(reason)}};
 }
 
+// --delaunay on a Vulkan backend: auto takes the device unless it is a CPU implementation,
+// where the serial triangulation is the faster (bench/README.md, "Scattered samples").
+DelaunayPlace delaunayPlace(const std::string& delaunay, bool cpu_device) {
+    if (delaunay == "cpu") return DelaunayPlace::host;
+    if (delaunay == "device") return DelaunayPlace::device;
+    return cpu_device ? DelaunayPlace::host : DelaunayPlace::device_where_fits;
+}
+
 ChosenBackend vulkanBackend(const Settings& settings, int device_index, std::string reason) {
     VulkanOptions options;
     if (!settings.variant.empty()) options.rule = settings.variant;
@@ -54,6 +62,7 @@ ChosenBackend vulkanBackend(const Settings& settings, int device_index, std::str
     options.device_index = device_index;
     auto backend = std::make_unique<VulkanBackend>(options);
     const DeviceInfo& device = backend->device();
+    backend->setDelaunayPlace(delaunayPlace(settings.delaunay, device.isCpu()));
     BackendChoice choice{"vulkan", device.name, deviceKind(device.type), 0, std::move(reason)};
     return {std::move(backend), std::move(choice)};
 }
@@ -79,7 +88,8 @@ AutomaticDevice automaticDevice() {
 
 ChosenBackend makeBackend(const Settings& settings) {
     if (settings.backend == "cpu") return cpuBackend(settings, "");
-    if (settings.backend == "vulkan" || settings.device >= 0) return vulkanBackend(settings, settings.device, "");
+    if (settings.backend == "vulkan" || settings.device >= 0 || settings.delaunay == "device")
+        return vulkanBackend(settings, settings.device, "");
     const AutomaticDevice device = automaticDevice();
     if (device.index < 0)
         return cpuBackend(settings, device.cpu_reason + (settings.active_set ? "" : "; --no-active-set, which applies "

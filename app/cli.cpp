@@ -124,6 +124,13 @@ std::string validateFallback(const Settings& settings) {
     return "";
 }
 
+// "" if --delaunay has samples to triangulate, else the message.
+std::string validateDelaunay(const CLI::App& app, const Settings& settings) {
+    if (!app.count("--delaunay") || settings.masked() || !settings.input_folder.empty()) return "";
+    if (std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath)) return "";
+    return "--delaunay " + settings.delaunay + ": applies to masks and point files, whose samples are triangulated";
+}
+
 // "" if point-file inputs (core/io/point_file.h) make sense with the rest, else the message.
 std::string validatePoints(const CLI::App& app, const Settings& settings) {
     const bool any_points = std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath);
@@ -220,7 +227,7 @@ std::vector<std::string> imageOnlyOptions(const CLI::App& app, const Settings& s
     std::vector<std::string> given;
     for (const char* name : {"--quality", "--mesh", "--mesh-height", "--simplify", "--max-error", "--reconstruct",
                              "--assume", "--fallback", "--width", "--height", "--variant", "--no-active-set", "--mask", "--mask-dir", "--memory",
-                             "--frame"})
+                             "--frame", "--delaunay"})
         if (app.count(name)) given.push_back(name);
     if (settings.depth == "half") given.push_back("--depth half");
     return given;
@@ -236,6 +243,8 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
         return "--variant " + settings.variant + ": unknown flip rule (see --help)";
     if (!settings.variant.empty() && settings.backend != "vulkan") return "--variant needs --backend vulkan";
     if (settings.backend == "cpu" && app.count("--device")) return "--device picks a Vulkan device; --backend cpu uses none";
+    if (settings.backend == "cpu" && settings.delaunay == "device")
+        return "--delaunay device runs on a Vulkan device; --backend cpu uses none";
     if (settings.backend == "cpu" && !settings.active_set)
         return "--no-active-set applies to the Vulkan backend's parallel flips; --backend cpu flips serially";
     if (settings.tile && settings.tile < kMinTileSide)
@@ -296,6 +305,7 @@ std::string validateSettings(const CLI::App& app, const Settings& settings) {
     if (std::string problem = validateMask(app, settings); !problem.empty()) return problem;
     if (std::string problem = validateAssume(app, settings); !problem.empty()) return problem;
     if (std::string problem = validateFallback(settings); !problem.empty()) return problem;
+    if (std::string problem = validateDelaunay(app, settings); !problem.empty()) return problem;
     return validatePoints(app, settings);
 }
 
@@ -438,6 +448,12 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     app.add_option("--device", settings.device, "Vulkan device index from --list-devices; asks for the Vulkan backend")
         ->default_str("the first discrete GPU, then integrated, then CPU devices");
     app.add_flag("--list-devices", settings.list_devices, "List the Vulkan devices and exit");
+    app.add_option("--delaunay", settings.delaunay,
+                   "Masks and point files: where the samples are triangulated (the same triangulation either way): "
+                   "auto (the Vulkan device on a GPU, the CPU elsewhere, where it is faster), cpu, or device (asks "
+                   "for the Vulkan backend)")
+        ->check(CLI::IsMember({"auto", "cpu", "device"}))
+        ->capture_default_str();
     app.add_flag("!--no-active-set", settings.active_set,
                  "Vulkan: re-test every edge in every iteration, not only those a flip may have changed (default: off)");
     app.add_option("--cost", settings.cost,

@@ -40,8 +40,11 @@ void printStats(const ddt::ImageJob& job, bool batch) {
         else std::printf("  (the serial greedy simplifier)\n");
     }
     std::printf("time-init      %.3f s  (read the image)\n", report.times.init_s);
-    std::printf("time-comp      %.3f s  (build the mesh, upload, optimize%s)\n", report.times.comp_s,
-                report.simplify ? ", simplify" : "");
+    std::printf("time-comp      %.3f s  (build the mesh, upload, optimize%s%s)\n", report.times.comp_s,
+                report.simplify ? ", simplify" : "",
+                !report.delaunay_on_device      ? ""
+                : *report.delaunay_on_device ? "; the samples triangulated on the Vulkan device"
+                                             : "; the samples triangulated on the CPU");
     if (report.times.reconstruct_s > 0.0)
         std::printf("time-recon     %.3f s  (the consistent reconstruction, assuming %s)\n", report.times.reconstruct_s,
                     report.assumed ? ddt::assumedKernelName(*report.assumed) : "?");

@@ -59,6 +59,9 @@ struct Settings {
     // "" (not given): lanczos3 with the consistent surface, none with the plain one, the paper's.
     std::string fallback;
     int device = -1;           // Vulkan device index; -1 = choose
+    // Where masks' and point files' samples are triangulated: "auto" (the device on a GPU, the
+    // host on a CPU device or the CPU backend), "cpu" or "device" (app/backend_factory.h)
+    std::string delaunay = "auto";
     bool active_set = true;    // Vulkan: re-test only edges a flip may have changed
     bool list_devices = false;
     bool stats = false;

@@ -50,8 +50,8 @@ OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_
     return scaledOutputSize(width, height, settings.scale);
 }
 
-// The Delaunay triangulation of the pixels `mask_path` marks as known in `image`.
-Mesh triangulateKnown(const std::string& mask_path, const Image& image) {
+// The pixels `mask_path` marks as known in `image`, checked to have a Delaunay triangulation.
+std::vector<uint32_t> knownPixelsOf(const std::string& mask_path, const Image& image) {
     const Image mask = ImageReader(mask_path).read();
     if (mask.width != image.width || mask.height != image.height)
         throw UserError(mask_path + ": the mask is " + std::to_string(mask.width) + "×" + std::to_string(mask.height) +
@@ -64,7 +64,7 @@ Mesh triangulateKnown(const std::string& mask_path, const Image& image) {
     for (size_t i = 0; i < known.size(); ++i) places[i] = gridPosition(known[i], image.width);
     if (std::string problem = delaunayInputProblem(places); !problem.empty())
         throw UserError(mask_path + ": the known pixels cannot be triangulated (" + problem + ")");
-    return delaunayOfPixels(image.width, image.height, known);
+    return known;
 }
 
 }  // namespace
@@ -72,10 +72,12 @@ Mesh triangulateKnown(const std::string& mask_path, const Image& image) {
 struct ImageJob::State {
     std::optional<ImageReader> reader;  // from open() to decode()
     std::optional<PointSamples> points;  // a point file's, from open() to decode()
+    std::optional<MergedPoints> merged;  // a point file's, from decode() to render()
+    std::optional<std::vector<uint32_t>> known;  // a mask's known pixels, from decode() to render()
     Frame frame;                         // a point file's
     uint32_t channels = 0;
     PackedImage input;            // the input; for a point file, its vertex values (point_mesh.h)
-    std::optional<Mesh> samples;  // --mask or a point file: the known samples' triangulation
+    std::optional<Mesh> samples;  // --mask or a point file: the known samples' triangulation, in render()
     std::optional<ImageWriter> writer;
     std::optional<BandStream> bands;  // from process() to write()
     std::chrono::steady_clock::time_point rendered;  // when process() sent the last band
@@ -174,9 +176,7 @@ void ImageJob::decode() {
     const auto start = std::chrono::steady_clock::now();
     if (state_->points) {
         try {
-            SampledPoints sampled = triangulatePoints(*state_->points, state_->frame);
-            state_->samples = std::move(sampled.mesh);
-            state_->input = PackedImage(std::move(sampled.values));
+            state_->merged = mergePoints(*state_->points, state_->frame);
         } catch (const UserError& error) {
             throw UserError(inputName(task_.input) + ": " + error.what());
         }
@@ -187,7 +187,7 @@ void ImageJob::decode() {
     state_->input = state_->reader->readPacked();
     for (const std::string& note : state_->reader->notes()) reporter_.notice(task_.input, note);
     state_->reader.reset();
-    if (!task_.mask.empty()) state_->samples = triangulateKnown(task_.mask, state_->input.header());
+    if (!task_.mask.empty()) state_->known = knownPixelsOf(task_.mask, state_->input.header());
     report_.times.init_s += secondsSince(start);
 }
 
@@ -210,7 +210,30 @@ void ImageJob::process(Backend& backend) {
     state_->bands->finish();  // publishes `rendered` to the writer
 }
 
+void ImageJob::triangulateSamples(Backend& backend) {
+    try {
+        if (state_->merged) {
+            state_->samples = triangulateMerged(*state_->merged, state_->frame, backend);
+            state_->input = PackedImage(std::move(state_->merged->values));
+            state_->merged.reset();
+        } else if (state_->known) {
+            const Image& header = state_->input.header();
+            state_->samples = backend.delaunayPixels(header.width, header.height, *state_->known);
+            state_->known.reset();
+        } else {
+            return;
+        }
+        report_.delaunay_on_device = backend.lastDelaunayOnDevice();
+    } catch (const UserError& error) {
+        throw UserError(inputName(task_.input) + ": " + error.what());
+    }
+}
+
 void ImageJob::render(Backend& backend) {
+    // Building the mesh counts as optimizing's (time-comp), as the grid's does.
+    const auto triangulating = std::chrono::steady_clock::now();
+    triangulateSamples(backend);
+    report_.times.comp_s += secondsSince(triangulating);
     const OutputSize out = report_.out;
     const Image& header = state_->input.header();
     const size_t row_floats = size_t(out.width) * header.channels;

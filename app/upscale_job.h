@@ -34,6 +34,7 @@ struct JobReport {
     OptimizeStats stats;
     std::optional<AssumedKernel> assumed;  // what the consistent surface assumed, when it was made
     std::optional<ParallelSimplifyStats> simplify;  // with --simplify or --max-error
+    std::optional<bool> delaunay_on_device;  // a mask's or point file's: where its samples were triangulated
     StageTimes times;
     OutputSize out;
 };
@@ -75,6 +76,9 @@ private:
     void render(Backend& backend);
     // Writes the task's mesh file from the stitched triangles of the optimised mesh.
     Image openPoints();
+    // A mask's or a point file's samples triangulated where the backend does it (--delaunay):
+    // in the processing stage, which owns the device, not in the reader's.
+    void triangulateSamples(Backend& backend);
     // The whole input as floats, for the paths that take it whole (samples, simplification,
     // the mesh file's colours); an input kept as codes is unpacked from then on.
     const Image& inputFloats();

@@ -40,7 +40,7 @@ Frame frameOfPoints(const PointSamples& points) {
     return {frameSide(largest_x), frameSide(largest_y)};
 }
 
-SampledPoints triangulatePoints(const PointSamples& points, Frame frame) {
+MergedPoints mergePoints(const PointSamples& points, Frame frame) {
     const size_t n = points.size();
     const uint32_t c = points.channels;
     std::vector<Position> places(n);
@@ -77,7 +77,7 @@ SampledPoints triangulatePoints(const PointSamples& points, Frame frame) {
     if (std::string problem = delaunayInputProblem(distinct); !problem.empty())
         throw UserError("the points cannot be triangulated (" + problem + ")");
 
-    SampledPoints result;
+    MergedPoints result;
     Image& values = result.values;
     values.channels = c;
     values.sample_type = points.sample_type;
@@ -96,7 +96,8 @@ SampledPoints triangulatePoints(const PointSamples& points, Frame frame) {
         // Every point on a pixel centre, and at least 1/kDenseFactor of them: the pixels' own
         // mesh (implicit positions, the image's vertex ids), as --mask builds it. The renderer
         // then samples exactly as for an image, so a full grid of points renders as the image.
-        std::vector<uint32_t> ids(kept.size());
+        std::vector<uint32_t>& ids = result.pixel_ids;
+        ids.resize(kept.size());
         values.width = frame.width;
         values.height = frame.height;
         values.pixels.assign(frame_pixels * c, 0.0f);
@@ -104,15 +105,26 @@ SampledPoints triangulatePoints(const PointSamples& points, Frame frame) {
             ids[k] = uint32_t(distinct[k].y / kPositionOne) * frame.width + uint32_t(distinct[k].x / kPositionOne);
             store(kept[k], values.pixels.data() + size_t(ids[k]) * c);
         }
-        result.mesh = delaunayOfPixels(frame.width, frame.height, ids);
         return result;
     }
-    result.mesh = delaunayOfPoints(frame.width, frame.height, distinct);
+    result.places = std::move(distinct);
     values.width = uint32_t(kept.size());
     values.height = 1;
     values.pixels.resize(kept.size() * c);
     for (size_t k = 0; k < kept.size(); ++k) store(kept[k], values.pixels.data() + k * c);
     return result;
+}
+
+Mesh triangulateMerged(const MergedPoints& merged, Frame frame, Backend& backend) {
+    return merged.places.empty() ? backend.delaunayPixels(frame.width, frame.height, merged.pixel_ids)
+                                 : backend.delaunayPoints(frame.width, frame.height, merged.places);
+}
+
+SampledPoints triangulatePoints(const PointSamples& points, Frame frame) {
+    MergedPoints merged = mergePoints(points, frame);
+    Mesh mesh = merged.places.empty() ? delaunayOfPixels(frame.width, frame.height, merged.pixel_ids)
+                                      : delaunayOfPoints(frame.width, frame.height, merged.places);
+    return {std::move(mesh), std::move(merged.values)};
 }
 
 }  // namespace ddt

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <string>
 
+#include "backend.h"
 #include "image.h"
 #include "mesh.h"
 #include "point_file.h"
@@ -34,10 +35,24 @@ struct SampledPoints {
     Image values;
 };
 
-// Checks, merges and triangulates `points` in `frame` (sides of at most kMaxDelaunaySide).
+// The distinct points of a file, checked and merged, ready to triangulate: the pixel form
+// (pixel_ids, values frame-sized) or the general one (places in row-major order, one value each).
+struct MergedPoints {
+    Image values;
+    std::vector<uint32_t> pixel_ids;
+    std::vector<Position> places;
+};
+
+// Checks and merges `points` in `frame` (sides of at most kMaxDelaunaySide).
 // Throws UserError("reason"), one line without a file name, for a point outside the frame,
 // two points at one place with different values, and points with no triangulation
 // (fewer than 3 distinct, or all collinear).
+MergedPoints mergePoints(const PointSamples& points, Frame frame);
+
+// The merged points' Delaunay triangulation, where `backend` runs it (Backend::delaunayPixels).
+Mesh triangulateMerged(const MergedPoints& merged, Frame frame, Backend& backend);
+
+// mergePoints, then the triangulation on the host.
 SampledPoints triangulatePoints(const PointSamples& points, Frame frame);
 
 }  // namespace ddt

@@ -15,6 +15,13 @@
 
 namespace ddt {
 
+// Where the backend runs the Delaunay triangulations of samples (--delaunay; Backend::delaunayPixels).
+enum class DelaunayPlace {
+    host,              // the serial one: on a CPU device it is the faster one
+    device,            // the device's; too many points for it is the user's error
+    device_where_fits, // the device's, the host's for more points than its texel buffers hold
+};
+
 struct VulkanOptions {
     std::string rule = kDefaultFlipRule;
     CostFunction cost = CostFunction::sederberg;  // the cost the flips lower (core/image/cost.h)
@@ -24,6 +31,7 @@ struct VulkanOptions {
     uint32_t max_iterations = 100000;  // safety caps, reported in OptimizeStats::capped
     uint32_t max_rounds = 100000;      // accept/reject rounds per iteration
     bool profile = false;              // time every dispatch (kernelTimes); costs a little
+    DelaunayPlace delaunay = DelaunayPlace::host;
 };
 
 // Device time spent in one kernel, summed over an optimisation (profile on).
@@ -50,6 +58,12 @@ public:
 
     void prepare(const Image& image) override;
     void prepareFrom(const Image& image, Mesh initial) override;
+    // On the device where VulkanOptions::delaunay (or setDelaunayPlace, once the device is
+    // known) says so (backend_delaunay.cpp).
+    void setDelaunayPlace(DelaunayPlace place);
+    Mesh delaunayPixels(uint32_t width, uint32_t height, const std::vector<uint32_t>& pixel_ids) override;
+    Mesh delaunayPoints(uint32_t width, uint32_t height, const std::vector<Position>& points) override;
+    bool lastDelaunayOnDevice() const override;
     OptimizeStats optimize() override;
     void reconstruct(const DegradationModel& model) override;
     // The surface's weights made on the device; renderWindow blends each band there (device_fallback.cpp).

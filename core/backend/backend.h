@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cost.h"
 #include "image.h"
@@ -39,6 +40,14 @@ public:
     // runs the same flips. renderWindow and reconstruct need the grid's mesh; such a mesh is
     // rendered on the host from mesh() (core/delaunay/sampled_render.h).
     virtual void prepareFrom(const Image& image, Mesh initial) = 0;
+    // The Delaunay triangulations prepareFrom takes (core/delaunay/delaunay.h): of some of a
+    // width × height grid's pixels (a mask's known ones), or of points (a point file's). The
+    // serial one on the host here; the Vulkan backend runs them on its device where --delaunay
+    // says so (compute/delaunay/device_delaunay.h), with the same records.
+    virtual Mesh delaunayPixels(uint32_t width, uint32_t height, const std::vector<uint32_t>& pixel_ids);
+    virtual Mesh delaunayPoints(uint32_t width, uint32_t height, const std::vector<Position>& points);
+    // Whether the last of those two ran on a device (for --stats).
+    virtual bool lastDelaunayOnDevice() const { return false; }
     virtual OptimizeStats optimize() = 0;
     // Replaces plain DDT's surface (the input values, linear on each triangle) by the
     // consistent reconstruction under `model` (core/image/reconstruct.h); renderWindow then renders

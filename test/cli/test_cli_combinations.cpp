@@ -63,6 +63,7 @@ std::vector<Option> matrixOptions(const std::string& mesh_file) {
          "`--reconstruct consistent`"},
         {{"--fallback", "lanczos3"}, {"", "have no input to convolve", "no pixel grid to convolve", volumes},
          "`--fallback lanczos3`"},
+        {{"--delaunay", "device"}, {"applies to masks and point files", "", "", volumes}, "`--delaunay device`"},
         {{"--backend", "cpu"}, {"", "", "", ""}, cost_and_backend},
         {{"--backend", "vulkan"}, {"", "", "", ""}, cost_and_backend},
     };
