@@ -60,7 +60,9 @@ void activate(uint e, uint iteration) {
     }
 }
 
-// The closed ROI of e: its closed 2-region, or for variance its closed 1-region.
+// The closed ROI of e: its closed 2-region, or for variance its closed 1-region. A neighbour's
+// neighbours include e and the neighbour of e that shares its triangle, listed here already:
+// skipping them saves 8 of the 21 atomic marks (lavapipe runs atomics lane by lane).
 void activateClosedRoi(uint e, uint iteration) {
     activate(e, iteration);
     const uvec4 level1 = neighboursOf(e);
@@ -70,7 +72,7 @@ void activateClosedRoi(uint e, uint iteration) {
         if (kCost == kCostVariance) continue;
         const uvec4 level2 = neighboursOf(level1[i]);
         for (int j = 0; j < 4; ++j)
-            if (level2[j] != kNone) activate(level2[j], iteration);
+            if (level2[j] != kNone && level2[j] != e && !any(equal(level1, uvec4(level2[j])))) activate(level2[j], iteration);
     }
 }
 
