@@ -90,12 +90,12 @@ Position positionAt(Places places, uint v) { return vertexPosition(v); }
 DDT_FN uint gridRow(uint id, uint width) { return id / width; }
 #else
 // lavapipe divides integers lane by lane (x86 has no vector integer division), and the grid's
-// cost formulas would divide six times per triangle; a double division is one vector
-// instruction. Its quotient is off by at most one (it is correctly rounded, or a reciprocal
-// times id if the driver lowers it so), which the remainder's range corrects: exact for every
-// uint id and width.
+// cost formulas would divide six times per triangle; a double multiplication by the reciprocal
+// (one division per kernel: width is uniform) is one cheap vector instruction. id · fl(1/width)
+// is within a few ulps of id / width < 2^32, so its truncation is off by at most one, which
+// the remainder's range corrects: exact for every uint id and every width below 2^31.
 uint gridRow(uint id, uint width) {
-    uint row = uint(double(id) / double(width));
+    uint row = uint(double(id) * (1.0lf / double(width)));
     const uint rest = id - row * width;  // modulo 2^32: "negative" when row is one too large
     if (int(rest) < 0) row -= 1;
     else if (rest >= width) row += 1;
