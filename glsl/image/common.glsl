@@ -66,6 +66,12 @@ void setStatus(uint parity, uint e, uint status) {
     else imageStore(status1, int(e), uvec4(status));
 }
 
+// An edge's mark (binding marks) when the flip step lists it for iteration i: an unflipped
+// candidate whose stencil no flip changed keeps its gain, and is listed as kept; an edge in a
+// flip's closed ROI must be evaluated again. The larger mark wins, and either lists the edge once.
+uint keptMark(uint iteration) { return 2 * iteration; }
+uint retestMark(uint iteration) { return 2 * iteration + 1; }
+
 // A double travels as its two 32-bit halves.
 double gainOf(uint e) { return packDouble2x32(imageLoad(gains, int(e)).xy); }
 void setGain(uint e, double gain) { imageStore(gains, int(e), uvec4(unpackDouble2x32(gain), 0u, 0u)); }

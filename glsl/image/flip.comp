@@ -15,7 +15,9 @@
 // changed — for Sederberg's cost and face-SCF its closed 2-region in the new mesh (their gain
 // reads the records of an edge and its neighbours), for variance its closed 1-region (the
 // gain reads the edge's own record) — and every candidate that was not flipped, for the next
-// iteration. Statuses are reset to none for the next iteration.
+// iteration, the latter marked kept: unless a flip's ROI also lists it, its stencil and so its
+// gain stay, and the candidates step lists it again without evaluating it. Statuses are reset
+// to none for the next iteration.
 #include "common.glsl"
 
 // After e's flip, neighbour n (whose triangle with e had third vertex old_near) lies in a
@@ -50,27 +52,28 @@ void flipEdge(uint e) {
     patchNeighbour(n.w, e, v.x, v.z, n.x);
 }
 
-// Puts e in the next iteration's active list once (the mark holds the last iteration that
-// listed it).
-void activate(uint e, uint iteration) {
-    if (imageAtomicMax(marks, int(e), iteration) < iteration) {
+// Puts e in the next iteration's active list once, marked kept or to retest (keptMark).
+void activate(uint e, uint iteration, uint mark) {
+    if (imageAtomicMax(marks, int(e), mark) < keptMark(iteration)) {
         const int slot = int(atomicAdd(control.active_count[iteration & 1], 1));
         if ((iteration & 1) == 0) imageStore(active_list0, slot, uvec4(e));
         else imageStore(active_list1, slot, uvec4(e));
     }
 }
 
-// The closed ROI of e: its closed 2-region, or for variance its closed 1-region.
+// The closed ROI of e: its closed 2-region, or for variance its closed 1-region. A neighbour's
+// neighbours include e and the neighbour of e that shares its triangle, listed here already:
+// skipping them saves 8 of the 21 atomic marks (lavapipe runs atomics lane by lane).
 void activateClosedRoi(uint e, uint iteration) {
-    activate(e, iteration);
+    activate(e, iteration, retestMark(iteration));
     const uvec4 level1 = neighboursOf(e);
     for (int i = 0; i < 4; ++i) {
         if (level1[i] == kNone) continue;
-        activate(level1[i], iteration);
+        activate(level1[i], iteration, retestMark(iteration));
         if (kCost == kCostVariance) continue;
         const uvec4 level2 = neighboursOf(level1[i]);
         for (int j = 0; j < 4; ++j)
-            if (level2[j] != kNone) activate(level2[j], iteration);
+            if (level2[j] != kNone && level2[j] != e && !any(equal(level1, uvec4(level2[j])))) activate(level2[j], iteration, retestMark(iteration));
     }
 }
 
@@ -89,7 +92,7 @@ void main() {
             atomicAdd(control.flips_in_iteration, 1);
             if (push.active_set != 0) activateClosedRoi(e, next_iteration);
         } else if (push.active_set != 0) {
-            activate(e, next_iteration);
+            activate(e, next_iteration, keptMark(next_iteration));
         }
     }
 }

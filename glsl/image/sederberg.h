@@ -85,6 +85,24 @@ Position vertexPosition(uint v);
 Position positionAt(Places places, uint v) { return vertexPosition(v); }
 #endif
 
+// The row of grid vertex `id`, id / width (its column is id − row · width).
+#ifdef __cplusplus
+DDT_FN uint gridRow(uint id, uint width) { return id / width; }
+#else
+// lavapipe divides integers lane by lane (x86 has no vector integer division), and the grid's
+// cost formulas would divide six times per triangle; a double multiplication by the reciprocal
+// (one division per kernel: width is uniform) is one cheap vector instruction. id · fl(1/width)
+// is within a few ulps of id / width < 2^32, so its truncation is off by at most one, which
+// the remainder's range corrects: exact for every uint id and every width below 2^31.
+uint gridRow(uint id, uint width) {
+    uint row = uint(double(id) * (1.0lf / double(width)));
+    const uint rest = id - row * width;  // modulo 2^32: "negative" when row is one too large
+    if (int(rest) < 0) row -= 1;
+    else if (rest >= width) row += 1;
+    return row;
+}
+#endif
+
 // The triangle (i0, i1, i2) as the formulas read it: its sides from i0 and twice its signed area.
 struct TriangleSides {
     double dx1, dy1;    // place of i1 − place of i0, in pixels
@@ -115,10 +133,11 @@ DDT_FN TriangleSides triangleSides(uint i0, uint i1, uint i2, Places places) {
         twice_area = double(positionOrient(p0.x, p0.y, p1.x, p1.y, p2.x, p2.y)) * (unit * unit);
     } else {
         const uint width = places.width;
-        dx1 = double(i1 % width) - double(i0 % width);
-        dy1 = double(i1 / width) - double(i0 / width);
-        dx2 = double(i2 % width) - double(i0 % width);
-        dy2 = double(i2 / width) - double(i0 / width);
+        const uint y0 = gridRow(i0, width), y1 = gridRow(i1, width), y2 = gridRow(i2, width);
+        dx1 = double(i1 - y1 * width) - double(i0 - y0 * width);
+        dy1 = double(y1) - double(y0);
+        dx2 = double(i2 - y2 * width) - double(i0 - y0 * width);
+        dy2 = double(y2) - double(y0);
         twice_area = dx1 * dy2 - dx2 * dy1;
     }
     TriangleSides t;

@@ -35,7 +35,9 @@ bool beats(uint e, double gain_e, uint f) {
 }
 
 // Visits the ROI of e level by level (neighbours, their neighbours, and for degree 3 theirs);
-// an edge may be visited twice, which changes neither test.
+// an edge may be visited twice, which changes neither test. A neighbour's neighbours include e
+// and the neighbour of e that shares its triangle: those, already visited, are skipped, which
+// saves 4 of the 2-region's 20 visits (each a status and a gain load).
 uint decide(uint e, uint parity_in, uint degree) {
     const double gain_e = kKeyByGain != 0 ? gainOf(e) : 0.0lf;
     bool best = true;
@@ -49,7 +51,7 @@ uint decide(uint e, uint parity_in, uint degree) {
         const uvec4 level2 = neighboursOf(f1);
         for (int j = 0; j < 4; ++j) {
             const uint f2 = level2[j];
-            if (f2 == kNone || f2 == e) continue;
+            if (f2 == kNone || f2 == e || any(equal(level1, uvec4(f2)))) continue;
             status = statusOf(parity_in, f2);
             if (status == kStatusAccepted) return kStatusRejected;
             if (status == kStatusUndecided && !beats(e, gain_e, f2)) best = false;
