@@ -29,7 +29,7 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
     if (on_step) on_step({0, 1, TilePhase::Optimize});
     backend.prepare(image);
     result.optimize = backend.optimize();
-    Mesh mesh = backend.mesh();
+    Mesh mesh = backend.takeMesh();
     result.values = image;
     result.simplify = backend.simplify(mesh, result.values, simplifiedVertexCount(image.width, image.height, fraction),
                                        max_error);

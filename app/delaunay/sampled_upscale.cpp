@@ -30,7 +30,7 @@ OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh init
     if (on_step) on_step({0, 1, TilePhase::Optimize});
     backend.prepareFrom(image, std::move(initial));
     const OptimizeStats stats = backend.optimize();
-    Mesh mesh = backend.mesh();
+    Mesh mesh = backend.takeMesh();
     if (on_step) on_step({0, 1, TilePhase::Render});
     Image rendered = renderSampledMesh(mesh, image, out);
     const size_t row_floats = size_t(out.width) * image.channels;

@@ -70,6 +70,10 @@ public:
     virtual std::unique_ptr<HostSurface> takeSurface() { return nullptr; }
     // The current mesh (for tests and checks).
     virtual Mesh mesh() = 0;
+    // The current mesh, taken out of the backend, for a caller that goes on without it (it
+    // renders or simplifies the mesh itself): a backend that holds it on the host gives it up
+    // instead of copying it, and must be prepared again.
+    virtual Mesh takeMesh() { return mesh(); }
     // Simplifies `mesh` (this backend's optimized mesh, from mesh()) to `target` vertices or as
     // far as `max_error` allows, `values` holding the vertices' colours (greedy_simplify.h).
     // The CPU backend runs the serial greedy reference, on a CPU both faster and closer to

@@ -106,6 +106,14 @@ public:
         requireMesh();
         return mesh_;
     }
+    Mesh takeMesh() override {
+        requireMesh();
+        renderer_.reset();
+        surface_.reset();
+        fallback_.reset();
+        mesh_released_ = true;
+        return std::move(mesh_);
+    }
     ParallelSimplifyStats simplify(Mesh& mesh, Image& values, uint32_t target, double max_error) override {
         ParallelSimplifyStats stats;
         static_cast<SimplifyStats&>(stats) = simplifySerial(mesh, values, target, max_error);

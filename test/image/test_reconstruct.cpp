@@ -337,6 +337,30 @@ TEST_CASE("reconstruct: the same surface whatever the thread count splits the wo
     CHECK(test::samePixels(one.bubbles, three.bubbles));
 }
 
+// takeMesh hands the CPU backend's mesh over instead of copying it (the sample and simplified
+// paths render it themselves): the same records as mesh(), then nothing until prepared again.
+TEST_CASE("backend: takeMesh gives the CPU backend's optimised mesh up, and it must be prepared again") {
+    const Image input = test::photoCrop();
+    std::unique_ptr<Backend> backend = makeCpuBackend();
+    backend->prepare(input);
+    backend->optimize();
+    const Mesh copy = backend->mesh();
+    const Mesh taken = backend->takeMesh();
+    REQUIRE(taken.edgeCount() == copy.edgeCount());
+    for (uint32_t e = 0; e < copy.edgeCount(); ++e) {
+        const EdgeVertices& v = taken.vertices[e];
+        const EdgeNeighbours& n = taken.neighbours[e];
+        REQUIRE((v.a == copy.vertices[e].a && v.b == copy.vertices[e].b && v.l == copy.vertices[e].l &&
+                 v.r == copy.vertices[e].r));
+        REQUIRE((n.bl == copy.neighbours[e].bl && n.la == copy.neighbours[e].la && n.ar == copy.neighbours[e].ar &&
+                 n.rb == copy.neighbours[e].rb));
+    }
+    CHECK_THROWS_AS(backend->mesh(), std::logic_error);
+    CHECK_THROWS_AS(backend->optimize(), std::logic_error);
+    backend->prepare(input);
+    CHECK(backend->mesh().edgeCount() == taken.edgeCount());
+}
+
 // The CPU backend gives up its mesh in reconstruct (core/backend/backend.h): what needs the mesh
 // afterwards is refused rather than run on an empty one.
 TEST_CASE("reconstruct: the CPU backend refuses optimize and mesh after reconstruct, until prepared again") {
