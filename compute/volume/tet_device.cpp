@@ -28,7 +28,6 @@ struct SlotArray {
 constexpr SlotArray kSlotArrays[] = {
     {kTetBindingVertices, VK_FORMAT_R32G32B32A32_UINT, false},
     {kTetBindingNeighbours, VK_FORMAT_R32G32B32A32_UINT, false},
-    {kTetBindingContent, VK_FORMAT_R32G32_UINT, false},
     {kTetBindingCost, VK_FORMAT_R32G32_UINT, false},
     {kTetBindingGradient, VK_FORMAT_R32G32_UINT, false},
     {kTetBindingState, VK_FORMAT_R32_UINT, true},  // the listed bits
@@ -54,7 +53,6 @@ VkDeviceSize slotArrayBytes(uint32_t binding, uint64_t capacity, TetWeight weigh
     switch (binding) {
         case kTetBindingVertices:
         case kTetBindingNeighbours: return capacity * 16;
-        case kTetBindingContent:
         case kTetBindingCost:
         case kTetBindingCandidates:
         case kTetBindingCarried: return capacity * 8;
@@ -117,6 +115,7 @@ private:
     TetControl readControl() const;
     void writeControl(const TetControl& control);
     void allocate(uint32_t capacity);
+    void zeroArrays();
     void release(uint32_t binding) { destroyBuffer(context_, buffers_[binding]); }
     void grow(uint32_t need);
     TetPush pushFor(uint32_t step) const;
@@ -174,6 +173,7 @@ DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, co
         buffers_[kTetBindingPositions] = createBuffer(context, std::max<VkDeviceSize>(positions.size() * 4, 16),
                                                       Placement::Device, VK_FORMAT_R32G32B32A32_SINT);
         uploadToBuffer(context, buffers_[kTetBindingPositions], positions.data(), positions.size() * 4);
+        std::vector<int32_t>().swap(positions);
         buffers_[kTetBindingControl] = createBuffer(context, sizeof(TetControl), Placement::Readback);
         buffers_[kTetBindingArgs] = createBuffer(context, kTetStepCount * 16, Placement::Device);
         allocate(capacity);
@@ -191,6 +191,7 @@ DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, co
         if (!mesh.free_slots.empty())
             uploadToBuffer(context, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), mesh.free_slots.size() * 4);
         std::vector<uint32_t>().swap(mesh.free_slots);
+        zeroArrays();  // after the host arrays are gone: on lavapipe its pages become resident
     } catch (...) {
         for (Buffer& buffer : buffers_) destroyBuffer(context, buffer);
         throw;
@@ -221,18 +222,22 @@ void DeviceTetOptimizer::writeControl(const TetControl& control) {
     uploadToBuffer(context_, buffers_[kTetBindingControl], &control, sizeof(control));
 }
 
-// Every capacity-sized array; those read before written (SlotArray::zeroed) zeroed.
+// Every capacity-sized array, as allocated (zeroArrays zeroes those that must start at 0).
 void DeviceTetOptimizer::allocate(uint32_t capacity) {
     capacity_ = capacity;
+    for (const SlotArray& array : kSlotArrays)
+        buffers_[array.binding] =
+            createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
+}
+
+// The arrays read before written (SlotArray::zeroed) set to 0.
+void DeviceTetOptimizer::zeroArrays() {
     CommandBatch batch(context_);
-    for (const SlotArray& array : kSlotArrays) {
-        Buffer& buffer = buffers_[array.binding];
-        buffer = createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
+    for (const SlotArray& array : kSlotArrays)
         if (array.zeroed) {
-            vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, 0);
-            zeroed_bytes_ += buffer.size;
+            vkCmdFillBuffer(batch.buffer(), buffers_[array.binding].buffer, 0, VK_WHOLE_SIZE, 0);
+            zeroed_bytes_ += buffers_[array.binding].size;
         }
-    }
     batch.submitAndWait();
 }
 

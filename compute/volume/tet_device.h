@@ -13,8 +13,9 @@
 // device copies of the mesh are never whole together; on an exception the mesh is left empty.
 // The cost totals are summed a chunk at a time, without a host copy of the cost cache.
 //
-// On the device: the mesh records, the cost cache (contents, gradients, costs, flatness), the
-// lists (active, evaluation, candidates), the claims and the free slots; a state machine
+// On the device: the mesh records, the cost cache (gradients, costs, flatness; the contents are
+// recomputed from the records), the lists (active, evaluation, candidates), the claims and the
+// free slots; a state machine
 // (tet_plan.comp) plans each step's indirect dispatch, so a command buffer holds several rounds
 // and the host reads the control block once per submit.
 //
