@@ -191,7 +191,7 @@ DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, co
         if (!mesh.free_slots.empty())
             uploadToBuffer(context, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), mesh.free_slots.size() * 4);
         std::vector<uint32_t>().swap(mesh.free_slots);
-        zeroArrays();  // after the host arrays are gone: on lavapipe its pages become resident
+        zeroArrays();  // after the host arrays are gone: on lavapipe the zeroed pages become resident
     } catch (...) {
         for (Buffer& buffer : buffers_) destroyBuffer(context, buffer);
         throw;
