@@ -69,7 +69,9 @@ Method magnifyByKuhnMesh(const ddt::Volume& small, const std::array<uint32_t, 3>
 }
 
 // ddtup's way (core/volume/volume_magnify.h): serial flips, or with `context` the parallel
-// rule on that Vulkan device (compute/volume/tet_device.h).
+// rule on that Vulkan device (compute/volume/tet_device.h), whose memory inventory it prints:
+// the device arrays' bytes and the bytes zeroed (on lavapipe, where device memory is host
+// memory, only written pages become resident: the zeroed arrays and the slots in use).
 Method magnifyByDdt(const std::string& name, const ddt::Volume& small, const std::array<uint32_t, 3>& size,
                     ddt::TetWeight weight, ddt::VulkanContext* context = nullptr) {
     Method method;
@@ -77,10 +79,18 @@ Method magnifyByDdt(const std::string& name, const ddt::Volume& small, const std
     ddt::VolumeMagnifyOptions options;
     options.weight = weight;
     if (context)
-        options.optimize = [context](ddt::TetMesh& mesh, const ddt::TetCostField& field, ddt::TetWeight w) {
+        options.optimize = [context, &name, &small](ddt::TetMesh& mesh, const ddt::TetCostField& field, ddt::TetWeight w) {
             ddt::TetParallelOptions parallel;
             parallel.weight = w;
-            const ddt::TetParallelStats rule = ddt::optimizeTetMeshVulkan(*context, mesh, field, parallel);
+            const uint32_t slots = mesh.slotCount();
+            ddt::TetDeviceReport report;
+            const ddt::TetParallelStats rule = ddt::optimizeTetMeshVulkan(*context, mesh, field, parallel, {}, &report);
+            constexpr double kMiB = 1024.0 * 1024.0;
+            std::printf("%s, %u³ input: %u slots, device arrays %.1f MiB (%.1f bytes a slot), zeroed %.1f MiB "
+                        "(%.1f bytes a slot)\n",
+                        name.c_str(), small.size[0], slots, double(report.device_bytes) / kMiB,
+                        double(report.device_bytes) / slots, double(report.zeroed_bytes) / kMiB,
+                        double(report.zeroed_bytes) / slots);
             ddt::TetLawsonStats stats;
             stats.flips = rule.flips;
             return stats;

@@ -16,21 +16,32 @@ namespace ddt {
 
 namespace {
 
-// The arrays whose size follows the slot capacity, and what each holds per slot (bytes).
+// The arrays whose size follows the slot capacity, and whether they are read before the
+// kernels write them (so must start at 0). The others are left as allocated: on a device whose
+// memory is host memory (lavapipe) their pages become resident only where the kernels write,
+// so the spare slots and the lists' unused tails cost no memory.
 struct SlotArray {
     uint32_t binding;
     VkFormat format;
+    bool zeroed;
 };
 constexpr SlotArray kSlotArrays[] = {
-    {kTetBindingVertices, VK_FORMAT_R32G32B32A32_UINT}, {kTetBindingNeighbours, VK_FORMAT_R32G32B32A32_UINT},
-    {kTetBindingContent, VK_FORMAT_R32G32_UINT},        {kTetBindingCost, VK_FORMAT_R32G32_UINT},
-    {kTetBindingGradient, VK_FORMAT_R32G32_UINT},       {kTetBindingState, VK_FORMAT_R32_UINT},
-    {kTetBindingClaimHigh, VK_FORMAT_R32_UINT},         {kTetBindingClaimLow, VK_FORMAT_R32_UINT},
-    {kTetBindingFreeSlots, VK_FORMAT_R32_UINT},         {kTetBindingFreed, VK_FORMAT_R32_UINT},
-    {kTetBindingActive, VK_FORMAT_R32_UINT},            {kTetBindingEvaluate, VK_FORMAT_R32_UINT},
-    {kTetBindingCandidates, VK_FORMAT_R32G32_UINT},     {kTetBindingCarried, VK_FORMAT_R32G32_UINT},
-    {kTetBindingMasks, VK_FORMAT_R32_UINT},
-    {kTetBindingWordPrefix, VK_FORMAT_R32G32_UINT},     {kTetBindingBlocks, VK_FORMAT_R32G32B32A32_UINT},
+    {kTetBindingVertices, VK_FORMAT_R32G32B32A32_UINT, false},
+    {kTetBindingNeighbours, VK_FORMAT_R32G32B32A32_UINT, false},
+    {kTetBindingCost, VK_FORMAT_R32G32_UINT, false},
+    {kTetBindingGradient, VK_FORMAT_R32G32_UINT, false},
+    {kTetBindingState, VK_FORMAT_R32_UINT, true},  // the listed bits
+    {kTetBindingClaimHigh, VK_FORMAT_R32_UINT, true},
+    {kTetBindingClaimLow, VK_FORMAT_R32_UINT, true},
+    {kTetBindingFreeSlots, VK_FORMAT_R32_UINT, false},
+    {kTetBindingFreed, VK_FORMAT_R32_UINT, false},
+    {kTetBindingActive, VK_FORMAT_R32_UINT, false},
+    {kTetBindingEvaluate, VK_FORMAT_R32_UINT, false},
+    {kTetBindingCandidates, VK_FORMAT_R32G32_UINT, false},
+    {kTetBindingCarried, VK_FORMAT_R32G32_UINT, false},
+    {kTetBindingMasks, VK_FORMAT_R32_UINT, true},
+    {kTetBindingWordPrefix, VK_FORMAT_R32G32_UINT, true},
+    {kTetBindingBlocks, VK_FORMAT_R32G32B32A32_UINT, true},  // the plan sums over all blocks
 };
 
 uint32_t blocksFor(uint64_t capacity) { return uint32_t((capacity + 32 * kTetScanWords - 1) / (32 * kTetScanWords)); }
@@ -42,7 +53,6 @@ VkDeviceSize slotArrayBytes(uint32_t binding, uint64_t capacity, TetWeight weigh
     switch (binding) {
         case kTetBindingVertices:
         case kTetBindingNeighbours: return capacity * 16;
-        case kTetBindingContent:
         case kTetBindingCost:
         case kTetBindingCandidates:
         case kTetBindingCarried: return capacity * 8;
@@ -55,16 +65,21 @@ VkDeviceSize slotArrayBytes(uint32_t binding, uint64_t capacity, TetWeight weigh
     }
 }
 
-// TetCosts::total's sum: compensated (Neumaier), in slot order.
-double compensatedTotal(const std::vector<double>& costs) {
+// TetCosts::total's sum: compensated (Neumaier), in slot order, fed a chunk at a time.
+struct CompensatedSum {
     double sum = 0.0, compensation = 0.0;
-    for (double c : costs) {
-        const double next = sum + c;
-        compensation += std::abs(sum) >= std::abs(c) ? (sum - next) + c : (c - next) + sum;
-        sum = next;
+    void add(const double* costs, size_t count) {
+        for (size_t i = 0; i < count; ++i) {
+            const double c = costs[i], next = sum + c;
+            compensation += std::abs(sum) >= std::abs(c) ? (sum - next) + c : (c - next) + sum;
+            sum = next;
+        }
     }
-    return sum + compensation;
-}
+    double total() const { return sum + compensation; }
+};
+
+// Costs read back per chunk for the sums (8 MiB), not as one copy of the whole cache.
+constexpr uint32_t kCostChunk = uint32_t(1) << 20;
 
 uint32_t uintOf(uint64_t value, const char* what) {
     if (value > kTetMaxSlots) throw std::invalid_argument(std::string("device tet optimizer: too many ") + what);
@@ -73,7 +88,9 @@ uint32_t uintOf(uint64_t value, const char* what) {
 
 class DeviceTetOptimizer {
 public:
-    DeviceTetOptimizer(VulkanContext& context, const TetMesh& mesh, const TetCostField& field,
+    // Takes the mesh's arrays: each host array is released as soon as the device holds it, so
+    // that the two copies are never whole at once (moveMeshTo gives them back).
+    DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
                        const TetParallelOptions& options, const TetDeviceOptions& device);
     ~DeviceTetOptimizer() {
         for (Buffer& buffer : buffers_) destroyBuffer(context_, buffer);
@@ -83,17 +100,23 @@ public:
 
     // Rounds until a round accepts nothing (or the cap); the statistics but the costs.
     TetParallelStats run(TetDeviceReport& report);
-    // The mesh and the cost cache back from the device.
-    void download(TetMesh& mesh, std::vector<double>& costs) const;
+    // TetCosts::total of the device's cost cache.
+    double costTotal() const;
     std::vector<double> costs() const;
+    // The mesh back from the device; every device array is released on the way, so that the
+    // host's copy and the device's are not both whole at once.
+    void moveMeshTo(TetMesh& mesh);
     uint64_t bytes() const;
     uint32_t capacity() const { return capacity_; }
+    uint64_t zeroedBytes() const { return zeroed_bytes_; }
     double initMs() const { return init_ms_; }  // wall time of the first cache's submit
 
 private:
     TetControl readControl() const;
     void writeControl(const TetControl& control);
     void allocate(uint32_t capacity);
+    void zeroArrays();
+    void release(uint32_t binding) { destroyBuffer(context_, buffers_[binding]); }
     void grow(uint32_t need);
     TetPush pushFor(uint32_t step) const;
 
@@ -105,10 +128,11 @@ private:
     uint32_t rounds_per_submit_;
     bool profile_;
     double init_ms_ = 0.0;
+    uint64_t zeroed_bytes_ = 0;
     Buffer buffers_[kTetBindingCount];
 };
 
-DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, const TetMesh& mesh, const TetCostField& field,
+DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
                                        const TetParallelOptions& options, const TetDeviceOptions& device)
     : context_(context), kernels_(context), weight_(options.weight), rounds_per_submit_(std::max(device.rounds_per_submit, 1u)),
       profile_(device.profile && context.timestamps) {
@@ -149,13 +173,10 @@ DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, const TetMesh& me
         buffers_[kTetBindingPositions] = createBuffer(context, std::max<VkDeviceSize>(positions.size() * 4, 16),
                                                       Placement::Device, VK_FORMAT_R32G32B32A32_SINT);
         uploadToBuffer(context, buffers_[kTetBindingPositions], positions.data(), positions.size() * 4);
+        std::vector<int32_t>().swap(positions);
         buffers_[kTetBindingControl] = createBuffer(context, sizeof(TetControl), Placement::Readback);
         buffers_[kTetBindingArgs] = createBuffer(context, kTetStepCount * 16, Placement::Device);
         allocate(capacity);
-        uploadToBuffer(context, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(slots) * 16);
-        uploadToBuffer(context, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(slots) * 16);
-        if (!mesh.free_slots.empty())
-            uploadToBuffer(context, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), mesh.free_slots.size() * 4);
         // The first round's active tets are listed by the first cache (tet_refresh.comp).
         TetControl control{};
         control.phase = kTetPhaseRunning;
@@ -163,6 +184,14 @@ DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, const TetMesh& me
         control.slot_count = slots;
         control.free_count = uint32_t(mesh.free_slots.size());
         writeControl(control);
+        uploadToBuffer(context, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(slots) * 16);
+        std::vector<TetVertices>().swap(mesh.vertices);
+        uploadToBuffer(context, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(slots) * 16);
+        std::vector<TetNeighbours>().swap(mesh.neighbours);
+        if (!mesh.free_slots.empty())
+            uploadToBuffer(context, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), mesh.free_slots.size() * 4);
+        std::vector<uint32_t>().swap(mesh.free_slots);
+        zeroArrays();  // after the host arrays are gone: on lavapipe the zeroed pages become resident
     } catch (...) {
         for (Buffer& buffer : buffers_) destroyBuffer(context, buffer);
         throw;
@@ -193,19 +222,26 @@ void DeviceTetOptimizer::writeControl(const TetControl& control) {
     uploadToBuffer(context_, buffers_[kTetBindingControl], &control, sizeof(control));
 }
 
-// Every capacity-sized array, zeroed: the state bits, claims and masks must start at 0.
+// Every capacity-sized array, as allocated (zeroArrays zeroes those that must start at 0).
 void DeviceTetOptimizer::allocate(uint32_t capacity) {
     capacity_ = capacity;
+    for (const SlotArray& array : kSlotArrays)
+        buffers_[array.binding] =
+            createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
+}
+
+// The arrays read before written (SlotArray::zeroed) set to 0.
+void DeviceTetOptimizer::zeroArrays() {
     CommandBatch batch(context_);
-    for (const SlotArray& array : kSlotArrays) {
-        Buffer& buffer = buffers_[array.binding];
-        buffer = createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
-        vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, 0);
-    }
+    for (const SlotArray& array : kSlotArrays)
+        if (array.zeroed) {
+            vkCmdFillBuffer(batch.buffer(), buffers_[array.binding].buffer, 0, VK_WHOLE_SIZE, 0);
+            zeroed_bytes_ += buffers_[array.binding].size;
+        }
     batch.submitAndWait();
 }
 
-// Larger arrays, each zeroed and then holding the old one's contents: the round that stopped
+// Larger arrays holding the old ones' contents (the zeroed ones zeroed first): the round that stopped
 // for want of slots goes on where it stopped (kTetStepApply), with the same lists, claims,
 // masks and prefix sums (the blocks added beyond the old ones are empty).
 void DeviceTetOptimizer::grow(uint32_t need) {
@@ -220,7 +256,10 @@ void DeviceTetOptimizer::grow(uint32_t need) {
         Buffer& buffer = buffers_[array.binding];
         old[array.binding] = buffer;
         buffer = createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
-        vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, 0);
+        if (array.zeroed) {
+            vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, 0);
+            zeroed_bytes_ += buffer.size;
+        }
     }
     computeBarrier(batch.buffer());
     for (const SlotArray& array : kSlotArrays) {
@@ -299,18 +338,35 @@ std::vector<double> DeviceTetOptimizer::costs() const {
     return costs;
 }
 
-void DeviceTetOptimizer::download(TetMesh& mesh, std::vector<double>& costs) const {
-    const TetControl control = readControl();
-    mesh.vertices.resize(control.slot_count);
-    mesh.neighbours.resize(control.slot_count);
-    mesh.free_slots.resize(control.free_count);
-    if (control.slot_count) {
-        downloadFromBuffer(context_, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(control.slot_count) * 16);
-        downloadFromBuffer(context_, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(control.slot_count) * 16);
+double DeviceTetOptimizer::costTotal() const {
+    const uint32_t slots = readControl().slot_count;
+    std::vector<double> chunk(std::min(slots, kCostChunk));
+    CompensatedSum sum;
+    for (uint32_t first = 0; first < slots; first += kCostChunk) {
+        const uint32_t count = std::min(kCostChunk, slots - first);
+        downloadFromBuffer(context_, buffers_[kTetBindingCost], chunk.data(), VkDeviceSize(count) * 8, VkDeviceSize(first) * 8);
+        sum.add(chunk.data(), count);
     }
+    return sum.total();
+}
+
+void DeviceTetOptimizer::moveMeshTo(TetMesh& mesh) {
+    const TetControl control = readControl();
+    for (uint32_t binding = 0; binding < kTetBindingCount; ++binding)
+        if (binding != kTetBindingVertices && binding != kTetBindingNeighbours && binding != kTetBindingFreeSlots)
+            release(binding);
+    mesh.free_slots.resize(control.free_count);
     if (control.free_count)
         downloadFromBuffer(context_, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), VkDeviceSize(control.free_count) * 4);
-    costs = this->costs();
+    release(kTetBindingFreeSlots);
+    mesh.vertices.resize(control.slot_count);
+    if (control.slot_count)
+        downloadFromBuffer(context_, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(control.slot_count) * 16);
+    release(kTetBindingVertices);
+    mesh.neighbours.resize(control.slot_count);
+    if (control.slot_count)
+        downloadFromBuffer(context_, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(control.slot_count) * 16);
+    release(kTetBindingNeighbours);
 }
 
 uint64_t DeviceTetOptimizer::bytes() const {
@@ -349,15 +405,17 @@ TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, co
                                        TetDeviceReport* report) {
     TetDeviceReport local;
     TetDeviceReport& out = report ? *report : local;
-    DeviceTetOptimizer optimizer(context, mesh, field, options, device);
-    const double cost_before = compensatedTotal(optimizer.costs());
+    DeviceTetOptimizer optimizer(context, mesh, field, options, device);  // holds the mesh until moveMeshTo
+    const double cost_before = optimizer.costTotal();
     TetParallelStats stats = optimizer.run(out);
-    optimizer.download(mesh, out.costs);
     stats.cost_before = cost_before;
-    stats.cost_after = compensatedTotal(out.costs);
+    stats.cost_after = optimizer.costTotal();
+    if (report) out.costs = optimizer.costs();
     out.capacity = optimizer.capacity();
     out.init_ms = optimizer.initMs();
     out.device_bytes = optimizer.bytes();
+    out.zeroed_bytes = optimizer.zeroedBytes();
+    optimizer.moveMeshTo(mesh);
     return stats;
 }
 

@@ -8,8 +8,14 @@
 // once, sets rather than sequences for the lists); the slot allocation is a prefix sum over the
 // accepted flips in owner order (tet_scan.comp), not an atomic counter.
 //
-// On the device: the mesh records, the cost cache (contents, gradients, costs, flatness), the
-// lists (active, evaluation, candidates), the claims and the free slots; a state machine
+// Memory: the device takes the mesh's host arrays (released as each is uploaded, given back at
+// the end as each is downloaded, the other device arrays released first), so the host and
+// device copies of the mesh are never whole together; on an exception the mesh is left empty.
+// The cost totals are summed a chunk at a time, without a host copy of the cost cache.
+//
+// On the device: the mesh records, the cost cache (gradients, costs, flatness; the contents are
+// recomputed from the records), the lists (active, evaluation, candidates), the claims and the
+// free slots; a state machine
 // (tet_plan.comp) plans each step's indirect dispatch, so a command buffer holds several rounds
 // and the host reads the control block once per submit.
 //
@@ -44,6 +50,9 @@ struct TetDeviceReport {
     uint32_t grows = 0;      // times the slot arrays grew
     uint32_t capacity = 0;   // slots the arrays held at the end
     uint64_t device_bytes = 0;  // bytes of device memory at the end
+    // Bytes zero-filled on allocation and growth. The other arrays are left as allocated, so a
+    // device whose memory is host memory (lavapipe) backs only the pages the kernels write.
+    uint64_t zeroed_bytes = 0;
     std::vector<double> costs;  // the device's cost cache per slot at the end (TetCosts::cost)
     double init_ms = 0.0;       // wall time of the first cache's submit (kTetStepInit)
     std::array<double, kTetStepCount> step_ms{};  // device time per step (plan and kernel), when profiling

@@ -13,7 +13,6 @@ void main() {
         t = i;
         if (!inUse(t)) {
             imageStore(tet_cost, int(t), uvec4(0u));
-            imageStore(tet_content, int(t), uvec4(0u));
             return;
         }
     } else {

@@ -69,7 +69,9 @@ const uint kTetStateEval = 4u;
 const uint kTetBindingVertices = 0u;    // rgba32ui per slot (TetMesh::vertices)
 const uint kTetBindingNeighbours = 1u;  // rgba32ui per slot
 const uint kTetBindingValues = 2u;      // rg32ui per vertex: the normalized value (double)
-const uint kTetBindingContent = 3u;     // rg32ui per slot: TetCosts::content (double)
+// rg32ui: last round's unaccepted candidates carried over (as candidates). (Binding 3 held the
+// contents once; they are recomputed now, tet_common.glsl's contentOf.)
+const uint kTetBindingCarried = 3u;
 const uint kTetBindingCost = 4u;        // rg32ui per slot: TetCosts::cost (double)
 const uint kTetBindingGradient = 5u;    // rg32ui, 3 per slot: TetCosts::gradient (face_scf)
 const uint kTetBindingState = 6u;       // r32ui per slot: kTetState… bits
@@ -89,8 +91,7 @@ const uint kTetBindingArgs = 18u;       // storage buffer: kTetStepCount indirec
 // two remainders, which llvmpipe does lane by lane (no vector integer division on x86): computed
 // per vertex of every new tet, they took most of the candidates' time.
 const uint kTetBindingPositions = 19u;
-const uint kTetBindingCarried = 20u;    // rg32ui: last round's unaccepted candidates carried over (as candidates)
-const uint kTetBindingCount = 21u;
+const uint kTetBindingCount = 20u;
 
 // The steps of a round, in order; each is one planned indirect dispatch (tet_plan.comp).
 const uint kTetStepMark = 0u;        // tet_mark: the owners of the active tets' sites → evaluation list

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// After the flips (TetCosts::update's first half): each new tet's content, flatness and (for
+// After the flips (TetCosts::update's first half): each new tet's flatness and (for
 // face_scf) gradient from its record, and, for face_scf, its face-neighbours listed as active
 // (their costs read its gradient; tet_lawson's candidate list). Invocation j < three_twos also
 // pushes the j-th freed slot onto the free slots. push.step kTetStepInit refreshes every slot
@@ -9,7 +9,6 @@
 #include "tet_common.glsl"
 
 void refreshGeometry(uint t, uvec4 v) {
-    imageStore(tet_content, int(t), doubleTexel(contentOfTet(v)));
     if (flatTet(v)) imageAtomicOr(tet_state, int(t), kTetStateFlat);
     else imageAtomicAnd(tet_state, int(t), ~kTetStateFlat);
     if (push.face_scf != 0u) {
