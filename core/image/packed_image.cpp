@@ -36,12 +36,7 @@ void PackedImage::unpackRows(const std::vector<Code>& codes, const PixelRect& re
 
 Image PackedImage::crop(const PixelRect& rect) const {
     if (floats()) return cropOf(header_, rect);
-    Image crop;
-    crop.width = rect.width();
-    crop.height = rect.height();
-    crop.channels = header_.channels;
-    crop.sample_type = header_.sample_type;
-    crop.pixels.resize(size_t(crop.width) * crop.height * crop.channels);
+    Image crop = emptyCropOf(header_, rect);
     if (!codes8_.empty()) unpackRows(codes8_, rect, crop.pixels.data());
     else unpackRows(codes16_, rect, crop.pixels.data());
     return crop;

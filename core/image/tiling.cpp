@@ -47,13 +47,18 @@ std::vector<Tile> planStrip(uint32_t width, uint32_t height, OutputSize out, uin
     return tiles;
 }
 
-Image cropOf(const Image& image, const PixelRect& rect) {
+Image emptyCropOf(const Image& image, const PixelRect& rect) {
     Image crop;
     crop.width = rect.width();
     crop.height = rect.height();
     crop.channels = image.channels;
     crop.sample_type = image.sample_type;
     crop.pixels.resize(size_t(crop.width) * crop.height * crop.channels);
+    return crop;
+}
+
+Image cropOf(const Image& image, const PixelRect& rect) {
+    Image crop = emptyCropOf(image, rect);
     const size_t row_floats = size_t(crop.width) * crop.channels;
     for (uint32_t y = 0; y < crop.height; ++y)
         std::copy_n(image.row(rect.y0 + y) + size_t(rect.x0) * image.channels, row_floats,

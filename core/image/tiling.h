@@ -30,6 +30,8 @@ struct PixelRect {
 
 // The pixels of `image` inside `rect`, as an image of their own (a tile's crop).
 Image cropOf(const Image& image, const PixelRect& rect);
+// A crop's image of `image`'s channels and sample type, its pixels allocated but not filled.
+Image emptyCropOf(const Image& image, const PixelRect& rect);
 
 struct Tile {
     PixelRect core;    // input pixels the tile answers for
