@@ -53,7 +53,8 @@ VkDeviceSize slotArrayBytes(uint32_t binding, uint64_t capacity, TetWeight weigh
     switch (binding) {
         case kTetBindingVertices:
         case kTetBindingNeighbours: return capacity * 16;
-        case kTetBindingCost:
+        // The variance weight's costs are recomputed where read: a chunk for the totals only.
+        case kTetBindingCost: return (weight == TetWeight::face_scf ? capacity : std::min<uint64_t>(capacity, kTetCostChunk)) * 8;
         case kTetBindingCandidates:
         case kTetBindingCarried: return capacity * 8;
         case kTetBindingGradient: return weight == TetWeight::face_scf ? capacity * 24 : 8;
@@ -77,9 +78,6 @@ struct CompensatedSum {
     }
     double total() const { return sum + compensation; }
 };
-
-// Costs read back per chunk for the sums (8 MiB), not as one copy of the whole cache.
-constexpr uint32_t kCostChunk = uint32_t(1) << 20;
 
 uint32_t uintOf(uint64_t value, const char* what) {
     if (value > kTetMaxSlots) throw std::invalid_argument(std::string("device tet optimizer: too many ") + what);
@@ -118,6 +116,10 @@ private:
     void zeroArrays();
     void release(uint32_t binding) { destroyBuffer(context_, buffers_[binding]); }
     void grow(uint32_t need);
+    // Calls consume(first, costs, count) for the cost of every slot, a chunk at a time in slot
+    // order: read from the cache (face_scf) or computed into the cost buffer (variance).
+    template <class Consume>
+    void forEachCostChunk(Consume consume) const;
     TetPush pushFor(uint32_t step) const;
 
     VulkanContext& context_;
@@ -331,22 +333,33 @@ TetParallelStats DeviceTetOptimizer::run(TetDeviceReport& report) {
     return stats;
 }
 
+template <class Consume>
+void DeviceTetOptimizer::forEachCostChunk(Consume consume) const {
+    const uint32_t slots = readControl().slot_count;
+    std::vector<double> chunk(std::min(slots, kTetCostChunk));
+    for (uint32_t first = 0; first < slots; first += kTetCostChunk) {
+        const uint32_t count = std::min(kTetCostChunk, slots - first);
+        VkDeviceSize offset = VkDeviceSize(first) * 8;
+        if (weight_ == TetWeight::variance) {
+            CommandBatch batch(context_);
+            kernels_.recordTotals(batch.buffer(), pushFor(kTetStepTotals), first);
+            batch.submitAndWait();
+            offset = 0;
+        }
+        downloadFromBuffer(context_, buffers_[kTetBindingCost], chunk.data(), VkDeviceSize(count) * 8, offset);
+        consume(first, chunk.data(), count);
+    }
+}
+
 std::vector<double> DeviceTetOptimizer::costs() const {
-    const TetControl control = readControl();
-    std::vector<double> costs(control.slot_count);
-    if (!costs.empty()) downloadFromBuffer(context_, buffers_[kTetBindingCost], costs.data(), costs.size() * 8);
+    std::vector<double> costs(readControl().slot_count);
+    forEachCostChunk([&](uint32_t first, const double* chunk, uint32_t count) { std::copy_n(chunk, count, costs.data() + first); });
     return costs;
 }
 
 double DeviceTetOptimizer::costTotal() const {
-    const uint32_t slots = readControl().slot_count;
-    std::vector<double> chunk(std::min(slots, kCostChunk));
     CompensatedSum sum;
-    for (uint32_t first = 0; first < slots; first += kCostChunk) {
-        const uint32_t count = std::min(kCostChunk, slots - first);
-        downloadFromBuffer(context_, buffers_[kTetBindingCost], chunk.data(), VkDeviceSize(count) * 8, VkDeviceSize(first) * 8);
-        sum.add(chunk.data(), count);
-    }
+    forEachCostChunk([&](uint32_t, const double* chunk, uint32_t count) { sum.add(chunk, count); });
     return sum.total();
 }
 

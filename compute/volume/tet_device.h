@@ -11,10 +11,11 @@
 // Memory: the device takes the mesh's host arrays (released as each is uploaded, given back at
 // the end as each is downloaded, the other device arrays released first), so the host and
 // device copies of the mesh are never whole together; on an exception the mesh is left empty.
-// The cost totals are summed a chunk at a time, without a host copy of the cost cache.
+// The cost totals are summed a chunk at a time, without a host copy of the costs.
 //
-// On the device: the mesh records, the cost cache (gradients, costs, flatness; the contents are
-// recomputed from the records), the lists (active, evaluation, candidates), the claims and the
+// On the device: the mesh records, the cost cache (flatness; for face_scf gradients and costs;
+// the contents, and the variance weight's costs, are recomputed from the records, a chunk at a
+// time for the totals), the lists (active, evaluation, candidates), the claims and the
 // free slots; a state machine
 // (tet_plan.comp) plans each step's indirect dispatch, so a command buffer holds several rounds
 // and the host reads the control block once per submit.

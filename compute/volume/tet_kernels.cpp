@@ -86,4 +86,13 @@ void TetKernels::recordInit(VkCommandBuffer commands, TetPush push, uint32_t slo
     }
 }
 
+void TetKernels::recordTotals(VkCommandBuffer commands, TetPush push, uint32_t first) const {
+    push.step = kTetStepTotals;
+    push.first = first;
+    const TetGroups groups = tetGroupsFor(kTetCostChunk);
+    layout_.bindKernel(commands, costs_, &push);
+    vkCmdDispatch(commands, groups.x, groups.y, 1);
+    computeBarrier(commands);
+}
+
 }  // namespace ddt

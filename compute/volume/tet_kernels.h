@@ -26,6 +26,8 @@ public:
                     uint32_t query = 0) const;
     // The first round's cache: tet_refresh, then tet_costs, over `slots` slots (kTetStepInit).
     void recordInit(VkCommandBuffer commands, TetPush push, uint32_t slots) const;
+    // tet_costs' chunk of costs from slot `first` (kTetStepTotals, the variance weight).
+    void recordTotals(VkCommandBuffer commands, TetPush push, uint32_t first) const;
 
 private:
     VkPipeline kernelOf(uint32_t step) const;

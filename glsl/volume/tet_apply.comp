@@ -56,9 +56,10 @@ void main() {
         const uint slot = plan.region[k];
         imageStore(tet_vertices, int(slot), uvec4(kNoTet));
         imageStore(tet_neighbours, int(slot), uvec4(kNoTet));
-        imageStore(tet_cost, int(slot), uvec4(0u));
-        if (push.face_scf != 0u)
+        if (push.face_scf != 0u) {
+            imageStore(tet_cost, int(slot), uvec4(0u));
             for (uint a = 0u; a < 3u; ++a) imageStore(tet_gradient, int(3u * slot + a), uvec4(0u));
+        }
         imageAtomicOr(tet_state, int(slot), kTetStateFlat);
         imageStore(freed_slots, int(rankOf(owner, 1u)), uvec4(slot));
     }

@@ -53,7 +53,6 @@ bool inUse(uint t) { return imageLoad(tet_vertices, int(t)).x != kNoTet; }
 uvec4 doubleTexel(double value) { return uvec4(unpackDouble2x32(value), 0u, 0u); }
 
 double valueOf(uint v) { return packDouble2x32(imageLoad(vertex_values, int(v)).xy); }
-double costOf(uint t) { return packDouble2x32(imageLoad(tet_cost, int(t)).xy); }
 dvec3 gradientOf(uint t) {
     return dvec3(packDouble2x32(imageLoad(tet_gradient, int(3u * t)).xy),
                  packDouble2x32(imageLoad(tet_gradient, int(3u * t + 1u)).xy),

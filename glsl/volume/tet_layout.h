@@ -72,7 +72,9 @@ const uint kTetBindingValues = 2u;      // rg32ui per vertex: the normalized val
 // rg32ui: last round's unaccepted candidates carried over (as candidates). (Binding 3 held the
 // contents once; they are recomputed now, tet_common.glsl's contentOf.)
 const uint kTetBindingCarried = 3u;
-const uint kTetBindingCost = 4u;        // rg32ui per slot: TetCosts::cost (double)
+// rg32ui: TetCosts::cost (double). face_scf: per slot, the cache. variance: the costs are
+// recomputed (tet_plan.glsl's finishPlan), so this holds only kTetStepTotals' chunk of them.
+const uint kTetBindingCost = 4u;
 const uint kTetBindingGradient = 5u;    // rg32ui, 3 per slot: TetCosts::gradient (face_scf)
 const uint kTetBindingState = 6u;       // r32ui per slot: kTetState… bits
 const uint kTetBindingClaimHigh = 7u;   // r32ui per slot: the largest key's high word claiming it
@@ -110,6 +112,10 @@ const uint kTetStepUnmask = 12u;     // tet_scan: the masks back to 0; the round
 const uint kTetStepCount = 13u;
 // tet_refresh and tet_costs over every slot: the first round's cache (dispatched directly).
 const uint kTetStepInit = 100u;
+// tet_costs, variance: the costs of slots push.first… (kTetCostChunk of them at most) into
+// tet_cost[0…], for the host's totals (dispatched directly).
+const uint kTetStepTotals = 101u;
+const uint kTetCostChunk = 1u << 20;  // 8 MiB of costs
 // claim_high of a tet in an accepted candidate's read set, after kTetStepTake (no key's high
 // word: a positive double's sign bit is 0).
 const uint kTetTaken = 0xffffffffu;
@@ -157,11 +163,12 @@ struct TetPush {
     uint max_rounds;
     uint spacing_bits[6];  // the physical voxel size along x, y, z, doubles as (low, high) words
     uint content_scale_bits[2];  // sx · sy · sz / 6 (tet_cost.cpp's contentScaleOf)
+    uint first;            // kTetStepTotals: the chunk's first slot
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(TetControl) == 136 && offsetof(TetControl, flips) == 88, "TetControl layout (std430: 64-bit totals 8-aligned)");
-static_assert(sizeof(TetPush) == 16 * 4, "TetPush layout");
+static_assert(sizeof(TetPush) == 17 * 4, "TetPush layout");
 }  // namespace ddt
 #endif
 #undef DDT_FN

@@ -190,8 +190,11 @@ void finishPlan(bool gain) {
         precise double before = 0.0lf, after = 0.0lf, content = 0.0lf;
         [[unroll]] for (uint a = 0u; a < 4u; ++a)
             if (a < plan.region_count) {
-                before += costOf(plan.region[a]);
-                content += contentOf(plan.region[a]);
+                // cachedCost's variance cost, from the record (no cost cache with this weight).
+                precise double region_content = contentOf(plan.region[a]);
+                precise double cost = region_content * varianceOfTet(verticesOf(plan.region[a]));
+                before += cost;
+                content += region_content;
             }
         [[unroll]] for (uint i = 0u; i < 4u; ++i)
             if (i < plan.new_count) {
