@@ -1,6 +1,5 @@
 #include "packed_image.h"
 
-#include <algorithm>
 #include <cassert>
 #include <utility>
 

@@ -102,16 +102,15 @@ bool hasSeveralImages(OIIO::ImageInput& input) {
 // EXIF orientation 5..8 turn the stored image a quarter: the upright size is the stored size swapped.
 bool swapsSides(int orientation) { return orientation >= 5 && orientation <= 8; }
 
-// Turns and mirrors `stored` (samples of `type`, the stored size) as EXIF orientation 2..8
-// asks, so that they are upright, into `upright` (as large).
+// Turns and mirrors `samples` (of `type`, the stored size) in place as EXIF orientation 2..8
+// asks, so that they are upright (`header`'s size).
 // Not ImageBufAlgo::reorient: OIIO 2.4 swaps 5 and 7 there (OpenImageIO issue #4661).
-void makeUpright(const void* stored_samples, void* upright_samples, OIIO::TypeDesc type, const Image& header,
-                 int orientation) {
+void makeUpright(void* samples, OIIO::TypeDesc type, const Image& header, int orientation) {
     namespace iba = OIIO::ImageBufAlgo;
     const bool swapped = swapsSides(orientation);
     const OIIO::ImageSpec stored_spec(int(swapped ? header.height : header.width), int(swapped ? header.width : header.height),
                                       int(header.channels), type);
-    const OIIO::ImageBuf stored(stored_spec, const_cast<void*>(stored_samples));
+    const OIIO::ImageBuf stored(stored_spec, samples);
     OIIO::ImageBuf upright, half_turned;
     bool ok = false;
     switch (orientation) {
@@ -124,7 +123,7 @@ void makeUpright(const void* stored_samples, void* upright_samples, OIIO::TypeDe
         case 8: ok = iba::rotate270(upright, stored); break;
     }
     if (!ok) throw std::runtime_error("orienting the image: " + upright.geterror());
-    upright.get_pixels(OIIO::ROI::All(), type, upright_samples);
+    upright.get_pixels(OIIO::ROI::All(), type, samples);
 }
 
 // Rows decoded per call, a whole number of TIFF strips. OIIO 2.4's TIFF reader goes on through
@@ -286,7 +285,7 @@ std::vector<Sample> ImageReader::decode() {
         throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
     s.input.reset();
     s.stdin_copy.reset();
-    if (s.orientation != 1) makeUpright(samples.data(), samples.data(), type, header_, s.orientation);
+    if (s.orientation != 1) makeUpright(samples.data(), type, header_, s.orientation);
     return samples;
 }
 
