@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "backend_pool.h"
 #include "convolution_fallback.h"
 #include "memory_size.h"
 #include "parallel.h"
@@ -49,18 +50,6 @@ private:
     uint32_t next_row_ = 0;
 };
 
-void addStats(OptimizeStats& total, const OptimizeStats& tile) {
-    total.cost_init += tile.cost_init;
-    total.cost_final += tile.cost_final;
-    total.flips += tile.flips;
-    total.iterations += tile.iterations;
-    total.rounds += tile.rounds;
-    total.max_rounds_in_iteration = std::max(total.max_rounds_in_iteration, tile.max_rounds_in_iteration);
-    total.dispatches += tile.dispatches;
-    total.device_ms += tile.device_ms;
-    total.capped = total.capped || tile.capped;
-}
-
 // Whether a job fits its share of the available memory (1/`sharers` of it) with 1/8 to
 // spare: drivers round allocations up and keep their own, and an estimate is only an estimate.
 bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t channels, bool reconstruction,
@@ -70,8 +59,6 @@ bool fits(const Backend& backend, uint32_t width, uint32_t height, uint32_t chan
     return needed != UINT64_MAX && needed <= available - available / 8;
 }
 
-// Tiles processed at once: one per thread where the backend has twins (the CPU), else one.
-uint32_t tilesAtOnce(const Backend& backend) { return backend.twin() ? std::max(1u, threadCount()) : 1; }
 
 // Input rows per strip: the tile side, or, where a strip of several tiles is assembled, fewer
 // if it would not fit kStripFloats (a strip of one tile, or of surfaces handed over, streams
@@ -89,46 +76,6 @@ uint32_t tilesFrom(uint32_t width, uint32_t height, uint32_t y0, uint32_t side, 
     for (uint32_t y = y0; y < height; y = stripEnd(height, y, strip_side)) tiles += columns;
     return tiles;
 }
-
-// The backends a strip's tiles run on: the caller's, and where it has twins, one more per
-// thread, so that tiles are processed in parallel. A tile borrows one for its whole way.
-class BackendPool {
-public:
-    BackendPool(Backend& backend, uint32_t size) : hand_over_surfaces_(backend.handsOverSurface()) {
-        free_.push_back(&backend);
-        for (uint32_t i = 1; i < size; ++i) {
-            twins_.push_back(backend.twin());
-            free_.push_back(twins_.back().get());
-        }
-    }
-    uint32_t size() const { return uint32_t(twins_.size() + 1); }
-    bool handOverSurfaces() const { return hand_over_surfaces_; }
-
-    template <typename Task>
-    auto withBackend(Task task) {
-        Backend* backend;
-        {
-            std::lock_guard lock(mutex_);
-            backend = free_.back();  // never empty: at most size() tasks run at once
-            free_.pop_back();
-        }
-        struct Return {
-            BackendPool& pool;
-            Backend* backend;
-            ~Return() {
-                std::lock_guard lock(pool.mutex_);
-                pool.free_.push_back(backend);
-            }
-        } give_back{*this, backend};
-        return task(*backend);
-    }
-
-private:
-    bool hand_over_surfaces_;
-    std::mutex mutex_;
-    std::vector<std::unique_ptr<Backend>> twins_;
-    std::vector<Backend*> free_;
-};
 
 struct Job {
     BackendPool& backends;

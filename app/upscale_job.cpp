@@ -292,7 +292,8 @@ void ImageJob::render(Backend& backend) {
                                                              settings_.max_error, options, sink, on_step);
             report_.stats = simplified.optimize;
             report_.simplify = simplified.simplify;
-            state_->input = PackedImage(std::move(simplified.values));  // the mesh file's colours; the input is not read again
+            if (!simplified.values.pixels.empty())  // the mesh file's colours (none when tiled); the input is not read again
+                state_->input = PackedImage(std::move(simplified.values));
         } else
             report_.stats = upscaleRows(backend, state_->input, out, options, sink, on_step);
     } catch (const UserError& error) {

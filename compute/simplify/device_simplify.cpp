@@ -10,6 +10,7 @@
 
 namespace ddt {
 
+static_assert(kLockedSide == 16, "glsl/simplify/collapse_rule.glsl's sidesAt sets bit 4");
 static_assert(kCollapseValenceBound == kMaxCollapseValence, "glsl/simplify/simplify_layout.h follows core");
 static_assert(sizeof(Quadric) == kQuadricDoubles * sizeof(double) && std::is_standard_layout_v<Quadric>,
               "quadrics are uploaded as they are");
@@ -49,7 +50,8 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
     if (const std::string problem = deviceSimplifierProblem(context, edges, vertices); !problem.empty())
         throw std::invalid_argument("device simplification: " + problem);
     const uint64_t error_limit = std::bit_cast<uint64_t>(errorLimitOf(max_error));
-    push_ = {mesh.width, mesh.height, values.channels, edges, 0, 0, 0, 0, uint32_t(error_limit), uint32_t(error_limit >> 32)};
+    push_ = {mesh.width, mesh.height, values.channels, edges, 0, 0, 0, 0, uint32_t(error_limit), uint32_t(error_limit >> 32),
+             mesh.locked_sides};
     // Channels padded to four floats a vertex, for one rgba32f texel.
     std::vector<float> texels(size_t(vertices) * 4, 0.0f);
     for (size_t v = 0; v < vertices; ++v)

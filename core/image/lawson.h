@@ -3,6 +3,7 @@
 // sweep flips nothing. Every backend reports the same figures (OptimizeStats).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 
@@ -25,6 +26,19 @@ struct OptimizeStats {
     // Table 1's "improvement": cost-init / cost-final × 100 %.
     double improvement() const { return cost_final > 0.0 ? 100.0 * cost_init / cost_final : 0.0; }
 };
+
+// Adds a tile's statistics to the run's (overlaps counted in each tile).
+inline void addStats(OptimizeStats& total, const OptimizeStats& tile) {
+    total.cost_init += tile.cost_init;
+    total.cost_final += tile.cost_final;
+    total.flips += tile.flips;
+    total.iterations += tile.iterations;
+    total.rounds += tile.rounds;
+    total.max_rounds_in_iteration = std::max(total.max_rounds_in_iteration, tile.max_rounds_in_iteration);
+    total.dispatches += tile.dispatches;
+    total.device_ms += tile.device_ms;
+    total.capped = total.capped || tile.capped;
+}
 
 struct LawsonOptions {
     // The cost the flips lower (core/image/cost.h; `--cost` on the command line).

@@ -61,6 +61,10 @@ struct Mesh {
     std::vector<EdgeNeighbours> neighbours;
     // Per vertex id, where explicit (see the glossary); empty: every vertex at its pixel centre.
     std::vector<Position> positions;
+    // The sides of the rectangle (rectangleSides' bits) whose vertices a simplification keeps
+    // where they are: a tile's sides shared with its neighbours, so that the tiles' meshes
+    // still join (app/simplified_upscale.h). 0 for a whole picture.
+    uint32_t locked_sides = 0;
 
     uint32_t edgeCount() const { return uint32_t(vertices.size()); }
     // Vertex ids run below this: the grid's w·h, or one per explicit position.

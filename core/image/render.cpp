@@ -283,14 +283,15 @@ void MeshRenderer::visitSamples(const RenderWindow& window, uint32_t first, uint
     assert(window.x_end <= out_w && window.y_end <= out_h);
     if (window.x_begin >= window.x_end || window.y_begin >= window.y_end || first >= end) return;
     const bool explicit_positions = !positions_.empty();
-    assert(!explicit_positions || (cx == 0 && cy == 0 && w == window.input_width && h == window.input_height));
     const SampleAxes axes = sampleAxesOf(window, explicit_positions);
     int64_t px[3], py[3];
     if (explicit_positions) {
+        // Positions are the crop's: moved by its offset to the whole input's, as samples are.
+        const int64_t x_offset = int64_t(cx) * kPositionOne, y_offset = int64_t(cy) * kPositionOne;
         for (uint32_t i = first; i < end; ++i) {
             const Triangle& t = triangles_[i];
             const uint32_t ids[3] = {t.v0, t.v1, t.v2};
-            for (int k = 0; k < 3; ++k) px[k] = positions_[ids[k]].x, py[k] = positions_[ids[k]].y;
+            for (int k = 0; k < 3; ++k) px[k] = positions_[ids[k]].x + x_offset, py[k] = positions_[ids[k]].y + y_offset;
             const auto [x_lo, x_end] =
                 samplesWithin(axes.su, window.x_begin, std::min({px[0], px[1], px[2]}), std::max({px[0], px[1], px[2]}));
             const auto [y_lo, y_end] =

@@ -7,7 +7,7 @@
 // output pixel is written exactly once and -s 1 reproduces the input exactly.
 //
 // Tiles: a mesh may be built on a crop of the whole input at an integer offset. Its vertices
-// are then placed at their whole-input coordinates, so its output pixels are sampled exactly
+// (explicit positions too, which are the crop's) are then placed at their whole-input coordinates, so its output pixels are sampled exactly
 // as the whole image's are (same integers, same ties, same weights): where two meshes agree,
 // so do their pixels, bit for bit.
 #pragma once

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <vector>
 
+#include "edge_collapse.h"
 #include "parallel.h"
 #include "reconstruct.h"
 #include "render.h"
@@ -56,8 +57,11 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
     return sum;
 }
 
-// Channel k's colours by conjugate gradients on the normal equations.
-void fitChannel(const PixelSamples& samples, const Image& picture, Image& colours, uint32_t k) {
+// Channel k's colours by conjugate gradients on the normal equations, over the vertices
+// `free` marks (1): the others' entries of the residual and the direction are held at zero,
+// which is conjugate gradients on the free vertices' system with the fixed ones' colours given.
+void fitChannel(const PixelSamples& samples, const std::vector<uint8_t>& free, const Image& picture, Image& colours,
+                uint32_t k) {
     const uint32_t c = colours.channels;
     const size_t vertices = size_t(colours.width) * colours.height;
     std::vector<double> x(vertices), rhs(vertices), residual(vertices), direction(vertices), product(vertices);
@@ -72,7 +76,7 @@ void fitChannel(const PixelSamples& samples, const Image& picture, Image& colour
         rhs[t.v2] += hit.weights[2] * pixel;
     });
     applyNormal(samples, x, product);
-    for (size_t v = 0; v < vertices; ++v) residual[v] = direction[v] = rhs[v] - product[v];
+    for (size_t v = 0; v < vertices; ++v) residual[v] = direction[v] = free[v] ? rhs[v] - product[v] : 0.0;
     double norm = dot(residual, residual);
     const double stop = dot(rhs, rhs) * kResidualShare * kResidualShare;
     for (int iteration = 0; iteration < kMaxIterations && norm > stop; ++iteration) {
@@ -80,7 +84,7 @@ void fitChannel(const PixelSamples& samples, const Image& picture, Image& colour
         const double step = norm / dot(direction, product);
         for (size_t v = 0; v < vertices; ++v) {
             x[v] += step * direction[v];
-            residual[v] -= step * product[v];
+            residual[v] -= free[v] ? step * product[v] : 0.0;
         }
         const double next = dot(residual, residual);
         for (size_t v = 0; v < vertices; ++v) direction[v] = residual[v] + next / norm * direction[v];
@@ -95,8 +99,11 @@ void fitChannel(const PixelSamples& samples, const Image& picture, Image& colour
 void fitColours(const Mesh& mesh, const Image& picture, Image& colours) {
     assert(picture.width == colours.width && picture.height == colours.height && picture.channels == colours.channels);
     const PixelSamples samples = pixelSamples(mesh, colours);
+    std::vector<uint8_t> free(size_t(colours.width) * colours.height, 1);
+    if (mesh.locked_sides)
+        for (uint32_t v = 0; v < mesh.vertexCount(); ++v) free[v] = !lockedVertex(mesh, v);
     parallelFor(colours.channels, 1, [&](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k) fitChannel(samples, picture, colours, uint32_t(k));
+        for (size_t k = begin; k < end; ++k) fitChannel(samples, free, picture, colours, uint32_t(k));
     });
     if (!colours.hasAlpha()) return;
     const uint32_t c = colours.channels;

@@ -13,7 +13,8 @@
 // gradients from the start, a fixed sum order (deterministic), until the residual is 1e-6 of
 // the right-hand side (a relative accuracy far below an 8-bit level; about 10 iterations on
 // the photographs, none where the start fits already, as on an unsimplified mesh). Colours of integer sample types are then
-// clamped to [0, 1], premultiplied ones to at most their alpha.
+// clamped to [0, 1], premultiplied ones to at most their alpha. Vertices on a locked side
+// (Mesh::locked_sides) keep their starting colours: the fit solves for the others only.
 #pragma once
 
 #include "image.h"

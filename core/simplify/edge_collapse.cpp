@@ -35,13 +35,13 @@ VertexEdges::VertexEdges(const Mesh& mesh) : first(mesh.vertexCount(), kNone) {
 bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) {
     const EdgeVertices& ev = mesh.vertices[collapse.edge];
     const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
-    const uint32_t from_sides = rectangleSides(mesh, from);
-    if (std::popcount(from_sides) >= 2) return false;  // a corner
+    const uint32_t from_sides = collapseSides(mesh, from);
+    if (std::popcount(from_sides) >= 2) return false;  // a corner, or on a locked side
     if (from_sides && ev.l != kNone && ev.r != kNone) return false;  // a border vertex leaves its side
     const Position target = collapse.moves ? collapse.target : positionOf(mesh, to);
     if (collapse.moves) {
-        const uint32_t kept = from_sides | rectangleSides(mesh, to);
-        if ((rectangleSides(mesh, target) & kept) != kept) return false;
+        const uint32_t kept = from_sides | collapseSides(mesh, to);
+        if ((collapseSides(mesh, target) & kept) != kept) return false;
     }
     // Valence: `to` ends with the edges of both but e and the removed ones.
     uint32_t valence = 0;

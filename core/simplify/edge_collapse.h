@@ -9,7 +9,8 @@
 // - link condition: the vertices adjacent to both a and b are exactly e's l and r, so the mesh
 //   stays a manifold disk;
 // - the rectangle is kept: corners never go; a border vertex goes only along its side, into
-//   its neighbour on that side, over a boundary edge;
+//   its neighbour on that side, over a boundary edge; a vertex on a locked side
+//   (Mesh::locked_sides) counts as a corner: it neither goes nor moves;
 // - no fold-over: every triangle around `from` that stays is still positive with `to` in its
 //   place (exact integer orientation).
 // - valence: `to` ends with at most kMaxCollapseValence edges (see there).
@@ -29,6 +30,17 @@ namespace ddt {
 // collapse into fans: on the bench's photographs no vertex has more than 21 edges at any
 // share, on its drawings up to 161 without the bound.
 constexpr uint32_t kMaxCollapseValence = 64;
+
+// The sides of the rectangle position p lies on (rectangleSides), with kLockedSide added where
+// one of them is locked: a vertex there has two bits set, as a corner has, and the rules below
+// keep it as they keep a corner.
+constexpr uint32_t kLockedSide = 1u << 4;
+inline uint32_t collapseSides(const Mesh& mesh, Position p) {
+    const uint32_t sides = rectangleSides(mesh, p);
+    return sides & mesh.locked_sides ? sides | kLockedSide : sides;
+}
+inline uint32_t collapseSides(const Mesh& mesh, uint32_t v) { return collapseSides(mesh, positionOf(mesh, v)); }
+inline bool lockedVertex(const Mesh& mesh, uint32_t v) { return (rectangleSides(mesh, v) & mesh.locked_sides) != 0; }
 
 // One edge at each vertex, from which a walk over the edge records reaches the vertex's other
 // edges (forEachEdgeAt); collapses keep it valid. A walk rather than per-vertex lists because

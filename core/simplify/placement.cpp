@@ -53,7 +53,7 @@ std::array<PlacedCollapse, 2> placeCollapses(const Mesh& mesh, const VertexEdges
                                              const Quadric& merged, uint32_t edge) {
     std::array<PlacedCollapse, 2> placed;
     const uint32_t a = mesh.vertices[edge].a, b = mesh.vertices[edge].b;
-    const uint32_t sides[2] = {rectangleSides(mesh, a), rectangleSides(mesh, b)};
+    const uint32_t sides[2] = {collapseSides(mesh, a), collapseSides(mesh, b)};
     const bool explicit_positions = !mesh.positions.empty();
     // Both inside: all axes free, so the least point, its legality (the triangles around both
     // ends) and its cost are the same either way.

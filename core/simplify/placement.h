@@ -7,7 +7,7 @@
 //   for both directions of the edge);
 // - `to` on one side of the rectangle (not a corner), `from` inside or on the same side: the
 //   point of least Q on that side's line, its other coordinate and the colour free;
-// - else (`to` a corner): `to`'s place.
+// - else (`to` a corner, or on a locked side: edge_collapse.h): `to`'s place.
 // The place is snapped to the fixed-point grid (1/1024 pixel), must be legal (canCollapse: no
 // fold-over, the sides kept) and must cost no more than `to`'s place; otherwise, or where the
 // quadric is singular in the free axes (a flat region, whose planes leave the position

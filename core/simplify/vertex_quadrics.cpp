@@ -36,7 +36,7 @@ void setVertexColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, co
     const bool bounded = boundedToUnit(image.sample_type);
     std::vector<float> best(image.pixels);
     for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
-        if (!used[v]) continue;
+        if (!used[v] || lockedVertex(mesh, v)) continue;
         double point[kMaxQuadricDimensions];
         points.of(v, point);
         if (!quadrics[v].minimiseFree(point, points.colourAxes(), points.n)) continue;

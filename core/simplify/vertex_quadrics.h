@@ -55,7 +55,8 @@ std::vector<bool> usedVertices(const Mesh& mesh);
 
 // Each kept vertex's colour: its quadric's minimum where it stands, then all of them fitted
 // together to the picture's pixels (colour_fit.h), within [0, 1] for integer sample types and,
-// premultiplied, within its alpha. `image` holds the picture on entry.
+// premultiplied, within its alpha. `image` holds the picture on entry. A vertex on a locked
+// side keeps its pixel's colour, which the neighbouring tile's mesh gives it too.
 void setVertexColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image);
 
 }  // namespace ddt

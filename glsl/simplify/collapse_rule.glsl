@@ -72,10 +72,12 @@ uint invocationEdge() {
 
 ivec2 positionOf(uint v) { return imageLoad(positions, int(v)).xy; }
 
-// core's rectangleSides: bit 0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1.
+// core's collapseSides: rectangleSides' bits (0 x = 0, 1 x = w − 1, 2 y = 0, 3 y = h − 1),
+// and bit 4 where one of them is locked.
 uint sidesAt(ivec2 p) {
     const int right = int(push.width - 1u) * kPositionOne, bottom = int(push.height - 1u) * kPositionOne;
-    return uint(p.x == 0) | uint(p.x == right) << 1 | uint(p.y == 0) << 2 | uint(p.y == bottom) << 3;
+    const uint sides = uint(p.x == 0) | uint(p.x == right) << 1 | uint(p.y == 0) << 2 | uint(p.y == bottom) << 3;
+    return (sides & push.locked_sides) != 0u ? sides | 16u : sides;
 }
 uint sidesOf(uint v) { return sidesAt(positionOf(v)); }
 

@@ -107,6 +107,7 @@ struct SimplifyPush {
     uint listed;           // 1: invocation i works on the listed edge i (kSimplifyBindingListed)
     uint error_limit_low;  // collapse_candidates.comp: exceedsErrorLimit's limit, a double's low
     uint error_limit_high; // and high word
+    uint locked_sides;     // Mesh::locked_sides
 };
 
 #ifdef __cplusplus
