@@ -361,7 +361,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "error over position and colour (Garland-Heckbert), each merged vertex at the place and colour its quadric calls for "
                    "(to 1/1024 pixel; corners stay, border vertices slide along their side); the output is the linear surface on the simplified mesh, "
                    "and --mesh writes that mesh. The CPU backend simplifies serially; a Vulkan device by a parallel rule "
-                   "(rounds of collapses whose neighbourhoods do not touch). Only images the backend holds in one piece")
+                   "(rounds of collapses whose neighbourhoods do not touch). An image whose simplification does not fit --memory whole, "
+                   "or that --tile cuts, is simplified in tiles whose shared sides keep their pixels")
         ->default_str("none");
     app.add_option("--max-error", settings.max_error,
                    "Simplify the mesh (as --simplify does) as far as no collapse errs by more than this: the root-"
@@ -440,7 +441,7 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     std::string memory_text;
     app.add_option("--memory", memory_text,
                    "Host memory the run may hold (512M, 4G …): the images in flight, and on the CPU backend a mask's "
-                   "or a simplification's mesh, which cannot be tiled; automatic tiles stay small within it for speed")
+                   "mesh, which cannot be tiled, or a whole simplification's (beyond it, tiles); automatic tiles stay small within it for speed")
         ->default_str("half the machine's memory");
     app.add_option("--variant", settings.variant,
                    "Vulkan flip rule: basic, exproi, exproi-N-maxgain, maxgain, exproi-maxgain, localmax, exproi-localmax")

@@ -125,9 +125,11 @@ SimplifiedUpscale simplifyTiled(Backend& backend, const Image& image, OutputSize
     for (uint32_t y0 = 0; y0 < image.height;) {
         const uint32_t y1 = stripEnd(image.height, y0, side);
         std::vector<SimplifiedTile> tiles = planSimplifiedStrip(image.width, image.height, out, y0, y1, side);
-        parallelFor(tiles.size(), 1, [&](size_t begin, size_t end) {
+        auto simplifyTiles = [&](size_t begin, size_t end) {
             for (size_t i = begin; i < end; ++i) simplifyPooledTile(run, tiles[i], index + uint32_t(i));
-        });
+        };
+        if (backends.size() > 1) parallelFor(tiles.size(), 1, simplifyTiles);
+        else simplifyTiles(0, tiles.size());  // one device: a tile at a time
         if (on_step) on_step({index, run.tiles, TilePhase::Render});
         renderStrip(run, tiles);
         index += uint32_t(tiles.size());

@@ -11,6 +11,7 @@
 #include "render.h"
 #include "simplified_upscale.h"
 #include "test_support.h"
+#include "vulkan_backend.h"
 
 using namespace ddt;
 using namespace ddt::test;
@@ -58,12 +59,17 @@ TEST_CASE("tiled simplify: output pixels go to the tile whose mesh holds their s
     CHECK(snapping_matters);
 }
 
-TEST_CASE("tiled simplify: the tiles' meshes join without cracks, as upscaleSimplified renders them") {
-    const Image photo = photoCrop();
-    const uint32_t w = photo.width, h = photo.height, side = 64;
+namespace {
+
+// Simplifies `photo` in tiles of `side` pixels on `backend`, tile by tile, each rendered by
+// itself into a NaN-filled output (a pixel no tile renders stays NaN), and through
+// upscaleSimplified; checks that they join and agree, and with `quality`, that the tiles
+// score about as the whole does.
+void checkTilesJoin(Backend& backend, const Image& photo, uint32_t side, const std::vector<OutputSize>& outputs,
+                    bool quality) {
+    const uint32_t w = photo.width, h = photo.height;
     const double fraction = 0.1;
-    std::unique_ptr<Backend> backend = makeCpuBackend();
-    for (OutputSize out : {OutputSize{w, h}, scaledOutputSize(w, h, 2.0), OutputSize{713, 471}}) {
+    for (OutputSize out : outputs) {
         INFO("output " << out.width << "×" << out.height);
         // Each tile rendered by itself into a NaN-filled output: a pixel no tile renders stays NaN.
         const size_t row_floats = size_t(out.width) * photo.channels;
@@ -74,7 +80,7 @@ TEST_CASE("tiled simplify: the tiles' meshes join without cracks, as upscaleSimp
         for (uint32_t y0 = 0; y0 < h; y0 = stripEnd(h, y0, side)) {
             for (SimplifiedTile& tile : planSimplifiedStrip(w, h, out, y0, stripEnd(h, y0, side), side)) {
                 OptimizeStats optimized;
-                const ParallelSimplifyStats stats = simplifyTile(*backend, photo, tile, fraction, 0.0, optimized);
+                const ParallelSimplifyStats stats = simplifyTile(backend, photo, tile, fraction, 0.0, optimized);
                 CHECK(checkMesh(tile.mesh) == "");
                 expected_vertices += uint64_t(std::ceil(fraction * tile.core.width() * tile.core.height()));
                 kept_vertices += stats.vertices_after;
@@ -100,7 +106,7 @@ TEST_CASE("tiled simplify: the tiles' meshes join without cracks, as upscaleSimp
         TileOptions options;
         options.tile = side;
         SimplifiedUpscale tiled;
-        const std::vector<float> through_app = assembled(*backend, photo, out, fraction, options, tiled);
+        const std::vector<float> through_app = assembled(backend, photo, out, fraction, options, tiled);
         CHECK(samePixels(through_app, tiles_output));
         CHECK(tiled.simplify.vertices_before == w * h);
         CHECK(tiled.simplify.vertices_after == kept_vertices);
@@ -118,9 +124,10 @@ TEST_CASE("tiled simplify: the tiles' meshes join without cracks, as upscaleSimp
                     for (uint32_t k = 0; k < photo.channels; ++k)
                         REQUIRE(through_app[size_t(y) * row_floats + x * photo.channels + k] ==
                                 photo.pixels[(size_t(y) * w + x) * photo.channels + k]);
+            if (!quality) continue;
             // And the whole scores about as the untiled simplification does against the picture.
             SimplifiedUpscale whole;
-            const std::vector<float> untiled = assembled(*backend, photo, out, fraction, {}, whole);
+            const std::vector<float> untiled = assembled(backend, photo, out, fraction, {}, whole);
             const double psnr_tiled = peakSignalToNoiseRatio(toBytes(photo), toBytes(imageOf(through_app, out, photo)));
             const double psnr_whole = peakSignalToNoiseRatio(toBytes(photo), toBytes(imageOf(untiled, out, photo)));
             INFO("PSNR against the picture: tiled " << psnr_tiled << " dB, whole " << psnr_whole << " dB");
@@ -130,4 +137,22 @@ TEST_CASE("tiled simplify: the tiles' meshes join without cracks, as upscaleSimp
             CHECK(psnr_tiled > psnr_whole - 4.0);
         }
     }
+}
+
+}  // namespace
+
+TEST_CASE("tiled simplify: the tiles' meshes join without cracks, as upscaleSimplified renders them") {
+    const Image photo = photoCrop();
+    std::unique_ptr<Backend> backend = makeCpuBackend();
+    checkTilesJoin(*backend, photo, 64,
+                   {OutputSize{photo.width, photo.height}, scaledOutputSize(photo.width, photo.height, 2.0), OutputSize{713, 471}}, true);
+}
+
+TEST_CASE("tiled simplify: on a Vulkan device, one tile at a time", "[vulkan]") {
+    const Image photo = photoPiece();
+    VulkanOptions options;
+    options.validation = true;
+    VulkanBackend vulkan(options);
+    checkTilesJoin(vulkan, photo, 64, {OutputSize{photo.width, photo.height}, OutputSize{237, 165}}, false);
+    CHECK(vulkan.validationMessages() == 0);
 }
