@@ -222,7 +222,7 @@ SimplifiedUpscale upscaleSimplified(Backend& backend, const Image& image, Output
     if (options.mesh)
         throw UserError("--mesh does not combine yet with a simplification in tiles (" + std::to_string(image.width) + "×" +
                         std::to_string(image.height) + " in " + std::to_string(side) +
-                        "-pixel tiles); a --memory that holds the whole image avoids the tiles");
+                        "-pixel tiles); in one piece it needs a --memory that holds it and no smaller --tile");
     return simplifyTiled(backend, image, out, fraction, max_error, side, sink, on_step);
 }
 

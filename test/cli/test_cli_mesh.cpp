@@ -207,8 +207,13 @@ TEST_CASE("cli mesh: bad --simplify values get one line") {
                       "simplification (--simplify, --max-error) renders the linear surface on the simplified mesh; "
                       "--reconstruct consistent does not apply");
     const std::string photo = ddt::test::testDataPath("../../bench/data/real/astronaut.png");
-    requireExactError(runDdtup({photo, out, "--simplify", "0.5", "--backend", "cpu", "--tile", "128", "-q"}), 1,
-                      photo + ": simplification needs the image in one piece, and 512×512 is larger than --tile");
+    // --tile now cuts a simplification too (test/simplify/test_tiled_simplify.cpp), but its
+    // tiles' meshes are not written yet.
+    requireExactError(runDdtup({photo, out, "--simplify", "0.5", "--backend", "cpu", "--tile", "128", "--mesh",
+                                work / "mesh.ply", "-q"}),
+                      1,
+                      photo + ": --mesh does not combine yet with a simplification in tiles (512×512 in 128-pixel "
+                              "tiles); in one piece it needs a --memory that holds it and no smaller --tile");
     CHECK(work.names().empty());
 }
 

@@ -11,6 +11,7 @@
 #include "render.h"
 #include "simplified_upscale.h"
 #include "test_support.h"
+#include "user_error.h"
 #include "vulkan_backend.h"
 
 using namespace ddt;
@@ -155,4 +156,18 @@ TEST_CASE("tiled simplify: on a Vulkan device, one tile at a time", "[vulkan]") 
     VulkanBackend vulkan(options);
     checkTilesJoin(vulkan, photo, 64, {OutputSize{photo.width, photo.height}, OutputSize{237, 165}}, false);
     CHECK(vulkan.validationMessages() == 0);
+}
+
+TEST_CASE("tiled simplify: --mesh is refused with tiles, before any output") {
+    const Image photo = photoPiece();
+    std::unique_ptr<Backend> backend = makeCpuBackend();
+    StitchedMesh mesh(photo.width, photo.height);
+    TileOptions options;
+    options.tile = 64;
+    options.mesh = &mesh;
+    bool rows = false;
+    CHECK_THROWS_AS(upscaleSimplified(*backend, photo, {photo.width, photo.height}, 0.1, 0.0, options,
+                                      [&](OutputRows&&) { rows = true; }),
+                    UserError);
+    CHECK(!rows);
 }
