@@ -138,14 +138,17 @@ int decodeBandRows(const OIIO::ImageSpec& spec) {
 }
 
 // Decodes the current image as samples of `type`, its channels interleaved; tiled files as OIIO does.
+// The file's own type is asked for as such (UNKNOWN): OIIO 2.4 reads any other request through
+// a 64 MiB buffer of its own and converts, even to the same type.
 bool decodePixels(OIIO::ImageInput& input, OIIO::TypeDesc type, void* pixels) {
     const OIIO::ImageSpec& spec = input.spec();
-    if (spec.tile_width) return input.read_image(0, 0, 0, spec.nchannels, type, pixels);
+    const OIIO::TypeDesc request = spec.channelformats.empty() && type == spec.format ? OIIO::TypeDesc::UNKNOWN : type;
+    if (spec.tile_width) return input.read_image(0, 0, 0, spec.nchannels, request, pixels);
     const int band = decodeBandRows(spec);
     const size_t row_bytes = size_t(spec.width) * spec.nchannels * type.size();
     for (int y = 0; y < spec.height; y += band) {
         const int end = std::min(spec.height, y + band);
-        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels, type,
+        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels, request,
                                   static_cast<char*>(pixels) + size_t(y) * row_bytes) ||
             input.has_error())
             return false;
