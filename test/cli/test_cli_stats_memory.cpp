@@ -41,21 +41,26 @@ const double kMiB = 1024.0 * 1024.0;
 TEST_CASE("cli stats: the largest block of a tiled job is below the input as floats", "[cli]") {
     TempFolder work;
     const std::string input = work / "in.png", out = work / "out.png";
-    const uint32_t width = 2048, height = 1024;
+    const uint32_t width = 2048, height = 512;
     writePicture(input, width, height);
     const Run run = runDdtup({input, out, "-s", "2", "--tile", "256", "--backend", "cpu", "-q", "--stats"});
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exit_code == 0);
     const std::optional<double> block = mebibytesOf(run.out, "memory-block"), peak = mebibytesOf(run.out, "memory-peak");
-    REQUIRE(block);
     REQUIRE(peak);
     // The input's 8-bit codes are one block, written in full, so resident too.
     const double codes = double(width) * height * 3 / kMiB;
-    CHECK(*block >= codes);
     CHECK(*peak >= codes);
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    // The sanitizers' operator new replaces ddtup's, which counts the blocks: no line, rather than a wrong one.
+    CHECK_FALSE(block);
+#else
+    REQUIRE(block);
+    CHECK(*block >= codes);
     // Tiles of 256 hold a few MiB each, the output streams in 8 MiB bands: nothing of the whole
-    // image as floats (24 MiB in, 96 MiB out), which the tiled path must never make.
+    // image as floats (12 MiB in, 48 MiB out), which the tiled path must never make.
     CHECK(*block < double(width) * height * 3 * sizeof(float) / kMiB);
+#endif
     CHECK(mebibytesOf(run.out, "device-block") == std::nullopt);  // the CPU backend has no device
 }
 
