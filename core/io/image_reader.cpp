@@ -14,11 +14,13 @@
 #include <filesystem>
 #include <new>
 #include <system_error>
+#include <type_traits>
 
 #include "checked_file.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "input_check.h"
+#include "jpeg_decoder.h"
 #include "oiio_codec.h"
 #include "temp_files.h"
 
@@ -178,6 +180,8 @@ bool allFinite(const std::vector<float>& pixels) {
 struct ImageReader::State {
     std::string name;                      // for messages: the path, or "standard input"
     std::unique_ptr<TempFile> stdin_copy;  // what is read when the path is "-"
+    std::string file;                      // the path, or the copy of standard input
+    std::unique_ptr<JpegDecoder> jpeg;     // decodes the pixels of a grey, YCbCr or RGB JPEG file
     std::unique_ptr<OIIO::ImageInput> input;
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
     int orientation = 1;
@@ -196,6 +200,7 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     }
     std::error_code ec;
     if (fs::file_size(file, ec) == 0 && !ec) throw UserError(s.name + ": empty file (0 bytes)");
+    s.file = file;
 
     // Only the reader of the file's own format, one of ours, sees it: OIIO's open() would try
     // every reader it has (image_formats.h). The content decides, so a mis-named file or the
@@ -259,6 +264,15 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     header_.channels = uint32_t(spec.nchannels);
     header_.sample_type = sampleTypeOf(spec.format);
     header_.metadata = metadata;
+    // JPEG pixels come from libjpeg-turbo directly, the same codes (jpeg_decoder.h), where it
+    // takes the colour model.
+    if (format->oiio_name == std::string("jpeg")) {
+        s.jpeg = std::make_unique<JpegDecoder>(s.file, s.name);
+        if (!s.jpeg->decodable()) s.jpeg.reset();
+        else if (s.jpeg->width() != uint32_t(spec.width) || s.jpeg->height() != uint32_t(spec.height) ||
+                 s.jpeg->channels() != uint32_t(spec.nchannels))
+            throw std::logic_error(s.name + ": libjpeg and OpenImageIO disagree on the image's size");
+    }
     // Signed and mixed per-channel types are converted to floats as they are read.
     if (spec.channelformats.empty() && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16))
         s.codes = spec.format;
@@ -278,14 +292,24 @@ std::vector<Sample> ImageReader::decode() {
         throw UserError(s.name + ": too large to hold in memory (" + std::to_string(header_.width) + "×" +
                         std::to_string(header_.height) + ")");
     }
-    bool ok;
-    {
-        QuietStderr quiet;
-        ok = decodePixels(*s.input, type, samples.data());
+    bool decoded = false;
+    if constexpr (std::is_same_v<Sample, uint8_t>) {
+        if (s.jpeg) {
+            s.jpeg->decode(samples.data());
+            decoded = true;
+        }
     }
-    // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
-    if (!ok || s.input->has_error())
-        throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
+    if (!decoded) {
+        bool ok;
+        {
+            QuietStderr quiet;
+            ok = decodePixels(*s.input, type, samples.data());
+        }
+        // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
+        if (!ok || s.input->has_error())
+            throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
+    }
+    s.jpeg.reset();
     s.input.reset();
     s.stdin_copy.reset();
     if (s.orientation != 1) makeUpright(samples.data(), type, header_, s.orientation);
