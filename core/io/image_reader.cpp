@@ -21,6 +21,7 @@
 #include "image_metadata.h"
 #include "input_check.h"
 #include "jpeg_decoder.h"
+#include "png_decoder.h"
 #include "oiio_codec.h"
 #include "temp_files.h"
 
@@ -182,6 +183,7 @@ struct ImageReader::State {
     std::unique_ptr<TempFile> stdin_copy;  // what is read when the path is "-"
     std::string file;                      // the path, or the copy of standard input
     std::unique_ptr<JpegDecoder> jpeg;     // decodes the pixels of a grey, YCbCr or RGB JPEG file
+    std::unique_ptr<PngDecoder> png;       // decodes the pixels of a PNG file
     std::unique_ptr<OIIO::ImageInput> input;
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
     int orientation = 1;
@@ -264,14 +266,21 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     header_.channels = uint32_t(spec.nchannels);
     header_.sample_type = sampleTypeOf(spec.format);
     header_.metadata = metadata;
-    // JPEG pixels come from libjpeg-turbo directly, the same codes (jpeg_decoder.h), where it
-    // takes the colour model.
+    // JPEG and PNG pixels come from libjpeg-turbo (where it takes the colour model) and libspng
+    // directly, the same samples (jpeg_decoder.h, png_decoder.h).
+    auto check_layout = [&](uint32_t width, uint32_t height, uint32_t channels, uint32_t bits) {
+        if (width != uint32_t(spec.width) || height != uint32_t(spec.height) || channels != uint32_t(spec.nchannels) ||
+            bits != spec.format.size() * 8)
+            throw std::logic_error(s.name + ": the decoder and OpenImageIO disagree on the image's layout");
+    };
     if (format->oiio_name == std::string("jpeg")) {
         s.jpeg = std::make_unique<JpegDecoder>(s.file, s.name);
         if (!s.jpeg->decodable()) s.jpeg.reset();
-        else if (s.jpeg->width() != uint32_t(spec.width) || s.jpeg->height() != uint32_t(spec.height) ||
-                 s.jpeg->channels() != uint32_t(spec.nchannels))
-            throw std::logic_error(s.name + ": libjpeg and OpenImageIO disagree on the image's size");
+        else check_layout(s.jpeg->width(), s.jpeg->height(), s.jpeg->channels(), 8);
+    }
+    if (format->oiio_name == std::string("png")) {
+        s.png = std::make_unique<PngDecoder>(s.file, s.name);
+        check_layout(s.png->width(), s.png->height(), s.png->channels(), s.png->sampleBits());
     }
     // Signed and mixed per-channel types are converted to floats as they are read.
     if (spec.channelformats.empty() && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16))
@@ -299,6 +308,12 @@ std::vector<Sample> ImageReader::decode() {
             decoded = true;
         }
     }
+    if constexpr (std::is_same_v<Sample, uint8_t> || std::is_same_v<Sample, uint16_t>) {
+        if (s.png && s.png->sampleBits() == 8 * sizeof(Sample)) {
+            s.png->decode(samples.data());
+            decoded = true;
+        }
+    }
     if (!decoded) {
         bool ok;
         {
@@ -310,6 +325,7 @@ std::vector<Sample> ImageReader::decode() {
             throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
     }
     s.jpeg.reset();
+    s.png.reset();
     s.input.reset();
     s.stdin_copy.reset();
     if (s.orientation != 1) makeUpright(samples.data(), type, header_, s.orientation);
