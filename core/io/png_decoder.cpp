@@ -82,6 +82,9 @@ void PngDecoder::decode(void* samples) {
     if (!error && size != size_t(width()) * height() * channels() * (sampleBits() / 8))
         throw std::logic_error(s.name + ": libspng's image size is not the layout's");
     if (!error) error = spng_decode_image(s.context, samples, size, s.output.format, s.output.flags);
+    // libspng stops reading the image data once it has every row: the rest of the stream, its
+    // Adler-32 and the chunks' CRCs are checked only by reading on to the end, as libpng does.
+    if (!error) error = spng_decode_chunks(s.context);
     if (error) throw UserError(s.name + ": truncated or corrupt image (" + spng_strerror(error) + ")");
 }
 
