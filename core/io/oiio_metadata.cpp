@@ -3,6 +3,7 @@
 #include <OpenImageIO/strutil.h>
 #include <OpenImageIO/tiffutils.h>
 
+#include <algorithm>
 #include <optional>
 
 namespace ddt {
@@ -58,8 +59,10 @@ OIIO::TypeDesc typeDescOf(const AttributeType& ours) {
 ImageAttributes attributesOf(const OIIO::ImageSpec& spec) {
     ImageAttributes attributes;
     for (const OIIO::ParamValue& p : spec.extra_attribs) {
-        const std::optional<AttributeType> type = attributeTypeOf(p.type());
-        if (!type || p.nvalues() != 1) continue;
+        std::optional<AttributeType> type = attributeTypeOf(p.type());
+        if (!type) continue;
+        // Several values of a type (a ParamValue's nvalues) are kept as an array of them.
+        if (p.nvalues() > 1) type->array_length = uint32_t(p.nvalues()) * std::max(type->array_length, 1u);
         ImageAttribute attribute{p.name().string(), *type, {}, {}};
         const size_t count = type->valueCount();
         if (type->base == Base::String) {
