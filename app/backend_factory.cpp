@@ -1,7 +1,6 @@
 #include "backend_factory.h"
 
-#include <OpenImageIO/strutil.h>
-
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 
@@ -17,7 +16,9 @@ namespace {
 // The first word of the device type, lower case: "discrete", "integrated", "cpu", …
 std::string deviceKind(VkPhysicalDeviceType type) {
     const std::string name = deviceTypeName(type);
-    return OIIO::Strutil::lower(name.substr(0, name.find(' ')));
+    std::string kind = name.substr(0, name.find(' '));
+    for (char& c : kind) c = char(std::tolower(uint8_t(c)));
+    return kind;
 }
 
 // Whether the machine may have a GPU for Vulkan: every one needs a kernel device node (DRM

@@ -1,5 +1,4 @@
 // ddtup: magnify images by data-dependent triangulation.
-#include <OpenImageIO/imageio.h>
 #include <malloc.h>
 
 #include <cstdint>
@@ -16,6 +15,7 @@
 #include "cli.h"
 #include "context.h"
 #include "exit_codes.h"
+#include "image_file.h"
 #include "parallel.h"
 #include "pipeline.h"
 #include "reporter.h"
@@ -118,7 +118,7 @@ void printDevices() {
 void sizeThreadPools(unsigned threads) {
     ddt::setThreadCount(threads);
     const int count = int(ddt::threadCount());
-    OIIO::attribute("threads", count);
+    ddt::setCodecThreads(unsigned(count));
     ::setenv("LP_NUM_THREADS", std::to_string(count).c_str(), 0);
 }
 

@@ -23,6 +23,7 @@
 #include "jpeg_decoder.h"
 #include "png_decoder.h"
 #include "oiio_codec.h"
+#include "oiio_metadata.h"
 #include "temp_files.h"
 
 namespace ddt {
@@ -246,17 +247,18 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     const bool swapped = swapsSides(s.orientation);
 
     auto metadata = std::make_shared<ImageMetadata>();
-    metadata->spec = spec;
+    metadata->attributes = attributesOf(spec);
     metadata->format_name = s.input->format_name();
-    metadata->alpha_storage = inputAlphaStorage(spec, metadata->format_name);
+    metadata->alpha_storage = inputAlphaStorage(metadata->attributes, metadata->format_name);
     // The metadata describes the upright image the reader returns.
-    metadata->spec.erase_attribute("Orientation");
+    ImageAttributes& attributes = metadata->attributes;
+    attributes.erase("Orientation");
     if (swapped) {
-        const float x_resolution = spec.get_float_attribute("XResolution", 0.0f);
-        const float y_resolution = spec.get_float_attribute("YResolution", 0.0f);
+        const float x_resolution = attributes.getFloat("XResolution", 0.0f);
+        const float y_resolution = attributes.getFloat("YResolution", 0.0f);
         if (x_resolution > 0.0f && y_resolution > 0.0f) {
-            metadata->spec.attribute("XResolution", y_resolution);
-            metadata->spec.attribute("YResolution", x_resolution);
+            attributes.set("XResolution", y_resolution);
+            attributes.set("YResolution", x_resolution);
         }
     }
     s.alpha_storage = metadata->alpha_storage;
