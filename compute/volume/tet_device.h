@@ -8,10 +8,11 @@
 // once, sets rather than sequences for the lists); the slot allocation is a prefix sum over the
 // accepted flips in owner order (tet_scan.comp), not an atomic counter.
 //
-// Memory: the device takes the mesh's host arrays (released as each is uploaded, given back at
-// the end as each is downloaded, the other device arrays released first), so the host and
-// device copies of the mesh are never whole together; on an exception the mesh is left empty.
-// The cost totals are summed a chunk at a time, without a host copy of the costs.
+// Memory: the device takes the mesh's host arrays (released page by page as each is uploaded,
+// given back at the end as each is downloaded, the other device arrays released first), so the
+// host and device copies of the mesh are never whole together; on an exception the mesh is left
+// empty. The cost totals are summed a chunk at a time, without a host copy of the costs. Only
+// what the kernels read before they write is zeroed (TetDeviceReport::zeroed_bytes).
 //
 // On the device: the mesh records, the cost cache (flatness; for face_scf gradients and costs;
 // the contents, and the variance weight's costs, are recomputed from the records, a chunk at a
