@@ -115,12 +115,15 @@ VolumeEngine makeVolumeEngine(const Settings& settings) {
     std::shared_ptr<VulkanContext> context = createContext({device_index, false});
     engine.choice = {"vulkan", context->info.name, deviceKind(context->info.type), 0, ""};
     engine.context = context;
-    engine.optimize = [context](TetMesh& mesh, const TetCostField& field, TetWeight weight) {
+    engine.optimize = [context](TetMesh& mesh, TetCostField&& field, TetWeight weight) {
         const std::string problem = tetDeviceProblem(*context, mesh.slotCount(), mesh.vertexCount(), weight);
         if (!problem.empty()) throw UserError(problem + " (a smaller --tile makes smaller bricks)");
         TetParallelOptions options;
         options.weight = weight;
-        const TetParallelStats rule = optimizeTetMeshVulkan(*context, mesh, field, options);
+        // The host's copies of the field and of the neighbours would only add to the peak.
+        TetDeviceOptions device;
+        device.return_neighbours = false;
+        const TetParallelStats rule = optimizeTetMeshVulkan(*context, mesh, std::move(field), options, device);
         TetLawsonStats stats;
         stats.cost_before = rule.cost_before;
         stats.cost_after = rule.cost_after;
