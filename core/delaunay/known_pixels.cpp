@@ -129,8 +129,7 @@ PixelRect KnownPixels::cropFor(const PixelRect& rect, uint32_t max_growth) const
         if (everything) return whole;
         // 2·(m + 1) + 1, the rule of the header, rounded up.
         const uint32_t needed = uint32_t(std::ceil(2.0f * largestDistanceIn(crop))) + 3;
-        if (needed <= g) return crop;
-        if (g == max_growth) return crop;
+        if (needed <= g || g == max_growth) return problemIn(crop).empty() ? crop : whole;
         g = std::min(needed, max_growth);
     }
 }

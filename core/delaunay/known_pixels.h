@@ -39,13 +39,12 @@ public:
 
     // `rect` grown, within the image, until the rule above holds for it (or by at most
     // `max_growth` pixels a side: wider holes may then triangulate differently near the crop's
-    // border). Needs measureHoles() first.
+    // border); the whole image where that crop's known pixels have no triangulation (problemIn).
+    // Needs measureHoles() first.
     PixelRect cropFor(const PixelRect& rect, uint32_t max_growth) const;
     // Finds each block's largest distance to a known pixel (exact Euclidean distance
     // transform); holds 4 bytes a pixel while it runs.
     void measureHoles();
-
-    size_t bytes() const { return known_.size() + block_distance_.size() * sizeof(float); }
 
 private:
     // The largest distance to a known pixel over the blocks `rect` touches (an upper bound).

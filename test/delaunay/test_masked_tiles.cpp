@@ -124,6 +124,19 @@ TEST_CASE("known pixels: the crop grows to hold a hole next to its rect, and no 
     CHECK(holed.cropFor(rect, 4).x1 == 64);  // the growth is capped
 }
 
+TEST_CASE("known pixels: a crop whose known pixels cannot be triangulated is the whole image") {
+    // Known: the top row, and one pixel at the far corner; a capped crop near the top holds
+    // only collinear pixels.
+    std::vector<uint8_t> bytes(100 * 100, 0);
+    std::fill_n(bytes.begin(), 100, uint8_t(1));
+    bytes.back() = 1;
+    KnownPixels known(100, 100, bytes);
+    known.measureHoles();
+    const PixelRect crop = known.cropFor({40, 0, 60, 20}, 4);
+    CHECK((crop.x0 == 0 && crop.y0 == 0 && crop.x1 == 100 && crop.y1 == 100));
+    CHECK(known.problemIn({36, 0, 64, 24}) == "all points are collinear");
+}
+
 TEST_CASE("masked tiles: tiled outputs equal the untiled one, holes across tile borders included", "[vulkan]") {
     const Image image = test::photoCrop();  // 300 × 200
     const uint32_t w = image.width, h = image.height;
