@@ -214,8 +214,9 @@ OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t
 }
 
 // A strip of several tiles on a backend that hands its surfaces over, or of a mask's tiles:
-// the tiles are shaped (in parallel with twins) and their surfaces kept, then the strip's rows are rendered band
-// by band across the tiles, so that a band is all the output held, whatever the scale.
+// the tiles are shaped (in parallel with twins) and their surfaces kept, then the strip's rows
+// are rendered band by band across the tiles, so that a band is all the output held, whatever
+// the scale.
 OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint32_t first_index, uint32_t total) {
     OptimizeStats stats;
     std::mutex stats_mutex;
