@@ -1,7 +1,6 @@
 #include "backend_factory.h"
 
-#include <OpenImageIO/strutil.h>
-
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 
@@ -17,7 +16,9 @@ namespace {
 // The first word of the device type, lower case: "discrete", "integrated", "cpu", …
 std::string deviceKind(VkPhysicalDeviceType type) {
     const std::string name = deviceTypeName(type);
-    return OIIO::Strutil::lower(name.substr(0, name.find(' ')));
+    std::string kind = name.substr(0, name.find(' '));
+    for (char& c : kind) c = char(std::tolower(uint8_t(c)));
+    return kind;
 }
 
 // Whether the machine may have a GPU for Vulkan: every one needs a kernel device node (DRM
@@ -114,12 +115,15 @@ VolumeEngine makeVolumeEngine(const Settings& settings) {
     std::shared_ptr<VulkanContext> context = createContext({device_index, false});
     engine.choice = {"vulkan", context->info.name, deviceKind(context->info.type), 0, ""};
     engine.context = context;
-    engine.optimize = [context](TetMesh& mesh, const TetCostField& field, TetWeight weight) {
+    engine.optimize = [context](TetMesh& mesh, TetCostField&& field, TetWeight weight) {
         const std::string problem = tetDeviceProblem(*context, mesh.slotCount(), mesh.vertexCount(), weight);
         if (!problem.empty()) throw UserError(problem + " (a smaller --tile makes smaller bricks)");
         TetParallelOptions options;
         options.weight = weight;
-        const TetParallelStats rule = optimizeTetMeshVulkan(*context, mesh, field, options);
+        // The host's copies of the field and of the neighbours would only add to the peak.
+        TetDeviceOptions device;
+        device.return_neighbours = false;
+        const TetParallelStats rule = optimizeTetMeshVulkan(*context, mesh, std::move(field), options, device);
         TetLawsonStats stats;
         stats.cost_before = rule.cost_before;
         stats.cost_after = rule.cost_after;

@@ -89,7 +89,8 @@ std::string validateMask(const CLI::App& app, const Settings& settings) {
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return option + " renders the linear surface on the known pixels' triangulation; --reconstruct consistent needs "
                "every pixel's value";
-    if (settings.tile) return option + " triangulates the known pixels in one piece; --tile does not apply";
+    if (settings.tile && !settings.mesh.empty())
+        return option + " with --mesh writes the whole triangulation of the known pixels; --tile does not apply";
     if (settings.mask.empty()) return "";
     if (!settings.singleForm() || settings.inputs.size() != 1)
         return "--mask pairs one mask with one input: `ddtup IN --mask MASK OUT`; a batch takes --mask-dir MASKS";
@@ -373,7 +374,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "Reconstruct the input from some of its pixels: those where this image (the input's size) is not "
                    "black are known, the rest are filled in (holes, dead pixels, sparse samples). The known pixels' "
                    "Delaunay triangulation is optimized by the same flips and rendered linearly on each triangle, "
-                   "outside their hull with the nearest value. One input; the image in one piece; alpha keeps its "
+                   "outside their hull with the nearest value. One input; large images in tiles whose crops grow "
+                   "around the holes; alpha keeps its "
                    "meaning (transparency) and never marks unknown pixels")
         ->default_str("none: every pixel is known");
     app.add_option("--mask-dir", settings.mask_folder,
@@ -424,7 +426,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "grainy regions) or none (default: lanczos3 with the consistent surface, none with the plain one)")
         ->check(CLI::IsMember({"none", "lanczos3"}));
     app.add_option("--tile", settings.tile,
-                   "Tile side in input pixels for images too large for the device; for volumes the brick side in "
+                   "Tile side in input pixels for images too large for the device (with --mask, each tile's crop "
+                   "grows to hold the holes near it); for volumes the brick side in "
                    "voxels (optimized one by one, with a margin of 8; automatic: bricks of 128 above 2^22 voxels); "
                    "0 = automatic")
         ->capture_default_str();
@@ -440,8 +443,9 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
         ->default_str("the processors ddtup may use (CPU affinity and cgroup quota)");
     std::string memory_text;
     app.add_option("--memory", memory_text,
-                   "Host memory the run may hold (512M, 4G …): the images in flight, and on the CPU backend a mask's "
-                   "mesh, which cannot be tiled, or a whole simplification's (beyond it, tiles); automatic tiles stay small within it for speed")
+                   "Host memory the run may hold (512M, 4G …): the images in flight, and on the CPU backend a point "
+                   "file's mesh, which cannot be tiled (a mask's with --mesh too), or a whole simplification's "
+                   "(beyond it, tiles); automatic tiles stay small within it for speed")
         ->default_str("half the machine's memory");
     app.add_option("--variant", settings.variant,
                    "Vulkan flip rule: basic, exproi, exproi-N-maxgain, maxgain, exproi-maxgain, localmax, exproi-localmax")

@@ -1,17 +1,21 @@
 // ddtup: magnify images by data-dependent triangulation.
-#include <OpenImageIO/imageio.h>
 #include <malloc.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <optional>
 #include <string>
 
+#include "allocation_watch.h"
 #include "backend_factory.h"
+#include "buffer.h"
 #include "batch_plan.h"
 #include "cli.h"
 #include "context.h"
 #include "exit_codes.h"
+#include "image_file.h"
 #include "parallel.h"
 #include "pipeline.h"
 #include "reporter.h"
@@ -19,6 +23,18 @@
 #include "volume/volume_job.h"
 
 namespace {
+
+double mebibytes(uint64_t bytes) { return double(bytes) / double(1 << 20); }
+
+// The process's memory so far: in a batch, of every job up to this one.
+void printMemory(bool batch) {
+    const char* so_far = batch ? ", the batch so far" : "";
+    std::printf("memory-peak    %.1f MiB  (resident%s)\n", mebibytes(ddt::peakResidentBytes()), so_far);
+    if (const std::optional<uint64_t> block = ddt::largestHostBlock())
+        std::printf("memory-block   %.1f MiB  (the largest block allocated%s)\n", mebibytes(*block), so_far);
+    if (const uint64_t buffer = ddt::largestDeviceBuffer())
+        std::printf("device-block   %.1f MiB  (the largest device buffer%s)\n", mebibytes(buffer), so_far);
+}
 
 void printStats(const ddt::ImageJob& job, bool batch) {
     const ddt::JobReport& report = job.report();
@@ -52,6 +68,7 @@ void printStats(const ddt::ImageJob& job, bool batch) {
                 report.times.final_s);
     std::printf("time-sum       %.3f s\n",
                 report.times.init_s + report.times.comp_s + report.times.reconstruct_s + report.times.final_s);
+    printMemory(batch);
     if (batch) std::printf("\n");
     std::fflush(stdout);
 }
@@ -80,6 +97,7 @@ void printVolumeStats(const ddt::ImageTask& task, const ddt::VolumeReport& repor
                 report.on_device ? ", on the Vulkan device" : "");
     std::printf("time-final     %.3f s  (write the volume%s)\n", report.write_s, "");
     std::printf("time-sum       %.3f s\n", report.read_s + report.stats.optimize_s + report.stats.resample_s + report.write_s);
+    printMemory(batch);
     if (batch) std::printf("\n");
     std::fflush(stdout);
 }
@@ -100,7 +118,7 @@ void printDevices() {
 void sizeThreadPools(unsigned threads) {
     ddt::setThreadCount(threads);
     const int count = int(ddt::threadCount());
-    OIIO::attribute("threads", count);
+    ddt::setCodecThreads(unsigned(count));
     ::setenv("LP_NUM_THREADS", std::to_string(count).c_str(), 0);
 }
 

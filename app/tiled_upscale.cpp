@@ -10,6 +10,7 @@
 
 #include "backend_pool.h"
 #include "convolution_fallback.h"
+#include "delaunay/sampled_tile.h"
 #include "memory_size.h"
 #include "parallel.h"
 #include "tiling.h"
@@ -88,6 +89,7 @@ struct Job {
     const TileStepCallback& on_step;
     RowEmitter& rows;
     StitchedMesh* strip_mesh;  // the current strip's tiles' meshes, if the caller wants them
+    const KnownPixels* known;  // a mask's: the tiles are of its known pixels
     std::mutex step_mutex;  // tiles in parallel report their steps one at a time
     std::mutex mesh_mutex;  // and add their meshes one at a time
 
@@ -158,26 +160,41 @@ OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t
     return stats;
 }
 
-// A strip of several tiles on a backend that hands its surfaces over: the tiles are shaped
-// (in parallel with twins) and their surfaces kept, then the strip's rows are rendered band
-// by band across the tiles, so that a band is all the output held, whatever the scale.
+// A strip of several tiles on a backend that hands its surfaces over, or of a mask's tiles:
+// the tiles are shaped (in parallel with twins) and their surfaces kept, then the strip's rows
+// are rendered band by band across the tiles, so that a band is all the output held, whatever
+// the scale.
 OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint32_t first_index, uint32_t total) {
     OptimizeStats stats;
     std::mutex stats_mutex;
     std::vector<std::unique_ptr<HostSurface>> surfaces(tiles.size());
-    parallelFor(tiles.size(), 1, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            const Tile& tile = tiles[i];
-            if (tile.output.width() == 0 || tile.output.height() == 0) continue;  // a core between two samples
-            job.backends.withBackend([&](Backend& backend) {
+    auto shapeOne = [&](size_t i) {
+        const Tile& tile = tiles[i];
+        if (tile.output.width() == 0 || tile.output.height() == 0) return;  // a core between two samples
+        job.backends.withBackend([&](Backend& backend) {
+            OptimizeStats tile_stats;
+            if (job.known) {
+                job.step(first_index + uint32_t(i), total, TilePhase::Optimize);
+                SampledTile shaped = shapeSampledTile(backend, job.input, *job.known, tile, windowOf(job, tile, 0, 0));
+                surfaces[i] = std::move(shaped.surface);
+                tile_stats = shaped.stats;
+            } else {
                 Image crop;
-                const OptimizeStats tile_stats = shapeTile(job, backend, tile, first_index + uint32_t(i), total, crop);
+                tile_stats = shapeTile(job, backend, tile, first_index + uint32_t(i), total, crop);
                 surfaces[i] = backend.takeSurface();
-                std::lock_guard lock(stats_mutex);
-                addStats(stats, tile_stats);
-            });
-        }
-    });
+            }
+            std::lock_guard lock(stats_mutex);
+            addStats(stats, tile_stats);
+        });
+    };
+    // At most one tile per backend at once: a device without twins (a mask's tiles on Vulkan)
+    // shapes them one by one.
+    if (job.backends.size() > 1)
+        parallelFor(tiles.size(), 1, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) shapeOne(i);
+        });
+    else
+        for (size_t i = 0; i < tiles.size(); ++i) shapeOne(i);
     const uint32_t c = job.image.channels;
     const size_t row_floats = size_t(job.out.width) * c;
     const uint32_t y0 = tiles[0].output.y0, y1 = tiles[0].output.y1, band_rows = bandRows(row_floats);
@@ -212,6 +229,8 @@ OptimizeStats upscaleStrip(Job& job, const std::vector<Tile>& tiles, uint32_t fi
     OptimizeStats stats;
     const uint32_t c = job.image.channels;
     const size_t row_floats = size_t(job.out.width) * c;
+    // A mask's tiles render on the host whatever the backend.
+    if (job.known) return upscaleStripInBands(job, tiles, first_index, total);
     if (tiles.size() == 1) {
         addStats(stats, job.backends.withBackend([&](Backend& backend) {
             return upscaleTile(job, backend, tiles[0], first_index, total,
@@ -291,13 +310,17 @@ OptimizeStats upscaleRows(Backend& backend, const PackedImage& input, OutputSize
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
     BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
-    Job job{backends, input, image, out, options.reconstruct, options.kernel, options.fallback, on_step, rows, nullptr, {}, {}};
+    Job job{backends, input, image, out, options.reconstruct, options.kernel, options.fallback, on_step, rows, nullptr,
+            options.known, {}, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {
         const uint32_t strip_side = stripSide(image, out, side, !backends.handOverSurfaces());
         const uint32_t y1 = stripEnd(image.height, y0, strip_side);
-        const std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap);
+        std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap);
+        // Holes wider than a tile may grow a crop by at most the tile side a side.
+        if (options.known)
+            for (Tile& tile : tiles) tile.crop = options.known->cropFor(tile.crop, side);
         std::string out_of_memory;
         // A strip's meshes count once it succeeds: a retry gives them again.
         std::optional<StitchedMesh> strip_mesh;

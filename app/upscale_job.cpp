@@ -51,18 +51,24 @@ OutputSize requestedOutputSize(const Settings& settings, uint32_t width, uint32_
 }
 
 // The pixels `mask_path` marks as known in `image`, checked to have a Delaunay triangulation.
-std::vector<uint32_t> knownPixelsOf(const std::string& mask_path, const Image& image) {
-    const Image mask = ImageReader(mask_path).read();
-    if (mask.width != image.width || mask.height != image.height)
-        throw UserError(mask_path + ": the mask is " + std::to_string(mask.width) + "×" + std::to_string(mask.height) +
+// The mask is read as kept in its file and made floats a band of rows at a time.
+KnownPixels knownPixelsOf(const std::string& mask_path, const Image& image) {
+    const PackedImage mask = ImageReader(mask_path).readPacked();
+    const Image& header = mask.header();
+    if (header.width != image.width || header.height != image.height)
+        throw UserError(mask_path + ": the mask is " + std::to_string(header.width) + "×" + std::to_string(header.height) +
                         ", the input " + std::to_string(image.width) + "×" + std::to_string(image.height));
     if (image.width > kMaxDelaunaySide || image.height > kMaxDelaunaySide)
         throw UserError(mask_path + ": masks apply to images of at most " + std::to_string(kMaxDelaunaySide) +
                         " pixels a side (the exact in-circle test's range)");
-    const std::vector<uint32_t> known = knownPixels(mask);
-    std::vector<Position> places(known.size());
-    for (size_t i = 0; i < known.size(); ++i) places[i] = gridPosition(known[i], image.width);
-    if (std::string problem = delaunayInputProblem(places); !problem.empty())
+    std::vector<uint8_t> bytes(size_t(image.width) * image.height, 0);
+    const uint32_t band = 64;
+    for (uint32_t y = 0; y < image.height; y += band) {
+        const PixelRect rows{0, y, image.width, std::min(image.height, y + band)};
+        for (uint32_t id : knownPixels(mask.crop(rows))) bytes[size_t(y) * image.width + id] = 1;
+    }
+    KnownPixels known(image.width, image.height, std::move(bytes));
+    if (std::string problem = known.problemIn({0, 0, image.width, image.height}); !problem.empty())
         throw UserError(mask_path + ": the known pixels cannot be triangulated (" + problem + ")");
     return known;
 }
@@ -73,7 +79,7 @@ struct ImageJob::State {
     std::optional<ImageReader> reader;  // from open() to decode()
     std::optional<PointSamples> points;  // a point file's, from open() to decode()
     std::optional<MergedPoints> merged;  // a point file's, from decode() to render()
-    std::optional<std::vector<uint32_t>> known;  // a mask's known pixels, from decode() to render()
+    std::optional<KnownPixels> known;    // a mask's known pixels, from decode() to render()
     Frame frame;                         // a point file's
     uint32_t channels = 0;
     PackedImage input;            // the input; for a point file, its vertex values (point_mesh.h)
@@ -168,8 +174,10 @@ uint64_t ImageJob::hostMemory() const {
     const Image& header = state_->reader->header();
     const uint64_t samples = uint64_t(header.width) * header.height * header.channels;
     // The image as kept and a tile's crop of it in floats, at most as large; the output's bands
-    // have a budget of their own.
-    return (state_->reader->keptSampleBytes() + sizeof(float)) * samples;
+    // have a budget of their own. A mask: its known pixels, a byte each, and while its holes
+    // are measured, 4 bytes a pixel (core/delaunay/known_pixels.h).
+    const uint64_t mask = task_.mask.empty() ? 0 : 5 * uint64_t(header.width) * header.height;
+    return (state_->reader->keptSampleBytes() + sizeof(float)) * samples + mask;
 }
 
 void ImageJob::decode() {
@@ -218,7 +226,8 @@ void ImageJob::triangulateSamples(Backend& backend) {
             state_->merged.reset();
         } else if (state_->known) {
             const Image& header = state_->input.header();
-            state_->samples = backend.delaunayPixels(header.width, header.height, *state_->known);
+            state_->samples =
+                backend.delaunayPixels(header.width, header.height, state_->known->idsIn({0, 0, header.width, header.height}));
             state_->known.reset();
         } else {
             return;
@@ -229,11 +238,24 @@ void ImageJob::triangulateSamples(Backend& backend) {
     }
 }
 
+uint32_t ImageJob::maskTileSide(const Backend& backend) const {
+    if (!state_->known || !task_.mesh.empty()) return 0;  // a mesh file is of the whole triangulation
+    const Image& header = state_->input.header();
+    const uint32_t side = settings_.tile ? settings_.tile
+                                         : automaticTileSide(backend, header.width, header.height, header.channels,
+                                                             kDefaultOverlap, false);
+    return side >= std::max(header.width, header.height) ? 0 : side;
+}
+
 void ImageJob::render(Backend& backend) {
-    // Building the mesh counts as optimizing's (time-comp), as the grid's does.
+    const uint32_t mask_tile = maskTileSide(backend);
+    // Building the mesh counts as optimizing's (time-comp), as the grid's does; a mask's tiles
+    // triangulate theirs as they go.
     const auto triangulating = std::chrono::steady_clock::now();
-    triangulateSamples(backend);
+    if (mask_tile) state_->known->measureHoles();
+    else triangulateSamples(backend);
     report_.times.comp_s += secondsSince(triangulating);
+    const bool sampled = state_->samples || mask_tile;
     const OutputSize out = report_.out;
     const Image& header = state_->input.header();
     const size_t row_floats = size_t(out.width) * header.channels;
@@ -266,23 +288,30 @@ void ImageJob::render(Backend& backend) {
         }
     };
     std::optional<StitchedMesh> mesh;  // the tiles' meshes, for --mesh
-    if (!task_.mesh.empty() && !state_->samples) mesh.emplace(header.width, header.height);
+    if (!task_.mesh.empty() && !sampled) mesh.emplace(header.width, header.height);
     std::optional<Mesh> sample_mesh;  // the optimised sample mesh, for --mesh
     try {
         TileOptions options;
         options.tile = settings_.tile;
         options.reconstruct = settings_.reconstruct == "consistent";
         options.kernel = assumedKernel();
-        if (options.reconstruct && !state_->samples && !settings_.simplifies()) report_.assumed = options.kernel;
+        if (options.reconstruct && !sampled && !settings_.simplifies()) report_.assumed = options.kernel;
         options.fallback = settings_.fallsBack();
         options.mesh = mesh ? &*mesh : nullptr;
         // The default surface is the consistent one; where it cannot apply, say so rather than
         // change it without a word (a --reconstruct consistent given here was refused).
-        if (options.reconstruct && (state_->samples || settings_.simplifies()))
+        if (options.reconstruct && (sampled || settings_.simplifies()))
             reporter_.notice(task_.input, inputName(task_.input) + ": rendered with the linear surface (the consistent "
                                               "one, the default, needs " +
-                                              (state_->samples ? "every pixel's value)" : "the full mesh)"));
-        if (state_->samples) {
+                                              (sampled ? "every pixel's value)" : "the full mesh)"));
+        if (mask_tile) {
+            options.tile = mask_tile;
+            options.reconstruct = options.fallback = false;
+            options.known = &*state_->known;
+            report_.stats = upscaleRows(backend, state_->input, out, options, sink, on_step);
+            report_.delaunay_on_device = backend.lastDelaunayOnDevice();
+            state_->known.reset();
+        } else if (state_->samples) {
             if (!task_.mesh.empty()) sample_mesh.emplace();
             report_.stats = upscaleFromSamples(backend, inputFloats(), std::move(*state_->samples), out, sink, on_step,
                                                sample_mesh ? &*sample_mesh : nullptr);

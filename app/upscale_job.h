@@ -79,6 +79,9 @@ private:
     // A mask's or a point file's samples triangulated where the backend does it (--delaunay):
     // in the processing stage, which owns the device, not in the reader's.
     void triangulateSamples(Backend& backend);
+    // The tile side of a mask's tiles (--tile, else automatic), 0 when it is done in one piece:
+    // it fits the backend's working memory, or --mesh wants the whole triangulation.
+    uint32_t maskTileSide(const Backend& backend) const;
     // The whole input as floats, for the paths that take it whole (samples, simplification,
     // the mesh file's colours); an input kept as codes is unpacked from then on.
     const Image& inputFloats();

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "largest_size.h"
 #include "vulkan_error.h"
 
 namespace ddt {
 
 namespace {
+
+constinit LargestSize device_buffers;
 
 uint32_t findMemoryType(const VulkanContext& context, uint32_t allowed, Placement placement) {
     const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
@@ -59,6 +62,7 @@ Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placeme
         checkVulkan(result, "vkAllocateMemory");
     }
     VK_CHECK(vkBindBufferMemory(context.device, buffer.buffer, buffer.memory, 0));
+    device_buffers.note(requirements.size);
     const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     if ((context.memory.memoryTypes[type].propertyFlags & host) == host)
         VK_CHECK(vkMapMemory(context.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
@@ -71,6 +75,8 @@ Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placeme
     }
     return buffer;
 }
+
+uint64_t largestDeviceBuffer() { return device_buffers.largest(); }
 
 void destroyBuffer(VulkanContext& context, Buffer& buffer) {
     if (buffer.view) vkDestroyBufferView(context.device, buffer.view, nullptr);

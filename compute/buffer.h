@@ -29,4 +29,7 @@ Buffer createBuffer(VulkanContext& context, VkDeviceSize size, Placement placeme
                     VkFormat view_format = VK_FORMAT_UNDEFINED);
 void destroyBuffer(VulkanContext& context, Buffer& buffer);
 
+// The largest device memory one createBuffer has taken so far in this process (0: none), for --stats.
+uint64_t largestDeviceBuffer();
+
 }  // namespace ddt

@@ -1,5 +1,7 @@
 #include "png_bytes.h"
 
+#include <random>
+
 namespace ddt::test {
 
 namespace {
@@ -54,6 +56,34 @@ void fixPngChunkCrc(std::string& png, size_t data_offset) {
     const uint32_t length = readBigEndian(png, start);
     const std::string crc = bigEndian(crc32(png.substr(start + 4, 4 + size_t(length))));
     png.replace(data_offset + length, 4, crc);
+}
+
+// A small ICC profile: the 128-byte header (its size, version 2.1, a display profile of
+// `colour_space`, XYZ connection space, the signature, D50) and one private tag of 256
+// pseudo-random bytes. Those keep the compressed profile over 91 bytes: libpng 1.6.39's reader
+// ignores a shorter iCCP chunk ("too short": it reads 81 bytes, then wants 11 more).
+std::string iccProfile(const char* colour_space) {
+    const size_t size = 128 + 4 + 12 + 256;
+    std::string profile(size, '\0');
+    auto put = [&](size_t at, uint32_t value) {
+        for (int i = 0; i < 4; ++i) profile[at + i] = char(value >> (24 - 8 * i));
+    };
+    put(0, uint32_t(size));
+    put(8, 0x02100000);
+    profile.replace(12, 4, "mntr");
+    profile.replace(16, 4, colour_space);
+    profile.replace(20, 4, "XYZ ");
+    profile.replace(36, 4, "acsp");
+    put(68, 0x0000F6D6);
+    put(72, 0x00010000);
+    put(76, 0x0000D32D);
+    put(128, 1);  // one tag: its signature, offset and size
+    profile.replace(132, 4, "ddtz");
+    put(136, 144);
+    put(140, 256);
+    std::mt19937 rng(3);
+    for (size_t i = 144; i < size; ++i) profile[i] = char(rng());
+    return profile;
 }
 
 }  // namespace ddt::test

@@ -17,6 +17,9 @@ std::string pngClaiming(uint32_t width, uint32_t height);
 // Byte offset of the first byte of the data of the first chunk of `type` in `png`, or npos.
 size_t pngChunkData(const std::string& png, const std::string& type);
 
+// A small ICC profile of `colour_space` ("RGB ", "GRAY"), whole and valid (png_bytes.cpp).
+std::string iccProfile(const char* colour_space);
+
 // Recomputes the CRC of the chunk whose data starts at `data_offset` (after editing it).
 void fixPngChunkCrc(std::string& png, size_t data_offset);
 

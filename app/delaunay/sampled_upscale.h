@@ -5,9 +5,10 @@
 // known pixels' hull, the nearest rendered value outside it. The unknown pixels' values are
 // never read.
 //
-// The image is processed in one piece: a triangulation of samples does not split into tiles
-// that join. The consistent reconstruction does not apply (it corrects each pixel against its
-// own value, which an unknown pixel does not have).
+// Here the image is processed in one piece: a point file's samples, a mask's that fits the
+// backend's working memory or whose mesh --mesh writes. Larger masks go in tiles whose crops
+// grow around their holes (app/delaunay/sampled_tile.h). The consistent reconstruction does not
+// apply (it corrects each pixel against its own value, which an unknown pixel does not have).
 #pragma once
 
 #include <functional>

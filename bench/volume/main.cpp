@@ -79,7 +79,7 @@ Method magnifyByDdt(const std::string& name, const ddt::Volume& small, const std
     ddt::VolumeMagnifyOptions options;
     options.weight = weight;
     if (context)
-        options.optimize = [context, &name, &small](ddt::TetMesh& mesh, const ddt::TetCostField& field, ddt::TetWeight w) {
+        options.optimize = [context, &name, &small](ddt::TetMesh& mesh, ddt::TetCostField&& field, ddt::TetWeight w) {
             ddt::TetParallelOptions parallel;
             parallel.weight = w;
             const uint32_t slots = mesh.slotCount();

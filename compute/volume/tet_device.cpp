@@ -4,7 +4,11 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
+
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "buffer.h"
 #include "commands.h"
@@ -16,33 +20,45 @@ namespace ddt {
 
 namespace {
 
-// The arrays whose size follows the slot capacity, and whether they are read before the
-// kernels write them (so must start at 0). The others are left as allocated: on a device whose
-// memory is host memory (lavapipe) their pages become resident only where the kernels write,
-// so the spare slots and the lists' unused tails cost no memory.
+// How an array whose size follows the slot capacity must start. Only what the kernels read
+// before they write is zeroed: on a device whose memory is host memory (lavapipe) a page
+// becomes resident once written, by a kernel or by a fill, so the spare slots, the lists'
+// unused tails and the claims of slots no candidate reads cost no memory.
+enum class Start {
+    as_allocated,   // written before read
+    zeroed_in_use,  // the state bits: zeroed over the slots in use; tet_apply.comp zeroes an appended slot's
+    zeroed,         // the scan words (a bit or two a slot): the plan sums over all blocks
+};
 struct SlotArray {
     uint32_t binding;
     VkFormat format;
-    bool zeroed;
+    Start start;
 };
+// The claims start as allocated: tet_select.comp's kTetStepClear sets those of the round's read
+// sets to 0 before the claims, and no other claim is read.
 constexpr SlotArray kSlotArrays[] = {
-    {kTetBindingVertices, VK_FORMAT_R32G32B32A32_UINT, false},
-    {kTetBindingNeighbours, VK_FORMAT_R32G32B32A32_UINT, false},
-    {kTetBindingCost, VK_FORMAT_R32G32_UINT, false},
-    {kTetBindingGradient, VK_FORMAT_R32G32_UINT, false},
-    {kTetBindingState, VK_FORMAT_R32_UINT, true},  // the listed bits
-    {kTetBindingClaimHigh, VK_FORMAT_R32_UINT, true},
-    {kTetBindingClaimLow, VK_FORMAT_R32_UINT, true},
-    {kTetBindingFreeSlots, VK_FORMAT_R32_UINT, false},
-    {kTetBindingFreed, VK_FORMAT_R32_UINT, false},
-    {kTetBindingActive, VK_FORMAT_R32_UINT, false},
-    {kTetBindingEvaluate, VK_FORMAT_R32_UINT, false},
-    {kTetBindingCandidates, VK_FORMAT_R32G32_UINT, false},
-    {kTetBindingCarried, VK_FORMAT_R32G32_UINT, false},
-    {kTetBindingMasks, VK_FORMAT_R32_UINT, true},
-    {kTetBindingWordPrefix, VK_FORMAT_R32G32_UINT, true},
-    {kTetBindingBlocks, VK_FORMAT_R32G32B32A32_UINT, true},  // the plan sums over all blocks
+    {kTetBindingVertices, VK_FORMAT_R32G32B32A32_UINT, Start::as_allocated},
+    {kTetBindingNeighbours, VK_FORMAT_R32G32B32A32_UINT, Start::as_allocated},
+    {kTetBindingCost, VK_FORMAT_R32G32_UINT, Start::as_allocated},
+    {kTetBindingGradient, VK_FORMAT_R32G32_UINT, Start::as_allocated},
+    {kTetBindingState, VK_FORMAT_R32_UINT, Start::zeroed_in_use},
+    {kTetBindingClaimHigh, VK_FORMAT_R32_UINT, Start::as_allocated},
+    {kTetBindingClaimLow, VK_FORMAT_R32_UINT, Start::as_allocated},
+    {kTetBindingFreeSlots, VK_FORMAT_R32_UINT, Start::as_allocated},
+    {kTetBindingFreed, VK_FORMAT_R32_UINT, Start::as_allocated},
+    {kTetBindingActive, VK_FORMAT_R32_UINT, Start::as_allocated},
+    {kTetBindingEvaluate, VK_FORMAT_R32_UINT, Start::as_allocated},
+    {kTetBindingCandidates, VK_FORMAT_R32G32_UINT, Start::as_allocated},
+    {kTetBindingCarried, VK_FORMAT_R32G32_UINT, Start::as_allocated},
+    {kTetBindingMasks, VK_FORMAT_R32_UINT, Start::zeroed},
+    {kTetBindingWordPrefix, VK_FORMAT_R32G32_UINT, Start::zeroed},
+    {kTetBindingBlocks, VK_FORMAT_R32G32B32A32_UINT, Start::zeroed},
 };
+// The claims' contents matter only within a round's selection, so a growth (between the
+// selection and the flips) does not copy them.
+bool keptOnGrowth(uint32_t binding) { return binding != kTetBindingClaimHigh && binding != kTetBindingClaimLow; }
+// TetDeviceOptions::poison's fill: no valid state word, claim, slot or vertex.
+constexpr uint32_t kPoison = 0xffffffffu;
 
 uint32_t blocksFor(uint64_t capacity) { return uint32_t((capacity + 32 * kTetScanWords - 1) / (32 * kTetScanWords)); }
 
@@ -79,6 +95,31 @@ struct CompensatedSum {
     double total() const { return sum + compensation; }
 };
 
+// Uploads a host array and releases it. Into memory the host can map (on lavapipe, device
+// memory is host memory) it goes a chunk at a time, and each chunk's whole pages go back to the
+// system as soon as they are copied (MADV_DONTNEED; the array is freed right after and never
+// read again), so the host's copy and the device's are never whole together: for the mesh's
+// vertices and neighbours that was the run's peak (two copies of 16 bytes a slot).
+template <class T>
+void uploadReleasing(VulkanContext& context, Buffer& buffer, std::vector<T>& host) {
+    const size_t bytes = host.size() * sizeof(T);
+    if (!buffer.mapped) {
+        if (bytes) uploadToBuffer(context, buffer, host.data(), bytes);
+    } else {
+        constexpr size_t kChunk = size_t(16) << 20;
+        const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
+        const char* source = reinterpret_cast<const char*>(host.data());
+        for (size_t done = 0; done < bytes; done += kChunk) {
+            const size_t chunk = std::min(kChunk, bytes - done);
+            std::memcpy(static_cast<char*>(buffer.mapped) + done, source + done, chunk);
+            const uintptr_t begin = (uintptr_t(source + done) + page - 1) & ~(page - 1);
+            const uintptr_t end = uintptr_t(source + done + chunk) & ~(page - 1);
+            if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+        }
+    }
+    std::vector<T>().swap(host);
+}
+
 uint32_t uintOf(uint64_t value, const char* what) {
     if (value > kTetMaxSlots) throw std::invalid_argument(std::string("device tet optimizer: too many ") + what);
     return uint32_t(value);
@@ -87,9 +128,11 @@ uint32_t uintOf(uint64_t value, const char* what) {
 class DeviceTetOptimizer {
 public:
     // Takes the mesh's arrays: each host array is released as soon as the device holds it, so
-    // that the two copies are never whole at once (moveMeshTo gives them back).
+    // that the two copies are never whole at once (moveMeshTo gives them back). With
+    // `owned_values` (the field's values), those too once uploaded.
     DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
-                       const TetParallelOptions& options, const TetDeviceOptions& device);
+                       const TetParallelOptions& options, const TetDeviceOptions& device,
+                       std::vector<double>* owned_values);
     ~DeviceTetOptimizer() {
         for (Buffer& buffer : buffers_) destroyBuffer(context_, buffer);
     }
@@ -101,9 +144,10 @@ public:
     // TetCosts::total of the device's cost cache.
     double costTotal() const;
     std::vector<double> costs() const;
-    // The mesh back from the device; every device array is released on the way, so that the
-    // host's copy and the device's are not both whole at once.
-    void moveMeshTo(TetMesh& mesh);
+    // The mesh back from the device (without its neighbours unless `neighbours`); every device
+    // array is released on the way, so that the host's copy and the device's are not both whole
+    // at once.
+    void moveMeshTo(TetMesh& mesh, bool neighbours);
     uint64_t bytes() const;
     uint32_t capacity() const { return capacity_; }
     uint64_t zeroedBytes() const { return zeroed_bytes_; }
@@ -113,7 +157,7 @@ private:
     TetControl readControl() const;
     void writeControl(const TetControl& control);
     void allocate(uint32_t capacity);
-    void zeroArrays();
+    void zeroArrays(uint32_t slots);
     void release(uint32_t binding) { destroyBuffer(context_, buffers_[binding]); }
     void grow(uint32_t need);
     // Calls consume(first, costs, count) for the cost of every slot, a chunk at a time in slot
@@ -129,15 +173,17 @@ private:
     uint32_t capacity_ = 0;
     uint32_t rounds_per_submit_;
     bool profile_;
+    bool poison_;
     double init_ms_ = 0.0;
     uint64_t zeroed_bytes_ = 0;
     Buffer buffers_[kTetBindingCount];
 };
 
 DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
-                                       const TetParallelOptions& options, const TetDeviceOptions& device)
+                                       const TetParallelOptions& options, const TetDeviceOptions& device,
+                                       std::vector<double>* owned_values)
     : context_(context), kernels_(context), weight_(options.weight), rounds_per_submit_(std::max(device.rounds_per_submit, 1u)),
-      profile_(device.profile && context.timestamps) {
+      profile_(device.profile && context.timestamps), poison_(device.poison) {
     if (options.evaluate_all || options.after_round)
         throw std::invalid_argument("device tet optimizer: evaluate_all and after_round are CPU-only");
     if (field.size != mesh.size || field.values.size() != mesh.vertexCount())
@@ -165,6 +211,23 @@ DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, co
         buffers_[kTetBindingValues] = createBuffer(context, std::max<VkDeviceSize>(field.values.size() * 8, 16),
                                                    Placement::Device, VK_FORMAT_R32G32_UINT);
         uploadToBuffer(context, buffers_[kTetBindingValues], field.values.data(), field.values.size() * 8);
+        if (owned_values) std::vector<double>().swap(*owned_values);
+        buffers_[kTetBindingControl] = createBuffer(context, sizeof(TetControl), Placement::Readback);
+        buffers_[kTetBindingArgs] = createBuffer(context, kTetStepCount * 16, Placement::Device);
+        allocate(capacity);
+        // The first round's active tets are listed by the first cache (tet_refresh.comp).
+        TetControl control{};
+        control.phase = kTetPhaseRunning;
+        control.next_step = kTetStepMark;
+        control.slot_count = slots;
+        control.free_count = uint32_t(mesh.free_slots.size());
+        writeControl(control);
+        uploadReleasing(context, buffers_[kTetBindingVertices], mesh.vertices);
+        uploadReleasing(context, buffers_[kTetBindingNeighbours], mesh.neighbours);
+        if (!mesh.free_slots.empty())
+            uploadToBuffer(context, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), mesh.free_slots.size() * 4);
+        std::vector<uint32_t>().swap(mesh.free_slots);
+        // After the mesh, so that the positions' host and device copies do not add to its upload.
         std::vector<int32_t> positions(size_t(mesh.vertexCount()) * 4, 0);
         for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
             const VertexCoordinates c = coordinatesOf(mesh, v);
@@ -176,24 +239,7 @@ DeviceTetOptimizer::DeviceTetOptimizer(VulkanContext& context, TetMesh& mesh, co
                                                       Placement::Device, VK_FORMAT_R32G32B32A32_SINT);
         uploadToBuffer(context, buffers_[kTetBindingPositions], positions.data(), positions.size() * 4);
         std::vector<int32_t>().swap(positions);
-        buffers_[kTetBindingControl] = createBuffer(context, sizeof(TetControl), Placement::Readback);
-        buffers_[kTetBindingArgs] = createBuffer(context, kTetStepCount * 16, Placement::Device);
-        allocate(capacity);
-        // The first round's active tets are listed by the first cache (tet_refresh.comp).
-        TetControl control{};
-        control.phase = kTetPhaseRunning;
-        control.next_step = kTetStepMark;
-        control.slot_count = slots;
-        control.free_count = uint32_t(mesh.free_slots.size());
-        writeControl(control);
-        uploadToBuffer(context, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(slots) * 16);
-        std::vector<TetVertices>().swap(mesh.vertices);
-        uploadToBuffer(context, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(slots) * 16);
-        std::vector<TetNeighbours>().swap(mesh.neighbours);
-        if (!mesh.free_slots.empty())
-            uploadToBuffer(context, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), mesh.free_slots.size() * 4);
-        std::vector<uint32_t>().swap(mesh.free_slots);
-        zeroArrays();  // after the host arrays are gone: on lavapipe the zeroed pages become resident
+        zeroArrays(slots);  // after the host arrays are gone: on lavapipe the zeroed pages become resident
     } catch (...) {
         for (Buffer& buffer : buffers_) destroyBuffer(context, buffer);
         throw;
@@ -224,28 +270,37 @@ void DeviceTetOptimizer::writeControl(const TetControl& control) {
     uploadToBuffer(context_, buffers_[kTetBindingControl], &control, sizeof(control));
 }
 
-// Every capacity-sized array, as allocated (zeroArrays zeroes those that must start at 0).
+// Every capacity-sized array, as allocated (zeroArrays zeroes what must start at 0), or poisoned.
 void DeviceTetOptimizer::allocate(uint32_t capacity) {
     capacity_ = capacity;
     for (const SlotArray& array : kSlotArrays)
         buffers_[array.binding] =
             createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
-}
-
-// The arrays read before written (SlotArray::zeroed) set to 0.
-void DeviceTetOptimizer::zeroArrays() {
+    if (!poison_) return;
     CommandBatch batch(context_);
     for (const SlotArray& array : kSlotArrays)
-        if (array.zeroed) {
-            vkCmdFillBuffer(batch.buffer(), buffers_[array.binding].buffer, 0, VK_WHOLE_SIZE, 0);
-            zeroed_bytes_ += buffers_[array.binding].size;
-        }
+        vkCmdFillBuffer(batch.buffer(), buffers_[array.binding].buffer, 0, VK_WHOLE_SIZE, kPoison);
     batch.submitAndWait();
 }
 
-// Larger arrays holding the old ones' contents (the zeroed ones zeroed first): the round that stopped
-// for want of slots goes on where it stopped (kTetStepApply), with the same lists, claims,
-// masks and prefix sums (the blocks added beyond the old ones are empty).
+// What must start at 0 (SlotArray::start) set to 0, `slots` slots in use.
+void DeviceTetOptimizer::zeroArrays(uint32_t slots) {
+    CommandBatch batch(context_);
+    for (const SlotArray& array : kSlotArrays) {
+        const Buffer& buffer = buffers_[array.binding];
+        const VkDeviceSize bytes = array.start == Start::zeroed          ? buffer.size
+                                   : array.start == Start::zeroed_in_use ? VkDeviceSize(slots) * 4
+                                                                         : 0;
+        if (bytes == 0) continue;
+        vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, bytes, 0);
+        zeroed_bytes_ += bytes;
+    }
+    batch.submitAndWait();
+}
+
+// Larger arrays holding the old ones' contents (the scan words zeroed first, the claims not
+// kept): the round that stopped for want of slots goes on where it stopped (kTetStepApply), with
+// the same lists, masks and prefix sums (the blocks added beyond the old ones are empty).
 void DeviceTetOptimizer::grow(uint32_t need) {
     const uint64_t wanted = std::max<uint64_t>(uint64_t(need) + need / 4, uint64_t(capacity_) + capacity_ / 2);
     const uint32_t capacity = uintOf(wanted, "slots for the flips");
@@ -258,13 +313,16 @@ void DeviceTetOptimizer::grow(uint32_t need) {
         Buffer& buffer = buffers_[array.binding];
         old[array.binding] = buffer;
         buffer = createBuffer(context_, slotArrayBytes(array.binding, capacity, weight_), Placement::Device, array.format);
-        if (array.zeroed) {
+        if (array.start == Start::zeroed) {
             vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, 0);
             zeroed_bytes_ += buffer.size;
+        } else if (poison_) {
+            vkCmdFillBuffer(batch.buffer(), buffer.buffer, 0, VK_WHOLE_SIZE, kPoison);
         }
     }
     computeBarrier(batch.buffer());
     for (const SlotArray& array : kSlotArrays) {
+        if (!keptOnGrowth(array.binding)) continue;
         const VkBufferCopy region{0, 0, old[array.binding].size};
         vkCmdCopyBuffer(batch.buffer(), old[array.binding].buffer, buffers_[array.binding].buffer, 1, &region);
     }
@@ -363,7 +421,7 @@ double DeviceTetOptimizer::costTotal() const {
     return sum.total();
 }
 
-void DeviceTetOptimizer::moveMeshTo(TetMesh& mesh) {
+void DeviceTetOptimizer::moveMeshTo(TetMesh& mesh, bool neighbours) {
     const TetControl control = readControl();
     for (uint32_t binding = 0; binding < kTetBindingCount; ++binding)
         if (binding != kTetBindingVertices && binding != kTetBindingNeighbours && binding != kTetBindingFreeSlots)
@@ -372,10 +430,12 @@ void DeviceTetOptimizer::moveMeshTo(TetMesh& mesh) {
     if (control.free_count)
         downloadFromBuffer(context_, buffers_[kTetBindingFreeSlots], mesh.free_slots.data(), VkDeviceSize(control.free_count) * 4);
     release(kTetBindingFreeSlots);
+    if (!neighbours) release(kTetBindingNeighbours);
     mesh.vertices.resize(control.slot_count);
     if (control.slot_count)
         downloadFromBuffer(context_, buffers_[kTetBindingVertices], mesh.vertices.data(), VkDeviceSize(control.slot_count) * 16);
     release(kTetBindingVertices);
+    if (!neighbours) return;
     mesh.neighbours.resize(control.slot_count);
     if (control.slot_count)
         downloadFromBuffer(context_, buffers_[kTetBindingNeighbours], mesh.neighbours.data(), VkDeviceSize(control.slot_count) * 16);
@@ -413,12 +473,15 @@ std::string tetDeviceProblem(const VulkanContext& context, uint64_t slots, uint6
     return "";
 }
 
-TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
-                                       const TetParallelOptions& options, const TetDeviceOptions& device,
-                                       TetDeviceReport* report) {
+namespace {
+
+TetParallelStats optimizeOnDevice(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
+                                  std::vector<double>* owned_values, const TetParallelOptions& options,
+                                  const TetDeviceOptions& device, TetDeviceReport* report) {
     TetDeviceReport local;
     TetDeviceReport& out = report ? *report : local;
-    DeviceTetOptimizer optimizer(context, mesh, field, options, device);  // holds the mesh until moveMeshTo
+    // Holds the mesh until moveMeshTo.
+    DeviceTetOptimizer optimizer(context, mesh, field, options, device, owned_values);
     const double cost_before = optimizer.costTotal();
     TetParallelStats stats = optimizer.run(out);
     stats.cost_before = cost_before;
@@ -428,8 +491,22 @@ TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, co
     out.init_ms = optimizer.initMs();
     out.device_bytes = optimizer.bytes();
     out.zeroed_bytes = optimizer.zeroedBytes();
-    optimizer.moveMeshTo(mesh);
+    optimizer.moveMeshTo(mesh, device.return_neighbours);
     return stats;
+}
+
+}  // namespace
+
+TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
+                                       const TetParallelOptions& options, const TetDeviceOptions& device,
+                                       TetDeviceReport* report) {
+    return optimizeOnDevice(context, mesh, field, nullptr, options, device, report);
+}
+
+TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, TetCostField&& field,
+                                       const TetParallelOptions& options, const TetDeviceOptions& device,
+                                       TetDeviceReport* report) {
+    return optimizeOnDevice(context, mesh, field, &field.values, options, device, report);
 }
 
 }  // namespace ddt

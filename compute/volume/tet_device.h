@@ -8,10 +8,11 @@
 // once, sets rather than sequences for the lists); the slot allocation is a prefix sum over the
 // accepted flips in owner order (tet_scan.comp), not an atomic counter.
 //
-// Memory: the device takes the mesh's host arrays (released as each is uploaded, given back at
-// the end as each is downloaded, the other device arrays released first), so the host and
-// device copies of the mesh are never whole together; on an exception the mesh is left empty.
-// The cost totals are summed a chunk at a time, without a host copy of the costs.
+// Memory: the device takes the mesh's host arrays (released page by page as each is uploaded,
+// given back at the end as each is downloaded, the other device arrays released first), so the
+// host and device copies of the mesh are never whole together; on an exception the mesh is left
+// empty. The cost totals are summed a chunk at a time, without a host copy of the costs. Only
+// what the kernels read before they write is zeroed (TetDeviceReport::zeroed_bytes).
 //
 // On the device: the mesh records, the cost cache (flatness; for face_scf gradients and costs;
 // the contents, and the variance weight's costs, are recomputed from the records, a chunk at a
@@ -43,6 +44,12 @@ struct TetDeviceOptions {
     uint32_t rounds_per_submit = 16;  // rounds recorded in one command buffer
     double slack = 0.25;              // spare slots at the start, as a share of the initial slots
     bool profile = false;             // time each step on the device (TetDeviceReport::step_ms)
+    // Testing: every array filled with 1 bits before anything is written to it, so that a
+    // kernel reading what it has not written (and was not zeroed) goes wrong on any device.
+    bool poison = false;
+    // false: the mesh comes back without its neighbours (mesh.neighbours empty), for a caller
+    // that reads only the vertices (the resampling): no host copy of them beside the device's.
+    bool return_neighbours = true;
 };
 
 // How the device run went, beyond the rule's statistics.
@@ -51,8 +58,9 @@ struct TetDeviceReport {
     uint32_t grows = 0;      // times the slot arrays grew
     uint32_t capacity = 0;   // slots the arrays held at the end
     uint64_t device_bytes = 0;  // bytes of device memory at the end
-    // Bytes zero-filled on allocation and growth. The other arrays are left as allocated, so a
-    // device whose memory is host memory (lavapipe) backs only the pages the kernels write.
+    // Bytes zero-filled on allocation and growth: the state words of the slots in use and the
+    // scan words. The rest is left as allocated, so a device whose memory is host memory
+    // (lavapipe) backs only the pages the kernels write.
     uint64_t zeroed_bytes = 0;
     std::vector<double> costs;  // the device's cost cache per slot at the end (TetCosts::cost)
     double init_ms = 0.0;       // wall time of the first cache's submit (kTetStepInit)
@@ -67,6 +75,10 @@ std::string tetDeviceProblem(const VulkanContext& context, uint64_t slots, uint6
 // optimizeTetMeshParallel's rounds with steps (a) to (d) on the device; the same mesh, cost and
 // statistics. options.evaluate_all and options.after_round are not supported (invalid_argument).
 TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, const TetCostField& field,
+                                       const TetParallelOptions& options = {}, const TetDeviceOptions& device = {},
+                                       TetDeviceReport* report = nullptr);
+// The same, taking the field: its values are released once the device holds them.
+TetParallelStats optimizeTetMeshVulkan(VulkanContext& context, TetMesh& mesh, TetCostField&& field,
                                        const TetParallelOptions& options = {}, const TetDeviceOptions& device = {},
                                        TetDeviceReport* report = nullptr);
 

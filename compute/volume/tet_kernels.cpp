@@ -51,12 +51,12 @@ VkPipeline TetKernels::kernelOf(uint32_t step) const {
     switch (step) {
         case kTetStepMark: return mark_;
         case kTetStepCandidates: return candidates_;
+        case kTetStepClear:
         case kTetStepClaimHigh:
         case kTetStepClaimLow:
         case kTetStepCheck:
         case kTetStepTake:
-        case kTetStepJudge:
-        case kTetStepClear: return select_;
+        case kTetStepJudge: return select_;
         case kTetStepScan:
         case kTetStepUnmask: return scan_;
         case kTetStepApply: return apply_;

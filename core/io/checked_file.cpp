@@ -45,7 +45,7 @@ CopyFailure copyAll(int from, const std::function<int(const char* data, size_t s
     }
 }
 
-CheckedFile::CheckedFile(const std::string& path) : IOProxy(path, Write), limit_(injectedWriteLimit()) {
+CheckedFile::CheckedFile(const std::string& path) : path_(path), limit_(injectedWriteLimit()) {
     fd_ = ::open(path.c_str(), O_RDWR | O_TRUNC | O_CLOEXEC);
     if (fd_ < 0) throw std::system_error(errno, std::generic_category());
 }
@@ -56,12 +56,11 @@ void CheckedFile::close() {
     if (fd_ < 0) return;
     if (::close(fd_) != 0 && !failure_) failure_ = errno;
     fd_ = -1;
-    m_mode = Closed;
 }
 
 size_t CheckedFile::write(const void* buf, size_t size) {
-    const size_t written = pwrite(buf, size, m_pos);
-    m_pos += int64_t(written);
+    const size_t written = pwrite(buf, size, end_);
+    end_ += int64_t(written);
     return written;
 }
 
@@ -86,13 +85,7 @@ size_t CheckedFile::pwrite(const void* buf, size_t size, int64_t offset) {
     return done;
 }
 
-size_t CheckedFile::read(void* buf, size_t size) {
-    const size_t done = pread(buf, size, m_pos);
-    m_pos += int64_t(done);
-    return done;
-}
-
-size_t CheckedFile::pread(void* buf, size_t size, int64_t offset) {
+size_t CheckedFile::pread(void* buf, size_t size, int64_t offset) const {
     size_t done = 0;
     while (fd_ >= 0 && offset >= 0 && done < size) {
         const ssize_t n = ::pread(fd_, static_cast<char*>(buf) + done, size - done, offset + int64_t(done));

@@ -1,12 +1,11 @@
-// Writes whose every failure is seen. CheckedFile is the file an ImageWriter's codec writes to,
-// through OIIO's IOProxy.
+// Writes whose every failure is seen. CheckedFile is the file every writer of ddtup writes to:
+// its own encoders directly, OpenImageIO's codecs through an IOProxy (oiio_codec.h).
 // OIIO 2.4's PNG, BMP and Targa writers ignore failed writes: on a full disk they report
 // success and leave a truncated file (measured on a 64 KiB tmpfs), so the writer asks this
 // file instead of the codec whether everything reached the disk.
 #pragma once
 
-#include <OpenImageIO/filesystem.h>
-
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -25,28 +24,32 @@ struct CopyFailure {
 };
 CopyFailure copyAll(int from, const std::function<int(const char* data, size_t size)>& write);
 
-class CheckedFile final : public OIIO::Filesystem::IOProxy {
+class CheckedFile {
 public:
     // Opens an existing file for writing (and reading back), emptied. Throws std::system_error.
     explicit CheckedFile(const std::string& path);
-    ~CheckedFile() override;
+    ~CheckedFile();
+    CheckedFile(const CheckedFile&) = delete;
+    CheckedFile& operator=(const CheckedFile&) = delete;
 
-    const char* proxytype() const override { return "ddtup-checked-file"; }
-    void close() override;
-    size_t write(const void* buf, size_t size) override;
-    size_t pwrite(const void* buf, size_t size, int64_t offset) override;
-    // libtiff reads back what it wrote when it adds a directory (EXIF, for one).
-    size_t read(void* buf, size_t size) override;
-    size_t pread(void* buf, size_t size, int64_t offset) override;
-    size_t size() const override;
+    const std::string& path() const { return path_; }
+    void close();
+    // At the end of what write() wrote before.
+    size_t write(const void* buf, size_t size);
+    size_t pwrite(const void* buf, size_t size, int64_t offset);
+    // Codecs read back what they wrote (libtiff, when it adds a directory).
+    size_t pread(void* buf, size_t size, int64_t offset) const;
+    size_t size() const;
 
     // errno of the first write or close that failed; 0 if none did.
     int failure() const { return failure_; }
 
 private:
+    std::string path_;
     int fd_ = -1;
     int failure_ = 0;
-    uint64_t limit_;  // bytes this file may hold: the test hook, else no limit
+    int64_t end_ = 0;  // where write() goes on
+    uint64_t limit_;   // bytes this file may hold: the test hook, else no limit
 };
 
 }  // namespace ddt

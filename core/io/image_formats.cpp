@@ -1,8 +1,6 @@
 #include "image_formats.h"
 
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/strutil.h>
-
+#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -51,8 +49,16 @@ const ImageFormat* formatNamed(const std::string& oiio_name) {
 
 const std::vector<ImageFormat>& imageFormats() {
     static const std::vector<ImageFormat> formats = {
-        {"png", "PNG"},     {"jpeg", "JPEG"}, {"tiff", "TIFF"},   {"openexr", "OpenEXR"}, {"webp", "WebP"},
-        {"bmp", "BMP"},     {"gif", "GIF"},   {"targa", "Targa"}, {"pnm", "PNM"},         {"hdr", "Radiance HDR"},
+        {"png", "PNG", " png"},
+        {"jpeg", "JPEG", " jpg jpe jpeg jif jfif jfi"},
+        {"tiff", "TIFF", " tif tiff tx env sm vsm"},
+        {"openexr", "OpenEXR", " exr sxr mxr"},
+        {"webp", "WebP", " webp"},
+        {"bmp", "BMP", " bmp dib"},
+        {"gif", "GIF", " gif"},
+        {"targa", "Targa", " tga tpic"},
+        {"pnm", "PNM", " ppm pgm pbm pnm pfm"},
+        {"hdr", "Radiance HDR", " hdr rgbe"},
     };
     return formats;
 }
@@ -64,12 +70,18 @@ std::string imageFormatTitles() {
 }
 
 const ImageFormat* formatOfExtension(const std::string& extension) {
-    const std::string wanted = OIIO::Strutil::lower(extension.starts_with(".") ? extension.substr(1) : extension);
+    std::string wanted = extension.starts_with(".") ? extension.substr(1) : extension;
     if (wanted.empty()) return nullptr;
-    // OpenImageIO's own list of each format's extensions.
-    for (const auto& [oiio_name, extensions] : OIIO::get_extension_map())
-        for (const std::string& candidate : extensions)
-            if (candidate == wanted) return formatNamed(oiio_name);
+    for (char& c : wanted) c = char(std::tolower(uint8_t(c)));
+    for (const ImageFormat& format : imageFormats()) {
+        std::string_view rest = format.extensions;
+        while (!rest.empty()) {
+            rest.remove_prefix(1);  // the space before each
+            const std::string_view candidate = rest.substr(0, rest.find(' '));
+            if (candidate == wanted) return &format;
+            rest.remove_prefix(candidate.size());
+        }
+    }
     return nullptr;
 }
 

@@ -13,8 +13,9 @@
 namespace ddt {
 
 struct ImageFormat {
-    const char* oiio_name;  // OpenImageIO's name of the format: the reader and writer to create
-    const char* title;      // the name a person knows it by, for messages
+    const char* oiio_name;   // OpenImageIO's name of the format: the reader and writer to create
+    const char* title;       // the name a person knows it by, for messages
+    const char* extensions;  // its file extensions, lower case, each after a space: OpenImageIO 2.4's list
 };
 
 // The formats, in the order messages list them.

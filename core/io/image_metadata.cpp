@@ -9,8 +9,8 @@ namespace ddt {
 // straight colour and say so in that attribute. The BMP reader returns its straight colour as
 // stored without saying so. OpenEXR and associated TIFF come back as stored, premultiplied,
 // which is also OIIO's convention for every other reader.
-AlphaStorage inputAlphaStorage(const OIIO::ImageSpec& spec, const std::string& format) {
-    if (spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0) return AlphaStorage::Straight;
+AlphaStorage inputAlphaStorage(const ImageAttributes& attributes, const std::string& format) {
+    if (attributes.getInt("oiio:UnassociatedAlpha", 0) != 0) return AlphaStorage::Straight;
     if (format == "bmp") return AlphaStorage::Straight;
     return AlphaStorage::Premultiplied;
 }
@@ -35,23 +35,23 @@ const char* const kStaleAttributes[] = {
     "thumbnail_nchannels", "thumbnail_image",
 };
 
-// Copies the input's metadata. Resolution (dots per inch) scales with the magnification, so a
+// The input's attributes. Resolution (dots per inch) scales with the magnification, so that a
 // print keeps its size; compression settings are per format and copied only to the same one.
-void copyMetadata(const Image& like, uint32_t width, uint32_t height, const std::string& format,
-                  OIIO::ImageSpec& spec) {
-    const OIIO::ImageSpec& from = like.metadata->spec;
-    spec.extra_attribs = from.extra_attribs;
-    for (const char* stale : kStaleAttributes) spec.erase_attribute(stale);
+ImageAttributes outputAttributes(const Image& like, uint32_t width, uint32_t height, const std::string& format) {
+    const ImageAttributes& from = like.metadata->attributes;
+    ImageAttributes attributes = from;
+    for (const char* stale : kStaleAttributes) attributes.erase(stale);
     if (like.metadata->format_name != format) {
-        spec.erase_attribute("compression");
-        spec.erase_attribute("CompressionQuality");
+        attributes.erase("compression");
+        attributes.erase("CompressionQuality");
     }
     if (like.width && like.height) {
-        if (const OIIO::ParamValue* x = from.find_attribute("XResolution", OIIO::TypeDesc::FLOAT))
-            spec.attribute("XResolution", x->get_float() * float(width) / float(like.width));
-        if (const OIIO::ParamValue* y = from.find_attribute("YResolution", OIIO::TypeDesc::FLOAT))
-            spec.attribute("YResolution", y->get_float() * float(height) / float(like.height));
+        if (const std::optional<float> x = from.findFloat("XResolution"))
+            attributes.set("XResolution", *x * float(width) / float(like.width));
+        if (const std::optional<float> y = from.findFloat("YResolution"))
+            attributes.set("YResolution", *y * float(height) / float(like.height));
     }
+    return attributes;
 }
 
 // Conventional names, so that OpenEXR readers find grey and alpha again.

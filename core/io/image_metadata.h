@@ -1,14 +1,14 @@
-// What of an input file the output keeps: its metadata, and how each format stores colour
-// under alpha (straight or premultiplied), as OIIO 2.4 reads and writes it.
+// What of an input file the output keeps: its attributes (resolution, colour space, ICC
+// profile, EXIF, text, …) in ddtup's own terms, and how each format stores colour under alpha.
+// Only the files that call OpenImageIO convert them to and from its ImageSpec (oiio_metadata.h).
 #pragma once
-
-#include <OpenImageIO/imageio.h>
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "image.h"
+#include "image_attributes.h"
 
 namespace ddt {
 
@@ -16,20 +16,20 @@ namespace ddt {
 enum class AlphaStorage { Straight, Premultiplied };
 
 struct ImageMetadata {
-    OIIO::ImageSpec spec;        // the input's spec: its extra attributes are copied to the output
     std::string format_name;     // OIIO's name of the input's format ("png", "openexr", …)
     AlphaStorage alpha_storage;  // how the input file stored colour under alpha
+    ImageAttributes attributes;  // of the upright image: no orientation, resolution turned with it
 };
 
-// How the file read with `spec` in `format` (OIIO's name) stored colour under alpha.
-AlphaStorage inputAlphaStorage(const OIIO::ImageSpec& spec, const std::string& format);
+// How the file read with `attributes` in `format` (OIIO's name) stored colour under alpha.
+AlphaStorage inputAlphaStorage(const ImageAttributes& attributes, const std::string& format);
 // How a file of `format` is written; TIFF keeps `like`'s choice.
 AlphaStorage outputAlphaStorage(const std::string& format, const Image& like);
 
-// Copies `like`'s metadata to `spec`, the output's: resolution scaled with the magnification,
-// attributes of the old file dropped, compression settings only to the same format.
-void copyMetadata(const Image& like, uint32_t width, uint32_t height, const std::string& format,
-                  OIIO::ImageSpec& spec);
+// The attributes of the output, a width × height image in `format`, from `like`'s: resolution
+// scaled with the magnification, attributes of the old file dropped, compression settings only
+// to the same format.
+ImageAttributes outputAttributes(const Image& like, uint32_t width, uint32_t height, const std::string& format);
 // Conventional channel names, so that OpenEXR readers find grey and alpha again.
 std::vector<std::string> channelNames(uint32_t channels);
 

@@ -14,12 +14,16 @@
 #include <filesystem>
 #include <new>
 #include <system_error>
+#include <type_traits>
 
 #include "checked_file.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "input_check.h"
+#include "jpeg_decoder.h"
+#include "png_decoder.h"
 #include "oiio_codec.h"
+#include "oiio_metadata.h"
 #include "temp_files.h"
 
 namespace ddt {
@@ -138,14 +142,17 @@ int decodeBandRows(const OIIO::ImageSpec& spec) {
 }
 
 // Decodes the current image as samples of `type`, its channels interleaved; tiled files as OIIO does.
+// The file's own type is asked for as such (UNKNOWN): OIIO 2.4 reads any other request through
+// a 64 MiB buffer of its own and converts, even to the same type.
 bool decodePixels(OIIO::ImageInput& input, OIIO::TypeDesc type, void* pixels) {
     const OIIO::ImageSpec& spec = input.spec();
-    if (spec.tile_width) return input.read_image(0, 0, 0, spec.nchannels, type, pixels);
+    const OIIO::TypeDesc request = spec.channelformats.empty() && type == spec.format ? OIIO::TypeDesc::UNKNOWN : type;
+    if (spec.tile_width) return input.read_image(0, 0, 0, spec.nchannels, request, pixels);
     const int band = decodeBandRows(spec);
     const size_t row_bytes = size_t(spec.width) * spec.nchannels * type.size();
     for (int y = 0; y < spec.height; y += band) {
         const int end = std::min(spec.height, y + band);
-        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels, type,
+        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels, request,
                                   static_cast<char*>(pixels) + size_t(y) * row_bytes) ||
             input.has_error())
             return false;
@@ -175,6 +182,9 @@ bool allFinite(const std::vector<float>& pixels) {
 struct ImageReader::State {
     std::string name;                      // for messages: the path, or "standard input"
     std::unique_ptr<TempFile> stdin_copy;  // what is read when the path is "-"
+    std::string file;                      // the path, or the copy of standard input
+    std::unique_ptr<JpegDecoder> jpeg;     // decodes the pixels of a grey, YCbCr or RGB JPEG file
+    std::unique_ptr<PngDecoder> png;       // decodes the pixels of a PNG file
     std::unique_ptr<OIIO::ImageInput> input;
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
     int orientation = 1;
@@ -193,6 +203,7 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     }
     std::error_code ec;
     if (fs::file_size(file, ec) == 0 && !ec) throw UserError(s.name + ": empty file (0 bytes)");
+    s.file = file;
 
     // Only the reader of the file's own format, one of ours, sees it: OIIO's open() would try
     // every reader it has (image_formats.h). The content decides, so a mis-named file or the
@@ -236,17 +247,18 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     const bool swapped = swapsSides(s.orientation);
 
     auto metadata = std::make_shared<ImageMetadata>();
-    metadata->spec = spec;
+    metadata->attributes = attributesOf(spec);
     metadata->format_name = s.input->format_name();
-    metadata->alpha_storage = inputAlphaStorage(spec, metadata->format_name);
+    metadata->alpha_storage = inputAlphaStorage(metadata->attributes, metadata->format_name);
     // The metadata describes the upright image the reader returns.
-    metadata->spec.erase_attribute("Orientation");
+    ImageAttributes& attributes = metadata->attributes;
+    attributes.erase("Orientation");
     if (swapped) {
-        const float x_resolution = spec.get_float_attribute("XResolution", 0.0f);
-        const float y_resolution = spec.get_float_attribute("YResolution", 0.0f);
+        const float x_resolution = attributes.getFloat("XResolution", 0.0f);
+        const float y_resolution = attributes.getFloat("YResolution", 0.0f);
         if (x_resolution > 0.0f && y_resolution > 0.0f) {
-            metadata->spec.attribute("XResolution", y_resolution);
-            metadata->spec.attribute("YResolution", x_resolution);
+            attributes.set("XResolution", y_resolution);
+            attributes.set("YResolution", x_resolution);
         }
     }
     s.alpha_storage = metadata->alpha_storage;
@@ -256,6 +268,22 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     header_.channels = uint32_t(spec.nchannels);
     header_.sample_type = sampleTypeOf(spec.format);
     header_.metadata = metadata;
+    // JPEG and PNG pixels come from libjpeg-turbo (where it takes the colour model) and libspng
+    // directly, the same samples (jpeg_decoder.h, png_decoder.h).
+    auto check_layout = [&](uint32_t width, uint32_t height, uint32_t channels, uint32_t bits) {
+        if (width != uint32_t(spec.width) || height != uint32_t(spec.height) || channels != uint32_t(spec.nchannels) ||
+            bits != spec.format.size() * 8)
+            throw std::logic_error(s.name + ": the decoder and OpenImageIO disagree on the image's layout");
+    };
+    if (format->oiio_name == std::string("jpeg")) {
+        s.jpeg = std::make_unique<JpegDecoder>(s.file, s.name);
+        if (!s.jpeg->decodable()) s.jpeg.reset();
+        else check_layout(s.jpeg->width(), s.jpeg->height(), s.jpeg->channels(), 8);
+    }
+    if (format->oiio_name == std::string("png")) {
+        s.png = std::make_unique<PngDecoder>(s.file, s.name);
+        check_layout(s.png->width(), s.png->height(), s.png->channels(), s.png->sampleBits());
+    }
     // Signed and mixed per-channel types are converted to floats as they are read.
     if (spec.channelformats.empty() && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16))
         s.codes = spec.format;
@@ -275,14 +303,31 @@ std::vector<Sample> ImageReader::decode() {
         throw UserError(s.name + ": too large to hold in memory (" + std::to_string(header_.width) + "×" +
                         std::to_string(header_.height) + ")");
     }
-    bool ok;
-    {
-        QuietStderr quiet;
-        ok = decodePixels(*s.input, type, samples.data());
+    bool decoded = false;
+    if constexpr (std::is_same_v<Sample, uint8_t>) {
+        if (s.jpeg) {
+            s.jpeg->decode(samples.data());
+            decoded = true;
+        }
     }
-    // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
-    if (!ok || s.input->has_error())
-        throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
+    if constexpr (std::is_same_v<Sample, uint8_t> || std::is_same_v<Sample, uint16_t>) {
+        if (s.png && s.png->sampleBits() == 8 * sizeof(Sample)) {
+            s.png->decode(samples.data());
+            decoded = true;
+        }
+    }
+    if (!decoded) {
+        bool ok;
+        {
+            QuietStderr quiet;
+            ok = decodePixels(*s.input, type, samples.data());
+        }
+        // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
+        if (!ok || s.input->has_error())
+            throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
+    }
+    s.jpeg.reset();
+    s.png.reset();
     s.input.reset();
     s.stdin_copy.reset();
     if (s.orientation != 1) makeUpright(samples.data(), type, header_, s.orientation);

@@ -17,6 +17,7 @@
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "oiio_codec.h"
+#include "oiio_metadata.h"
 #include "output_file.h"
 #include "parallel.h"
 #include "png_writer.h"
@@ -133,9 +134,9 @@ bool noSpaceLeft(const std::string& path) {
 }
 
 // The quality setting of the lossy formats, in OIIO's "compression" attribute.
-void setQuality(const std::string& format, int quality, OIIO::ImageSpec& spec) {
+void setQuality(const std::string& format, int quality, ImageAttributes& attributes) {
     assert(quality >= 1 && quality <= 100);
-    if (format == "jpeg" || format == "webp") spec.attribute("compression", format + ":" + std::to_string(quality));
+    if (format == "jpeg" || format == "webp") attributes.set("compression", format + ":" + std::to_string(quality));
 }
 
 }  // namespace
@@ -145,6 +146,7 @@ struct ImageWriter::State {
     std::string name;  // for messages: the path, or "standard output"
     std::unique_ptr<TempFile> temp;
     std::unique_ptr<CheckedFile> file;  // null for the few codecs that cannot write through one
+    std::unique_ptr<CheckedFileProxy> proxy;    // `file` as OIIO's writer sees it
     std::unique_ptr<OIIO::ImageOutput> output;  // OIIO's writer, for every format but PNG
     std::unique_ptr<PngWriter> png;             // ddtup's own, for PNG
     uint32_t width = 0, height = 0;
@@ -163,6 +165,7 @@ struct ImageWriter::State {
 
     // Opens the temporary file as a CheckedFile, empty.
     void openCheckedFile() {
+        proxy.reset();
         file.reset();
         try {
             file = std::make_unique<CheckedFile>(temp->path());
@@ -205,14 +208,20 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
     layout.straight = layout.out_alpha && outputAlphaStorage(format, like) == AlphaStorage::Straight;
 
     s.temp = createTempFile(path);
-    // The spec OIIO's writer gets, or for PNG the one ddtup's encoder takes its metadata from.
+    // The attributes the file gets.
+    auto attributesFor = [&]() {
+        ImageAttributes attributes;
+        if (like.metadata) attributes = outputAttributes(like, width, height, format);
+        if (layout.straight) attributes.set("oiio:UnassociatedAlpha", 1);
+        setQuality(format, options.quality, attributes);
+        return attributes;
+    };
+    // The spec OIIO's writer gets.
     auto specFor = [&](OIIO::TypeDesc type) {
         OIIO::ImageSpec spec(int(width), int(height), int(layout.out_channels), type);
-        if (like.metadata) copyMetadata(like, width, height, format, spec);
+        addAttributes(attributesFor(), spec);
         spec.channelnames = channelNames(layout.out_channels);
         spec.alpha_channel = layout.out_alpha ? int(layout.out_channels) - 1 : -1;
-        if (layout.straight) spec.attribute("oiio:UnassociatedAlpha", 1);
-        setQuality(format, options.quality, spec);
         return spec;
     };
 
@@ -222,7 +231,12 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         s.output.reset();
         s.openCheckedFile();
         State* state = &s;  // owns the writer, so outlives it
-        s.png = std::make_unique<PngWriter>(specFor(typeDescOf(written)), [state](const uint8_t* data, size_t size) {
+        const PngFormat png_format{width, height, layout.out_channels, written == SampleType::UInt8 ? 8u : 16u};
+        PngMetadataSource metadata;
+        metadata.attributes = attributesFor();
+        metadata.channels = layout.out_channels;
+        metadata.exif = exifBlock(metadata.attributes);
+        s.png = std::make_unique<PngWriter>(png_format, metadata, [state](const uint8_t* data, size_t size) {
             if (state->file->write(data, size) != size) throw state->failure();
         });
         for (const std::string& missing : s.png->leftOut()) notes_.push_back(s.name + ": " + missing + " is left out");
@@ -240,7 +254,8 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         if (checked) {
             // Each attempt starts an empty file: a refused one may have written a header.
             s.openCheckedFile();
-            s.output->set_ioproxy(s.file.get());
+            s.proxy = std::make_unique<CheckedFileProxy>(*s.file);
+            s.output->set_ioproxy(s.proxy.get());
         }
         QuietStderr quiet;
         return s.output->open(s.temp->path(), spec);

@@ -1,5 +1,7 @@
 #include "oiio_codec.h"
 
+#include "image_file.h"
+
 namespace ddt {
 
 std::string firstLine(std::string message) {
@@ -8,6 +10,8 @@ std::string firstLine(std::string message) {
     while (!message.empty() && (message.back() == ' ' || message.back() == '.')) message.pop_back();
     return message.empty() ? "unknown error" : message;
 }
+
+void setCodecThreads(unsigned count) { OIIO::attribute("threads", int(count)); }
 
 std::string globalError() { return OIIO::has_error() ? OIIO::geterror() : std::string(); }
 

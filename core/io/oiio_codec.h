@@ -1,7 +1,9 @@
 // Talking to OpenImageIO's codecs: their errors as one line for the user, stderr kept quiet
-// while they run, and ddtup's sample types in OIIO's terms. Shared by the reader and the writer.
+// while they run, ddtup's sample types in OIIO's terms, and a CheckedFile for them to write
+// to. Shared by the reader and the writers.
 #pragma once
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -10,6 +12,7 @@
 #include <mutex>
 #include <string>
 
+#include "checked_file.h"
 #include "image.h"
 
 namespace ddt {
@@ -57,6 +60,30 @@ private:
     static inline std::mutex mutex_;
     static inline int users_ = 0;
     static inline int saved_fd_ = -1;
+};
+
+// A CheckedFile as OIIO's IOProxy, for its writers to write to (checked_file.h says why).
+class CheckedFileProxy final : public OIIO::Filesystem::IOProxy {
+public:
+    explicit CheckedFileProxy(CheckedFile& file) : IOProxy(file.path(), Write), file_(file) {}
+
+    const char* proxytype() const override { return "ddtup-checked-file"; }
+    void close() override {
+        file_.close();
+        m_mode = Closed;
+    }
+    size_t write(const void* buf, size_t size) override { return advance(file_.pwrite(buf, size, m_pos)); }
+    size_t pwrite(const void* buf, size_t size, int64_t offset) override { return file_.pwrite(buf, size, offset); }
+    size_t read(void* buf, size_t size) override { return advance(file_.pread(buf, size, m_pos)); }
+    size_t pread(void* buf, size_t size, int64_t offset) override { return file_.pread(buf, size, offset); }
+    size_t size() const override { return file_.size(); }
+
+private:
+    size_t advance(size_t done) {
+        m_pos += int64_t(done);
+        return done;
+    }
+    CheckedFile& file_;
 };
 
 SampleType sampleTypeOf(OIIO::TypeDesc format);

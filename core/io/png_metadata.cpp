@@ -1,10 +1,10 @@
 #include "png_metadata.h"
 
-#include <OpenImageIO/strutil.h>
-#include <OpenImageIO/tiffutils.h>
 #include <zlib.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 
@@ -12,7 +12,18 @@ namespace ddt {
 
 namespace {
 
-namespace Strutil = OIIO::Strutil;
+bool startsWithName(std::string_view text, std::string_view prefix) {
+    return text.size() >= prefix.size() && sameName(text.substr(0, prefix.size()), prefix);
+}
+
+// The number after the word that starts `name` ("Gamma2.2": 2.2), as OpenImageIO 2.4's
+// Strutil::parse_word and from_string<float> read it: 0 where there is none.
+float numberAfterWord(const std::string& name) {
+    size_t at = 0;
+    while (at < name.size() && std::isspace(uint8_t(name[at]))) ++at;
+    while (at < name.size() && std::isalpha(uint8_t(name[at]))) ++at;
+    return std::strtof(name.c_str() + at, nullptr);
+}
 
 std::string bigEndian32(uint32_t value) {
     return {char(value >> 24), char(value >> 16), char(value >> 8), char(value)};
@@ -44,19 +55,17 @@ struct ColourSpace {
     bool srgb = false;
 };
 
-ColourSpace colourSpace(const OIIO::ImageSpec& spec, std::vector<std::string>& left_out) {
+ColourSpace colourSpace(const ImageAttributes& attributes, std::vector<std::string>& left_out) {
     ColourSpace result;
-    const OIIO::string_view name = spec.get_string_attribute("oiio:ColorSpace");
+    const std::string name = attributes.getString("oiio:ColorSpace");
     float display_gamma = 0;
-    if (Strutil::iequals(name, "Linear")) {
+    if (sameName(name, "Linear")) {
         display_gamma = 1.0f;
-    } else if (Strutil::istarts_with(name, "Gamma")) {
-        display_gamma = spec.get_float_attribute("oiio:Gamma", 1.0f);
-        OIIO::string_view number = name;
-        Strutil::parse_word(number);
-        const float stated = Strutil::from_string<float>(number);
+    } else if (startsWithName(name, "Gamma")) {
+        display_gamma = attributes.getFloat("oiio:Gamma", 1.0f);
+        const float stated = numberAfterWord(name);
         if (stated >= 0.01f && stated <= 10.0f) display_gamma = stated;
-    } else if (Strutil::iequals(name, "sRGB")) {
+    } else if (sameName(name, "sRGB")) {
         result.srgb = true;
         result.gamma = 45455;  // sRGB's 1 / 2.2
         return result;
@@ -80,12 +89,12 @@ std::string iccProblem(const uint8_t* profile, size_t size, int channels) {
     return "";
 }
 
-std::optional<PngChunk> iccChunk(const OIIO::ImageSpec& spec, std::vector<std::string>& left_out) {
-    const OIIO::ParamValue* icc = spec.find_attribute("ICCProfile");
-    if (!icc || icc->type().size() == 0) return std::nullopt;
-    const auto* profile = static_cast<const uint8_t*>(icc->data());
-    const size_t size = icc->type().size();
-    if (std::string problem = iccProblem(profile, size, spec.nchannels); !problem.empty()) {
+std::optional<PngChunk> iccChunk(const ImageAttributes& attributes, uint32_t channels, std::vector<std::string>& left_out) {
+    const ImageAttribute* icc = attributes.find("ICCProfile");
+    if (!icc || icc->bytes.empty()) return std::nullopt;
+    const uint8_t* profile = icc->bytes.data();
+    const size_t size = icc->bytes.size();
+    if (std::string problem = iccProblem(profile, size, int(channels)); !problem.empty()) {
         left_out.push_back("the ICC profile (" + problem + ")");
         return std::nullopt;
     }
@@ -98,40 +107,28 @@ std::optional<PngChunk> iccChunk(const OIIO::ImageSpec& spec, std::vector<std::s
     return PngChunk{"iCCP", std::string("Embedded Profile\0\0", 18) + compressed};
 }
 
-// The eXIf chunk (little-endian TIFF data: OpenImageIO 2.4 writes a wrong signature for big
-// endian), when the spec holds EXIF or GPS attributes.
-std::optional<PngChunk> exifChunk(const OIIO::ImageSpec& spec) {
-    bool any = false;
-    for (const OIIO::ParamValue& p : spec.extra_attribs)
-        any = any || Strutil::istarts_with(p.name(), "Exif:") || Strutil::istarts_with(p.name(), "GPS:");
-    if (!any) return std::nullopt;
-    std::vector<char> blob;
-    OIIO::encode_exif(spec, blob, OIIO::endian::little);
-    return PngChunk{"eXIf", std::string(blob.begin(), blob.end())};
-}
-
 // The oFFs chunk: the image's offset in pixels, which OpenImageIO always writes.
-PngChunk offsetChunk(const OIIO::ImageSpec& spec) {
-    return {"oFFs", bigEndian32(uint32_t(spec.x)) + bigEndian32(uint32_t(spec.y)) + std::string(1, '\0')};
+PngChunk offsetChunk(int32_t x, int32_t y) {
+    return {"oFFs", bigEndian32(uint32_t(x)) + bigEndian32(uint32_t(y)) + std::string(1, '\0')};
 }
 
 // The pHYs chunk from XResolution, YResolution, ResolutionUnit and PixelAspectRatio, as
 // OpenImageIO 2.4 computes it (in single precision, truncated): pixels per metre for inches,
 // centimetres and metres, else unit 0 (only the aspect ratio means something). A missing
 // resolution follows the other and the aspect ratio, or is 100.
-std::optional<PngChunk> resolutionChunk(const OIIO::ImageSpec& spec, std::vector<std::string>& left_out) {
-    const OIIO::string_view unit = spec.get_string_attribute("ResolutionUnit");
-    float x = spec.get_float_attribute("XResolution"), y = spec.get_float_attribute("YResolution");
-    const float aspect = spec.get_float_attribute("PixelAspectRatio");
+std::optional<PngChunk> resolutionChunk(const ImageAttributes& attributes, std::vector<std::string>& left_out) {
+    const std::string unit = attributes.getString("ResolutionUnit");
+    float x = attributes.getFloat("XResolution"), y = attributes.getFloat("YResolution");
+    const float aspect = attributes.getFloat("PixelAspectRatio");
     if (!x && !y && !aspect && unit.empty()) return std::nullopt;
     bool metric = false;
     float scale = 1;
-    if (Strutil::iequals(unit, "meter") || Strutil::iequals(unit, "m")) {
+    if (sameName(unit, "meter") || sameName(unit, "m")) {
         metric = true;
-    } else if (Strutil::iequals(unit, "cm")) {
+    } else if (sameName(unit, "cm")) {
         metric = true;
         scale = 100;
-    } else if (Strutil::iequals(unit, "inch") || Strutil::iequals(unit, "in")) {
+    } else if (sameName(unit, "inch") || sameName(unit, "in")) {
         metric = true;
         scale = float(100.0 / 2.54);
     }
@@ -157,11 +154,35 @@ std::optional<PngChunk> resolutionChunk(const OIIO::ImageSpec& spec, std::vector
     return PngChunk{"pHYs", bigEndian32(uint32_t(x_stored)) + bigEndian32(uint32_t(y_stored)) + std::string(1, char(metric ? 1 : 0))};
 }
 
+// Reads "YYYY:MM:DD HH:MM:SS" (or with - or / in the date) as OpenImageIO 2.4's
+// Strutil::scan_datetime does: numbers after optional white space, separators right after them.
+struct DateTimeReader {
+    const char* at;
+    bool number(int& value) {
+        while (std::isspace(uint8_t(*at))) ++at;
+        char* end = nullptr;
+        const long parsed = std::strtol(at, &end, 10);
+        if (end == at) return false;
+        at = end;
+        value = int(parsed);
+        return true;
+    }
+    bool separator(std::string_view any_of) {
+        if (!*at || any_of.find(*at) == std::string_view::npos) return false;
+        ++at;
+        return true;
+    }
+};
+
 // The tIME chunk from a DateTime that reads as "YYYY:MM:DD HH:MM:SS" (or with - or / in the
 // date); OpenImageIO drops any other.
 std::optional<PngChunk> timeChunk(const std::string& date_time) {
     int year, month, day, hour, minute, second;
-    if (!Strutil::scan_datetime(date_time, year, month, day, hour, minute, second) || year < 0 || year > 65535)
+    DateTimeReader in{date_time.c_str()};
+    const bool read = in.number(year) && in.separator(":-/") && in.number(month) && in.separator(":-/") && in.number(day) &&
+                      in.number(hour) && in.separator(":") && in.number(minute) && in.separator(":") && in.number(second);
+    if (!read || month < 1 || month > 12 || day < 1 || day > 31 || hour < 0 || hour > 23 || minute < 0 || minute > 59 ||
+        second < 0 || second > 59 || year < 0 || year > 65535)
         return std::nullopt;
     const char data[7] = {char(year >> 8), char(year), char(month), char(day), char(hour), char(minute), char(second)};
     return PngChunk{"tIME", std::string(data, 7)};
@@ -189,44 +210,44 @@ std::string pngKeyword(const std::string& name) {
 
 // The names OpenImageIO 2.4 gives PNG's registered keywords.
 std::string textKey(const std::string& name) {
-    if (Strutil::iequals(name, "Artist")) return "Author";
-    if (Strutil::iequals(name, "name") || Strutil::iequals(name, "DocumentName")) return "Title";
-    if (Strutil::iequals(name, "description") || Strutil::iequals(name, "ImageDescription")) return "Description";
+    if (sameName(name, "Artist")) return "Author";
+    if (sameName(name, "name") || sameName(name, "DocumentName")) return "Title";
+    if (sameName(name, "description") || sameName(name, "ImageDescription")) return "Description";
     return name;
 }
 
 // Attributes stored otherwise (pHYs), or not at all.
 bool storedApart(const std::string& name) {
     for (const char* apart : {"planarconfig", "compression", "ResolutionUnit", "XResolution", "YResolution"})
-        if (Strutil::iequals(name, apart)) return true;
+        if (sameName(name, apart)) return true;
     return false;
 }
 
 }  // namespace
 
-PngMetadata pngMetadata(const OIIO::ImageSpec& spec) {
+PngMetadata pngMetadata(const PngMetadataSource& source) {
+    const ImageAttributes& attributes = source.attributes;
     PngMetadata metadata;
     std::vector<PngChunk>& chunks = metadata.chunks;
-    const ColourSpace colour = colourSpace(spec, metadata.left_out);
-    const std::optional<PngChunk> icc = iccChunk(spec, metadata.left_out);
+    const ColourSpace colour = colourSpace(attributes, metadata.left_out);
+    const std::optional<PngChunk> icc = iccChunk(attributes, source.channels, metadata.left_out);
     // libpng's order; with an ICC profile the sRGB chunk gives way to it.
     if (colour.gamma) chunks.push_back({"gAMA", bigEndian32(*colour.gamma)});
     if (icc) chunks.push_back(*icc);
     else if (colour.srgb) chunks.push_back({"sRGB", std::string(1, '\3')});  // rendering intent: absolute colorimetric
     if (colour.srgb) chunks.push_back({"cHRM", srgbChromaticities()});
-    if (std::optional<PngChunk> exif = exifChunk(spec)) chunks.push_back(*exif);
-    chunks.push_back(offsetChunk(spec));
-    if (std::optional<PngChunk> resolution = resolutionChunk(spec, metadata.left_out)) chunks.push_back(*resolution);
+    if (!source.exif.empty()) chunks.push_back({"eXIf", source.exif});
+    chunks.push_back(offsetChunk(source.x_offset, source.y_offset));
+    if (std::optional<PngChunk> resolution = resolutionChunk(attributes, metadata.left_out)) chunks.push_back(*resolution);
 
     std::optional<PngChunk> time;
     std::vector<PngChunk> texts;
-    for (const OIIO::ParamValue& p : spec.extra_attribs) {
-        const std::string name = p.name().string();
-        if (storedApart(name) || p.type() != OIIO::TypeDesc::STRING) continue;
-        // A ustring's characters; OpenImageIO keeps "" as a null pointer.
-        const char* characters = *static_cast<const char* const*>(p.data());
-        const std::string text = characters ? characters : "";
-        if (Strutil::iequals(name, "DateTime")) {
+    const AttributeType one_string{AttributeType::Base::String};
+    for (const ImageAttribute& attribute : attributes.all()) {
+        const std::string& name = attribute.name;
+        if (storedApart(name) || attribute.type != one_string) continue;
+        const std::string& text = attribute.strings.front();
+        if (sameName(name, "DateTime")) {
             time = timeChunk(text);
             continue;
         }

@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "parallel.h"
-#include "png_metadata.h"
 
 namespace ddt {
 
@@ -53,21 +52,20 @@ void quantiseRow(const float* values, Sample* samples, size_t n) {
 
 }  // namespace
 
-PngWriter::PngWriter(const OIIO::ImageSpec& spec, PngEncoder::Sink sink) {
-    if (spec.format != OIIO::TypeDesc::UINT8 && spec.format != OIIO::TypeDesc::UINT16)
-        throw std::invalid_argument("PNG samples are 8 or 16 bits");
-    type_ = spec.format;
-    row_floats_ = size_t(spec.width) * size_t(spec.nchannels);
-    PngMetadata metadata = pngMetadata(spec);
-    left_out_ = std::move(metadata.left_out);
-    const PngFormat format{uint32_t(spec.width), uint32_t(spec.height), uint32_t(spec.nchannels), uint32_t(type_.size() * 8)};
-    encoder_ = std::make_unique<PngEncoder>(format, metadata.chunks, std::move(sink));
+PngWriter::PngWriter(const PngFormat& format, const PngMetadataSource& metadata, PngEncoder::Sink sink) {
+    if (format.bit_depth != 8 && format.bit_depth != 16) throw std::invalid_argument("PNG samples are 8 or 16 bits");
+    if (metadata.channels != format.channels) throw std::invalid_argument("the metadata is for another colour model");
+    sample_bytes_ = format.bit_depth / 8;
+    row_floats_ = size_t(format.width) * format.channels;
+    PngMetadata chunks = pngMetadata(metadata);
+    left_out_ = std::move(chunks.left_out);
+    encoder_ = std::make_unique<PngEncoder>(format, chunks.chunks, std::move(sink));
 }
 
 PngWriter::~PngWriter() = default;
 
 void PngWriter::writeRows(const float* rows, uint32_t count) {
-    const size_t sample_bytes = type_.size();
+    const size_t sample_bytes = sample_bytes_;
     const size_t row_bytes = row_floats_ * sample_bytes;
     const uint32_t slice_rows = uint32_t(std::clamp<size_t>(kSliceBytes / row_bytes, 1, count));
     samples_.resize(size_t(slice_rows) * row_bytes);

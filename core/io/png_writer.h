@@ -3,26 +3,25 @@
 // the metadata chunks of png_metadata.h.
 #pragma once
 
-#include <OpenImageIO/imageio.h>
-
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "png_encoder.h"
+#include "png_metadata.h"
 
 namespace ddt {
 
 class PngWriter {
 public:
-    // `spec`: the size, 1 to 4 channels (grey, grey + alpha, RGB, RGBA), UINT8 or UINT16
-    // samples, and the metadata attributes. The signature and metadata go to `sink` at once.
-    PngWriter(const OIIO::ImageSpec& spec, PngEncoder::Sink sink);
+    // `format`: the size, 1 to 4 channels (grey, grey + alpha, RGB, RGBA), 8 or 16 bits; the
+    // metadata's channels are the format's. The signature and metadata go to `sink` at once.
+    PngWriter(const PngFormat& format, const PngMetadataSource& metadata, PngEncoder::Sink sink);
     ~PngWriter();
     PngWriter(const PngWriter&) = delete;
     PngWriter& operator=(const PngWriter&) = delete;
 
-    // The next `count` rows, spec.nchannels floats a pixel (straight alpha), 0 to 1.
+    // The next `count` rows, format.channels floats a pixel (straight alpha), 0 to 1.
     void writeRows(const float* rows, uint32_t count);
     // After the last row.
     void finish();
@@ -30,7 +29,7 @@ public:
     const std::vector<std::string>& leftOut() const { return left_out_; }
 
 private:
-    OIIO::TypeDesc type_;
+    size_t sample_bytes_ = 0;
     size_t row_floats_ = 0;
     std::unique_ptr<PngEncoder> encoder_;
     std::vector<uint8_t> samples_;

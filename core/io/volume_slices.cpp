@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "checked_file.h"
+#include "oiio_codec.h"
 #include "output_file.h"
 #include "user_error.h"
 
@@ -36,9 +37,10 @@ void writePng(const std::string& path, uint32_t width, uint32_t height, const st
     } catch (const std::system_error& error) {
         throw UserError(path + ": cannot write (" + std::strerror(error.code().value()) + ")");
     }
+    CheckedFileProxy proxy(*file);  // outlives the output
     std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("png");
     if (!output) throw UserError(path + ": cannot write (OpenImageIO has no PNG writer)");
-    output->set_ioproxy(file.get());
+    output->set_ioproxy(&proxy);
     const OIIO::ImageSpec spec(int(width), int(height), 1, OIIO::TypeDesc::UINT8);
     const bool written = output->open(temp->path(), spec) && output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) &&
                          output->close();

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <chrono>
 #include <limits>
+#include <utility>
 
 #include "tet_mesh.h"
 #include "tet_resample.h"
@@ -113,7 +114,7 @@ std::vector<float> magnifyVolumeValues(const Volume& volume, const std::array<ui
         field.spacing = spacingOf(volume.index_to_world);
         field.values = normalizedValues(values, double(*lo), double(*hi));
         stats.tets_before += mesh.tetCount();
-        addStats(stats, options.optimize ? options.optimize(mesh, field, options.weight)
+        addStats(stats, options.optimize ? options.optimize(mesh, std::move(field), options.weight)
                                          : optimizeTetMeshSerial(mesh, field, lawson));
         stats.tets_after += mesh.tetCount();
         ++stats.bricks;

@@ -37,7 +37,9 @@ constexpr uint32_t kBrickMargin = 8;
 
 // Flips one mesh to a local optimum of the field's cost with the weight. core/ has the serial
 // generalized Lawson; the app passes a Vulkan device's parallel rule (core/ links no Vulkan).
-using TetOptimizer = std::function<TetLawsonStats(TetMesh&, const TetCostField&, TetWeight)>;
+// The field is the optimizer's to release (the caller has no more use for it), and the mesh may
+// come back without its neighbours (the resampling reads only the vertices).
+using TetOptimizer = std::function<TetLawsonStats(TetMesh&, TetCostField&&, TetWeight)>;
 // Resamples one mesh's window into the whole output (resampleTetsInto's contract); the app
 // passes a Vulkan device's kernel, equal to core's bit for bit.
 using TetResampler = std::function<void(const TetMesh&, const std::vector<float>&, const TetResampleWindow&, float*)>;

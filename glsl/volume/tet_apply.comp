@@ -28,8 +28,13 @@ void main() {
     for (uint k = 0u; k < plan.new_count; ++k) slots[k] = k < plan.region_count ? plan.region[k] : kNoTet;
     if (plan.kind == kKindTwoThree) {
         const uint rank = rankOf(owner, 0u), free_count = control.base_free;
-        slots[2] = rank < free_count ? imageLoad(free_slots, int(free_count - 1u - rank)).x
-                                     : control.base_slots + (rank - free_count);
+        if (rank < free_count) {
+            slots[2] = imageLoad(free_slots, int(free_count - 1u - rank)).x;
+        } else {
+            // A slot beyond the ones in use: its state word was never zeroed (tet_device.cpp).
+            slots[2] = control.base_slots + (rank - free_count);
+            imageStore(tet_state, int(slots[2]), uvec4(0u));
+        }
     }
     for (uint k = 0u; k < plan.new_count; ++k) imageStore(tet_vertices, int(slots[k]), plan.new_tets[k]);
     for (uint k = 0u; k < plan.new_count; ++k) {

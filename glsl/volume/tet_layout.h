@@ -98,12 +98,15 @@ const uint kTetBindingCount = 20u;
 // The steps of a round, in order; each is one planned indirect dispatch (tet_plan.comp).
 const uint kTetStepMark = 0u;        // tet_mark: the owners of the active tets' sites → evaluation list
 const uint kTetStepCandidates = 1u;  // tet_candidates: the best owned flips, and the carried candidates
-const uint kTetStepClaimHigh = 2u;   // tet_select: claims, high words (and the evaluation bits cleared)
-const uint kTetStepClaimLow = 3u;    // tet_select: claims, tie words
-const uint kTetStepCheck = 4u;       // tet_select: accepted ones, their mask bits
-const uint kTetStepTake = 5u;        // tet_select: the accepted ones' read sets marked taken
-const uint kTetStepJudge = 6u;       // tet_select: the others evaluated anew or carried over
-const uint kTetStepClear = 7u;       // tet_select: claims back to 0
+// tet_select: the candidates' read sets' claims set to 0. Before the claims rather than after
+// them, so that the claims array is never zeroed whole: only the claims of read sets are read,
+// and on a device whose memory is host memory (lavapipe) a whole zeroed array is resident.
+const uint kTetStepClear = 2u;
+const uint kTetStepClaimHigh = 3u;   // tet_select: claims, high words (and the evaluation bits cleared)
+const uint kTetStepClaimLow = 4u;    // tet_select: claims, tie words
+const uint kTetStepCheck = 5u;       // tet_select: accepted ones, their mask bits
+const uint kTetStepTake = 6u;        // tet_select: the accepted ones' read sets marked taken
+const uint kTetStepJudge = 7u;       // tet_select: the others evaluated anew or carried over
 const uint kTetStepScan = 8u;        // tet_scan: the masks' prefix sums within blocks
 const uint kTetStepApply = 9u;       // tet_apply: the flips
 const uint kTetStepRefresh = 10u;    // tet_refresh: new tets' geometry, neighbours listed, freed slots pushed

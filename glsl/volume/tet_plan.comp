@@ -56,10 +56,10 @@ void main() {
             control.eval_count = 0u;  // its bits cleared; the judge step lists the next ones
             setArgs(control.candidate_count);
             break;
+        case kTetStepClear:
         case kTetStepCheck:
         case kTetStepTake:
         case kTetStepJudge:
-        case kTetStepClear:
             setArgs(control.candidate_count);
             break;
         case kTetStepScan:

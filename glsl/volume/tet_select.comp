@@ -1,14 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Step (b) of a round (core/volume/tet_parallel.h), over the candidates, in six dispatches
-// (push.step): every tet of a candidate's read set takes the largest key's high word (a 32-bit
-// atomic maximum), then the largest tie word among the keys with that high word: together the
-// largest 64-bit key, order-independent, in 32-bit texel atomics (no 128 MiB storage-buffer
-// binding to outgrow, no 64-bit atomics to enable). A candidate is accepted when both words are
-// its own at every tet of its read set: its key word gets kTetAccepted, its owner's bit goes into
-// the 2–3 or 3–2 mask (for the slot allocation's prefix sums). The accepted ones then mark their
-// read sets taken; each other one is listed for evaluation in the next round if its read set
-// holds a taken tet, else carried over as it is; last, every claim goes back to 0.
+// (push.step): first the claims of every candidate's read set are set to 0 (no other claim is
+// read, so the array is never zeroed whole); then every tet of a read set takes the largest
+// key's high word (a 32-bit atomic maximum), then the largest tie word among the keys with that
+// high word: together the largest 64-bit key, order-independent, in 32-bit texel atomics (no
+// 128 MiB storage-buffer binding to outgrow, no 64-bit atomics to enable). A candidate is
+// accepted when both words are its own at every tet of its read set: its key word gets
+// kTetAccepted, its owner's bit goes into the 2–3 or 3–2 mask (for the slot allocation's prefix
+// sums). The accepted ones then mark their read sets taken; each other one is listed for
+// evaluation in the next round if its read set holds a taken tet, else carried over as it is.
 // kTetStepClaimHigh also clears the evaluation bits of this round's evaluation list (read by
 // tet_candidates.comp for the carried candidates).
 #include "tet_plan.glsl"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <vector>
 
 #include "image_file.h"
 #include "plane_check.h"
@@ -125,10 +126,40 @@ TEST_CASE("cli mask: bad masks and combinations are refused in one line", "[dela
     writeImage(mask, maskImage(32, 32, [](uint32_t x, uint32_t) { return x % 2 == 0; }));
     requireOneLineError(runDdtup({input, input, "--mask", mask, "-o", work / "dir"}), 2, "--mask", "one input");
     requireOneLineError(runDdtup({input, "--mask", mask, out, "--simplify", "0.5"}), 2, "--mask", "simplification");
-    requireOneLineError(runDdtup({input, "--mask", mask, out, "--tile", "64"}), 2, "--mask", "--tile");
+    requireOneLineError(runDdtup({input, "--mask", mask, out, "--tile", "64", "--mesh", work / "mesh.ply"}), 2, "--mask",
+                        "--tile");
     requireOneLineError(runDdtup({input, "--mask", mask, out, "--reconstruct", "consistent"}), 2, "--mask", "consistent");
     const std::string before = readFile(mask);
     requireOneLineError(runDdtup({input, "--mask", mask, mask}), 2, "--mask", "overwrite");
     CHECK(readFile(mask) == before);
     CHECK_FALSE(std::filesystem::exists(out));
+}
+
+TEST_CASE("cli mask: --tile gives the output in one piece, holes across tile borders included, on both backends",
+          "[delaunay][vulkan]") {
+    TempFolder work;
+    const std::string input = work / "photo.png", mask = work / "holes.png";
+    writeImage(input, test::photoCrop());  // 300 × 200: cores of 60 × 50 with --tile 64
+    // A disc across the column border x = 120 and the row border y = 100, wider than the
+    // overlap; one on the top-left corner (outside the hull); a scratch along a row border.
+    writeImage(mask, maskImage(300, 200, [](uint32_t x, uint32_t y) {
+                   const int dx = int(x) - 120, dy = int(y) - 100;
+                   const bool disc = dx * dx + dy * dy <= 22 * 22, corner = x * x + y * y <= 100;
+                   const bool scratch = (y == 50 || y == 51) && x > 20 && x < 280;
+                   return !(disc || corner || scratch);
+               }));
+    for (const std::string backend : {"cpu", "vulkan"}) {
+        INFO(backend);
+        const std::string whole = work / (backend + "-whole.png"), tiled = work / (backend + "-tiled.png");
+        const Run one = runDdtup({input, "--mask", mask, "-s", "2", whole, "--backend", backend, "-q"});
+        REQUIRE(one.exit_code == 0);
+        const Run tiles = runDdtup({input, "--mask", mask, "-s", "2", tiled, "--backend", backend, "--tile", "64", "-q"});
+        REQUIRE(tiles.exit_code == 0);
+        CHECK(tiles.err.empty());
+        const std::vector<float> a = readImage(whole).pixels, b = readImage(tiled).pixels;
+        REQUIRE(a.size() == b.size());
+        size_t differing = 0;
+        for (size_t i = 0; i < a.size(); ++i) differing += a[i] != b[i];
+        CHECK(differing == 0);
+    }
 }

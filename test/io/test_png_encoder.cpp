@@ -23,12 +23,15 @@
 #include "image_file.h"
 #include "parallel.h"
 #include "png_encoder.h"
+#include "oiio_metadata.h"
 #include "png_metadata.h"
+#include "png_bytes.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 
 using ddt::PngEncoder;
 using ddt::PngFormat;
+using ddt::test::iccProfile;
 
 namespace {
 
@@ -204,6 +207,17 @@ std::vector<ddt::PngChunk> metadataChunks(const std::string& png) {
     return chunks;
 }
 
+// ddtup's metadata chunks of what an OpenImageIO spec holds (its attributes and offset).
+ddt::PngMetadata pngMetadataOf(const OIIO::ImageSpec& spec) {
+    ddt::PngMetadataSource source;
+    source.attributes = ddt::attributesOf(spec);
+    source.channels = uint32_t(spec.nchannels);
+    source.x_offset = spec.x;
+    source.y_offset = spec.y;
+    source.exif = ddt::exifBlock(source.attributes);
+    return ddt::pngMetadata(source);
+}
+
 // The filter type byte of each row, from the inflated image data.
 std::vector<uint8_t> rowFilters(const std::string& png, const PngFormat& format) {
     std::string stream;
@@ -229,34 +243,6 @@ std::string inflatedIcc(const std::string& data) {
     REQUIRE(uncompress(reinterpret_cast<Bytef*>(profile.data()), &size, reinterpret_cast<const Bytef*>(data.data()) + name_end + 2,
                        uLong(data.size() - name_end - 2)) == Z_OK);
     return data.substr(0, name_end + 2) + profile.substr(0, size);
-}
-
-// A small ICC profile: the 128-byte header (its size, version 2.1, a display profile of
-// `colour_space`, XYZ connection space, the signature, D50) and one private tag of 256
-// pseudo-random bytes. Those keep the compressed profile over 91 bytes: libpng 1.6.39's reader
-// ignores a shorter iCCP chunk ("too short": it reads 81 bytes, then wants 11 more).
-std::string iccProfile(const char* colour_space) {
-    const size_t size = 128 + 4 + 12 + 256;
-    std::string profile(size, '\0');
-    auto put = [&](size_t at, uint32_t value) {
-        for (int i = 0; i < 4; ++i) profile[at + i] = char(value >> (24 - 8 * i));
-    };
-    put(0, uint32_t(size));
-    put(8, 0x02100000);
-    profile.replace(12, 4, "mntr");
-    profile.replace(16, 4, colour_space);
-    profile.replace(20, 4, "XYZ ");
-    profile.replace(36, 4, "acsp");
-    put(68, 0x0000F6D6);
-    put(72, 0x00010000);
-    put(76, 0x0000D32D);
-    put(128, 1);  // one tag: its signature, offset and size
-    profile.replace(132, 4, "ddtz");
-    put(136, 144);
-    put(140, 256);
-    std::mt19937 rng(3);
-    for (size_t i = 144; i < size; ++i) profile[i] = char(rng());
-    return profile;
 }
 
 void setIcc(OIIO::ImageSpec& spec, const std::string& profile) {
@@ -576,7 +562,7 @@ TEST_CASE("png: the metadata chunks are the ones OpenImageIO 2.4's writer wrote,
         const std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels, 0.5f);
         writeWithOiio(folder / "theirs.png", spec, pixels);
         std::vector<ddt::PngChunk> theirs = metadataChunks(readFile(folder / "theirs.png"));
-        ddt::PngMetadata ours = ddt::pngMetadata(spec);
+        ddt::PngMetadata ours = pngMetadataOf(spec);
         CHECK(ours.left_out.empty());
         std::erase_if(ours.chunks, [](const ddt::PngChunk& chunk) { return chunk.type == "eXIf"; });
         REQUIRE(ours.chunks.size() == theirs.size());
@@ -613,7 +599,7 @@ TEST_CASE("png: metadata that PNG cannot carry is left out with a note, and the 
     damaged.resize(100);
     setIcc(grey, damaged);
     grey.attribute("\x01\x02", "a key without letters");
-    const std::vector<std::string> left_out = ddt::pngMetadata(grey).left_out;
+    const std::vector<std::string> left_out = pngMetadataOf(grey).left_out;
     REQUIRE(left_out.size() == 2);
     CHECK(left_out[0] == "the ICC profile (damaged)");
     CHECK_THAT(left_out[1], Catch::StartsWith("the text attribute"));

@@ -111,15 +111,68 @@ TEST_CASE("tet vulkan: slots appended beyond the arrays: they grow mid-round to 
     CHECK(context->validation_messages == 0);
 }
 
-// The memory lever for lavapipe, whose device memory is host memory: only the arrays read
-// before written (state bits, claims, scan words: about 13 of the ~90 bytes a slot) are zeroed,
-// so the spare slots and the lists' unused tails never become resident. Zeroing every array,
-// as before, made the zeroed bytes nearly all of the device bytes.
+// The memory lever for lavapipe, whose device memory is host memory: only what the kernels read
+// before they write is zeroed (a fill makes every page of its range resident), so the spare
+// slots, the lists' unused tails and the claims of slots no candidate reads never become
+// resident. What is zeroed, counted here from the layout: the state word (4 bytes) of each slot
+// in use, and the scan words, per block of 32 768 slots of capacity 1 024 pairs of mask words
+// (8 bytes), 1 024 pairs of prefixes (8 bytes) and the block's totals (16 bytes). A generous
+// slack (capacity 4 × the slots) makes zeroing the whole capacity, or the claims, show: the
+// state words alone would be 4 times as many bytes.
 TEST_CASE("tet vulkan: only the arrays read before written are zeroed", "[tet-vulkan][vulkan]") {
     std::unique_ptr<ddt::VulkanContext> context = validatedContext();
-    const ddt::TetDeviceReport report = compareWithCore(*context, sphereField(9, 3.0), TetWeight::variance);
-    CHECK(report.zeroed_bytes > 0);
-    CHECK(report.zeroed_bytes * 4 < report.device_bytes);
+    const ddt::TetCostField field = sphereField(9, 3.0);
+    const uint64_t slots = ddt::kuhnTetMesh(field.size).slotCount();
+    const ddt::TetDeviceReport report = compareWithCore(*context, field, TetWeight::variance, 100000, {16, 3.0});
+    REQUIRE(report.grows == 0);
+    REQUIRE(report.capacity >= 4 * slots);
+    const uint64_t blocks = (report.capacity + 32767) / 32768;
+    CHECK(report.zeroed_bytes == 4 * slots + blocks * (1024 * 8 + 1024 * 8 + 16));
+    CHECK(context->validation_messages == 0);
+}
+
+// What is not zeroed must be written before it is read: with every array filled with 1 bits
+// first (no valid state word: every slot would look listed; every claim would look taken), the
+// result is still core's, with and without growth (a growth's new arrays are filled too).
+TEST_CASE("tet vulkan: arrays full of garbage at the start change nothing", "[tet-vulkan][vulkan]") {
+    std::unique_ptr<ddt::VulkanContext> context = validatedContext();
+    ddt::TetDeviceOptions poisoned;
+    poisoned.poison = true;
+    for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
+        compareWithCore(*context, sphereField(9, 3.0), weight, 100000, poisoned);
+        compareWithCore(*context, randomField({7, 6, 5}, 11, 1000), weight, 100000, poisoned);
+    }
+    // Slots appended at once and after growths (no slack), as in the growth test above.
+    const ddt::TetCostField first = randomField({7, 6, 5}, 1, 1000), second = randomField({7, 6, 5}, 2, 1000);
+    ddt::TetParallelOptions options;
+    options.weight = TetWeight::variance;
+    ddt::TetMesh mesh = ddt::kuhnTetMesh(first.size);
+    ddt::optimizeTetMeshParallel(mesh, first, options);
+    mesh = compacted(mesh);
+    poisoned.slack = 0.0;
+    CHECK(compareWithCore(*context, second, TetWeight::variance, 100000, poisoned, &mesh).grows > 0);
+    CHECK(context->validation_messages == 0);
+}
+
+// The app's way: the field taken (its values released once uploaded) and the mesh back without
+// its neighbours; the same vertices and free slots as with both.
+TEST_CASE("tet vulkan: a taken field and the mesh back without its neighbours", "[tet-vulkan][vulkan]") {
+    std::unique_ptr<ddt::VulkanContext> context = validatedContext();
+    const ddt::TetCostField field = sphereField(9, 3.0);
+    ddt::TetParallelOptions options;
+    options.weight = TetWeight::variance;
+    ddt::TetMesh whole = ddt::kuhnTetMesh(field.size), bare = whole;
+    const ddt::TetParallelStats expected = ddt::optimizeTetMeshVulkan(*context, whole, field, options);
+    ddt::TetCostField taken = field;
+    ddt::TetDeviceOptions device;
+    device.return_neighbours = false;
+    const ddt::TetParallelStats got = ddt::optimizeTetMeshVulkan(*context, bare, std::move(taken), options, device);
+    CHECK(taken.values.empty());
+    CHECK(bare.neighbours.empty());
+    CHECK(bare.vertices == whole.vertices);
+    CHECK(bare.free_slots == whole.free_slots);
+    CHECK(got.flips == expected.flips);
+    CHECK(sameBits(got.cost_after, expected.cost_after));
     CHECK(context->validation_messages == 0);
 }
 

@@ -1,0 +1,107 @@
+#include "sampled_tile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "nearest_fill.h"
+#include "raster.h"
+#include "sampled_render.h"
+
+namespace ddt {
+
+namespace {
+
+constexpr float kUncovered = std::numeric_limits<float>::quiet_NaN();
+
+void clearRows(const RenderWindow& window, uint32_t channels, float* rows, size_t row_stride) {
+    for (uint32_t y = 0; y < window.height(); ++y)
+        std::fill_n(rows + y * row_stride, size_t(window.width()) * channels, kUncovered);
+}
+
+// A tile's optimised sample mesh, rendered like the whole image's (core/delaunay/sampled_render.h)
+// but a window at a time; the pixels of its output outside the hull were filled when it was made.
+class SampledSurface final : public HostSurface {
+public:
+    SampledSurface(Image values, const Mesh& mesh, const RenderWindow& frame)
+        : values_(std::move(values)), renderer_(mesh, values_), edges_(hullEdgesOf(mesh, frame)) {}
+    SampledSurface(const SampledSurface&) = delete;  // renderer_ refers to values_
+    SampledSurface& operator=(const SampledSurface&) = delete;
+
+    // The surface's samples of `window` without the nearest fill: NaN outside the hull.
+    void renderHull(const RenderWindow& window, float* rows, size_t row_stride) const {
+        clearRows(window, values_.channels, rows, row_stride);
+        renderer_.renderWindow(window, rows, row_stride);
+        fillOnHullEdges(edges_, false, values_, window, rows, row_stride);
+    }
+
+    void renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const override {
+        const uint32_t c = values_.channels;
+        if (row_stride == 0) row_stride = size_t(window.width()) * c;
+        renderHull(window, rows, row_stride);
+        for (size_t i = 0; i < filled_at_.size(); ++i) {
+            const auto [x, y] = filled_at_[i];
+            if (x < window.x_begin || x >= window.x_end || y < window.y_begin || y >= window.y_end) continue;
+            std::memcpy(rows + (y - window.y_begin) * row_stride + size_t(x - window.x_begin) * c,
+                        filled_.data() + i * c, c * sizeof(float));
+        }
+    }
+
+    bool covers(int64_t x, int64_t y) const { return hullContains(edges_, x, y); }
+    // Fills the output pixels of `tile_output` outside the hull from the nearest pixel the
+    // crop's output has inside it, and keeps them for renderWindow.
+    void fillOutside(const RenderWindow& crop_output, const PixelRect& tile_output) {
+        const uint32_t c = values_.channels;
+        std::vector<float> pixels(size_t(crop_output.width()) * crop_output.height() * c);
+        renderHull(crop_output, pixels.data(), size_t(crop_output.width()) * c);
+        auto at = [&](uint32_t x, uint32_t y) {
+            return pixels.data() + (size_t(y - crop_output.y_begin) * crop_output.width() + (x - crop_output.x_begin)) * c;
+        };
+        for (uint32_t y = tile_output.y0; y < tile_output.y1; ++y)
+            for (uint32_t x = tile_output.x0; x < tile_output.x1; ++x)
+                if (std::isnan(*at(x, y))) filled_at_.push_back({x, y});
+        fillFromNearest(pixels.data(), crop_output.width(), crop_output.height(), c);
+        filled_.resize(filled_at_.size() * c);
+        for (size_t i = 0; i < filled_at_.size(); ++i)
+            std::memcpy(filled_.data() + i * c, at(filled_at_[i].first, filled_at_[i].second), c * sizeof(float));
+    }
+
+private:
+    Image values_;
+    MeshRenderer renderer_;
+    std::vector<HullEdge> edges_;
+    std::vector<std::pair<uint32_t, uint32_t>> filled_at_;  // output pixels outside the hull
+    std::vector<float> filled_;                             // their values, channels each
+};
+
+}  // namespace
+
+SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownPixels& known, const Tile& tile,
+                             const RenderWindow& frame) {
+    Image crop = input.crop(tile.crop);
+    backend.prepareFrom(crop, backend.delaunayPixels(crop.width, crop.height, known.idsIn(tile.crop)));
+    SampledTile shaped;
+    shaped.stats = backend.optimize();
+    const Mesh mesh = backend.takeMesh();
+    RenderWindow placed = frame;
+    placed.crop_x = tile.crop.x0;
+    placed.crop_y = tile.crop.y0;
+    auto surface = std::make_unique<SampledSurface>(std::move(crop), mesh, placed);
+    // The hull is convex: if it holds the corners of the tile's samples, it holds them all.
+    const uint32_t in_w = frame.input_width, in_h = frame.input_height, out_w = frame.out.width, out_h = frame.out.height;
+    const int64_t left = sampleCoord(tile.output.x0, in_w, out_w), right = sampleCoord(tile.output.x1 - 1, in_w, out_w);
+    const int64_t top = sampleCoord(tile.output.y0, in_h, out_h), bottom = sampleCoord(tile.output.y1 - 1, in_h, out_h);
+    if (!(surface->covers(left, top) && surface->covers(right, top) && surface->covers(left, bottom) &&
+          surface->covers(right, bottom))) {
+        placed.x_begin = firstOutputOf(tile.crop.x0, in_w, out_w);
+        placed.x_end = firstOutputOf(tile.crop.x1, in_w, out_w);
+        placed.y_begin = firstOutputOf(tile.crop.y0, in_h, out_h);
+        placed.y_end = firstOutputOf(tile.crop.y1, in_h, out_h);
+        surface->fillOutside(placed, tile.output);
+    }
+    shaped.surface = std::move(surface);
+    return shaped;
+}
+
+}  // namespace ddt

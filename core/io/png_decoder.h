@@ -1,0 +1,42 @@
+// Decoding PNG files with libspng, to the samples OpenImageIO's reader (libpng) gives: grey,
+// grey+alpha, RGB or RGBA in 8 or 16 bits; palettes expanded to RGB, grey below 8 bits scaled
+// to 8, a tRNS transparency made an alpha channel; no gamma applied. A step towards reading
+// images without OpenImageIO in the process, as jpeg_decoder.h.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ddt {
+
+class PngDecoder {
+public:
+    // Reads the chunks before the image data. Throws UserError("NAME: …") for a file that is
+    // not a readable PNG; `name` is how messages call the file.
+    PngDecoder(const std::string& path, const std::string& name);
+    ~PngDecoder();
+    PngDecoder(const PngDecoder&) = delete;
+    PngDecoder& operator=(const PngDecoder&) = delete;
+
+    uint32_t width() const;
+    uint32_t height() const;
+    uint32_t channels() const;    // 1 to 4, alpha last
+    uint32_t sampleBits() const;  // 8 or 16
+
+    // Every row, top to bottom, channels interleaved: width · height · channels samples of
+    // sampleBits() (uint8_t or uint16_t in host order). Throws UserError for a truncated or
+    // corrupt file. Once.
+    void decode(void* samples);
+
+    // The eXIf chunk (a TIFF header first) and the iCCP profile (uncompressed), or empty.
+    std::vector<uint8_t> exif() const;
+    std::vector<uint8_t> iccProfile() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace ddt

@@ -1,0 +1,182 @@
+// A mask's known pixels in tiles (app/delaunay/sampled_tile.h): the grown crop's Delaunay
+// triangulation holds every whole-image triangle near its tile (core/delaunay/known_pixels.h),
+// and tiled outputs equal the untiled ones, holes across tile borders and on the image's
+// border included, on both backends.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <set>
+
+#include "backend.h"
+#include "delaunay.h"
+#include "delaunay/sampled_upscale.h"
+#include "known_pixels.h"
+#include "test_support.h"
+#include "tiled_upscale.h"
+#include "vulkan_backend.h"
+
+namespace {
+
+using namespace ddt;
+
+// Black discs and scratches on white: `holes` discs of radius 1 to `largest` at random, one
+// disc on each given place, and a thin diagonal scratch across the whole image.
+KnownPixels holedMask(uint32_t w, uint32_t h, uint32_t seed, int holes, int largest,
+                      const std::vector<std::array<int, 3>>& placed) {
+    std::vector<uint8_t> known(size_t(w) * h, 1);
+    auto disc = [&](int cx, int cy, int r) {
+        for (int y = std::max(0, cy - r); y <= std::min(int(h) - 1, cy + r); ++y)
+            for (int x = std::max(0, cx - r); x <= std::min(int(w) - 1, cx + r); ++x)
+                if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) known[size_t(y) * w + x] = 0;
+    };
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> x(0, int(w) - 1), y(0, int(h) - 1), r(1, largest);
+    for (int i = 0; i < holes; ++i) disc(x(rng), y(rng), r(rng));
+    for (const auto& [cx, cy, radius] : placed) disc(cx, cy, radius);
+    for (uint32_t t = 0; t < std::min(w, h); ++t) known[size_t(t) * w + (t * 3 / 2) % w] = 0;  // the scratch
+    return KnownPixels(w, h, std::move(known));
+}
+
+// The triangles of `mesh` as sorted triples of whole-image pixel ids, the mesh being of the
+// crop at (x0, y0) of a `width`-wide image; with `only`, those with a vertex in it.
+std::set<std::array<uint32_t, 3>> trianglesOf(const Mesh& mesh, uint32_t x0, uint32_t y0, uint32_t width,
+                                              const PixelRect* only = nullptr) {
+    std::set<std::array<uint32_t, 3>> triangles;
+    forEachTriangle(mesh, [&](const Triangle& t) {
+        std::array<uint32_t, 3> ids{};
+        bool touches = only == nullptr;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
+            const uint32_t x = v % mesh.width + x0, y = v / mesh.width + y0;
+            ids[k] = y * width + x;
+            if (only && x >= only->x0 && x < only->x1 && y >= only->y0 && y < only->y1) touches = true;
+        }
+        std::sort(ids.begin(), ids.end());
+        if (touches) triangles.insert(ids);
+    });
+    return triangles;
+}
+
+std::unique_ptr<Backend> makeBackendNamed(const std::string& name) {
+    if (name == "cpu") return makeCpuBackend();
+    VulkanOptions options;
+    options.validation = true;
+    return std::make_unique<VulkanBackend>(options);
+}
+
+std::vector<float> collect(const std::function<void(const std::function<void(OutputRows&&)>&)>& run, size_t row_floats) {
+    std::vector<float> pixels;
+    run([&](OutputRows&& rows) {
+        pixels.insert(pixels.end(), rows.floats.get(), rows.floats.get() + rows.rows() * row_floats);
+    });
+    return pixels;
+}
+
+}  // namespace
+
+TEST_CASE("known pixels: a grown crop's triangulation holds every whole-image triangle touching its rect") {
+    const uint32_t w = 120, h = 90;
+    const PixelRect rects[] = {{40, 30, 60, 50}, {0, 0, 20, 20}, {100, 70, 120, 90}, {10, 40, 110, 45}};
+    size_t missing_when_not_grown = 0;
+    for (uint32_t seed = 1; seed <= 4; ++seed) {
+        KnownPixels known = holedMask(w, h, seed, 12, 9, {{50, 40, 8}});
+        known.measureHoles();
+        const Mesh whole = delaunayOfPixels(w, h, known.idsIn({0, 0, w, h}));
+        for (const PixelRect& rect : rects) {
+            CAPTURE(seed, rect.x0, rect.y0);
+            const PixelRect crop = known.cropFor(rect, w);
+            const std::set<std::array<uint32_t, 3>> wanted = trianglesOf(whole, 0, 0, w, &rect);
+            auto croppedTriangles = [&](const PixelRect& c) {
+                REQUIRE(known.problemIn(c).empty());
+                return trianglesOf(delaunayOfPixels(c.width(), c.height(), known.idsIn(c)), c.x0, c.y0, w);
+            };
+            const std::set<std::array<uint32_t, 3>> got = croppedTriangles(crop);
+            CHECK(std::includes(got.begin(), got.end(), wanted.begin(), wanted.end()));
+            // The rule is needed: the rect grown by the tiles' usual 3 pixels alone misses some.
+            const std::set<std::array<uint32_t, 3>> near = croppedTriangles(known.cropFor(rect, 3));
+            for (const auto& t : wanted) missing_when_not_grown += near.count(t) == 0;
+        }
+    }
+    CHECK(missing_when_not_grown > 0);
+}
+
+TEST_CASE("known pixels: the crop grows to hold a hole next to its rect, and no further without holes") {
+    std::vector<uint8_t> bytes(100 * 100, 1);
+    KnownPixels full(100, 100, bytes);
+    full.measureHoles();
+    const PixelRect rect{40, 40, 60, 60};
+    const PixelRect plain = full.cropFor(rect, 100);
+    // No hole: the distance is 0 everywhere, so 2 · (0 + 1) + 1 = 3 pixels a side.
+    CHECK((plain.x0 == 37 && plain.y0 == 37 && plain.x1 == 63 && plain.y1 == 63));
+    for (uint32_t y = 45; y < 55; ++y)
+        for (uint32_t x = 60; x < 80; ++x) bytes[y * 100 + x] = 0;  // 20 × 10 beside the rect's right side
+    KnownPixels holed(100, 100, bytes);
+    holed.measureHoles();
+    const PixelRect grown = holed.cropFor(rect, 100);
+    // Its circles are at most about 10 wide (the hole's height): 2 · 5 + 3 pixels, not the
+    // hole's whole length, whatever is further right.
+    CHECK(grown.x1 == 60 + 13);
+    CHECK((grown.x0 == 27 && grown.y0 == 27 && grown.y1 == 73));  // the same growth on every side
+    CHECK(holed.cropFor(rect, 4).x1 == 64);  // the growth is capped
+}
+
+TEST_CASE("known pixels: a crop whose known pixels cannot be triangulated is the whole image") {
+    // Known: the top row, and one pixel at the far corner; a capped crop near the top holds
+    // only collinear pixels.
+    std::vector<uint8_t> bytes(100 * 100, 0);
+    std::fill_n(bytes.begin(), 100, uint8_t(1));
+    bytes.back() = 1;
+    KnownPixels known(100, 100, bytes);
+    known.measureHoles();
+    const PixelRect crop = known.cropFor({40, 0, 60, 20}, 4);
+    CHECK((crop.x0 == 0 && crop.y0 == 0 && crop.x1 == 100 && crop.y1 == 100));
+    CHECK(known.problemIn({36, 0, 64, 24}) == "all points are collinear");
+}
+
+TEST_CASE("masked tiles: tiled outputs equal the untiled one, holes across tile borders included", "[vulkan]") {
+    const Image image = test::photoCrop();  // 300 × 200
+    const uint32_t w = image.width, h = image.height;
+    // Holes centred on the 64-pixel tiles' borders (cores of 60 × 50: x = 60, 120, 180, 240,
+    // y = 50, 100, 150), on the image's corners and its left edge (the fill outside the hull),
+    // two wider than the 16-pixel overlap.
+    const KnownPixels mask = holedMask(w, h, 7, 40, 6,
+                                       {{60, 50, 12}, {120, 100, 20}, {240, 150, 9}, {0, 0, 10}, {0, 120, 7}, {299, 199, 5}});
+    const PackedImage input(image);
+    for (const char* name : {"cpu", "vulkan"}) {
+        std::unique_ptr<Backend> backend = makeBackendNamed(name);
+        for (double scale : {1.0, 2.0}) {
+            CAPTURE(name, scale);
+            const OutputSize out = scaledOutputSize(w, h, scale);
+            const size_t row_floats = size_t(out.width) * image.channels;
+            const std::vector<float> untiled = collect(
+                [&](const auto& sink) {
+                    upscaleFromSamples(*backend, image, backend->delaunayPixels(w, h, mask.idsIn({0, 0, w, h})), out, sink);
+                },
+                row_floats);
+            for (uint32_t side : {64u, 128u}) {
+                KnownPixels measured = mask;
+                measured.measureHoles();
+                TileOptions options;
+                options.tile = side;
+                options.known = &measured;
+                const std::vector<float> tiled =
+                    collect([&](const auto& sink) { upscaleRows(*backend, input, out, options, sink); }, row_floats);
+                REQUIRE(tiled.size() == untiled.size());
+                size_t differing = 0;
+                float largest = 0.0f;
+                for (size_t i = 0; i < tiled.size(); ++i) {
+                    differing += tiled[i] != untiled[i];
+                    largest = std::max(largest, std::abs(tiled[i] - untiled[i]));
+                }
+                CAPTURE(side, differing, largest);
+                CHECK(differing == 0);
+            }
+        }
+        auto* vulkan = dynamic_cast<VulkanBackend*>(backend.get());
+        if (vulkan) CHECK(vulkan->validationMessages() == 0);
+    }
+}
