@@ -1,8 +1,10 @@
 #include "test_support.h"
+
 #include "cost.h"
 #include "edge_collapse.h"
 #include "image_file.h"
 #include "lawson.h"
+#include "user_error.h"
 
 #include <catch2/catch.hpp>
 
@@ -182,6 +184,15 @@ bool sameRecords(const Mesh& a, const Mesh& b) {
         if (m.bl != n.bl || m.la != n.la || m.ar != n.ar || m.rb != n.rb) return false;
     }
     return a.positions == b.positions;
+}
+
+std::string userErrorOf(const std::function<void()>& action) {
+    try {
+        action();
+    } catch (const UserError& error) {
+        return error.what();
+    }
+    return "";
 }
 
 bool samePixels(std::span<const float> a, std::span<const float> b) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <string>
 #include <span>
@@ -64,6 +65,9 @@ std::string triangulationProblem(const Mesh& mesh);
 
 // Records equal field by field.
 bool sameRecords(const Mesh& a, const Mesh& b);  // records and explicit positions
+
+// The message of the UserError `action` throws; "" when it throws none (other exceptions pass).
+std::string userErrorOf(const std::function<void()>& action);
 
 // Exact float equality of two pixel arrays (NaN never equal).
 bool samePixels(std::span<const float> a, std::span<const float> b);

@@ -20,7 +20,6 @@
 #include "jpeg_decoder.h"
 #include "temp_folder.h"
 #include "test_support.h"
-#include "user_error.h"
 
 namespace {
 
@@ -174,12 +173,8 @@ TEST_CASE("jpeg decoder: a file that is not a JPEG, a truncated one and a CMYK o
     const std::string png = folder / "picture.jpg";  // a PNG named .jpg
     ddt::writeImage(folder / "picture.png", ddt::test::photoCrop());
     fs::copy_file(folder / "picture.png", png);
-    try {
-        JpegDecoder decoder(png, "picture.jpg");
-        FAIL("a PNG file was taken for a JPEG");
-    } catch (const ddt::UserError& error) {
-        CHECK_THAT(error.what(), Catch::StartsWith("picture.jpg: not a readable JPEG image ("));
-    }
+    CHECK_THAT(ddt::test::userErrorOf([&] { JpegDecoder decoder(png, "picture.jpg"); }),
+               Catch::StartsWith("picture.jpg: not a readable JPEG image ("));
 
     const std::string whole = folder / "whole.jpg", cut = folder / "cut.jpg";
     writeJpeg(whole, 300, 200, 3, photoCodes(3, 300, 200));
@@ -187,12 +182,8 @@ TEST_CASE("jpeg decoder: a file that is not a JPEG, a truncated one and a CMYK o
     fs::resize_file(cut, fs::file_size(whole) / 2);
     JpegDecoder truncated(cut, "cut.jpg");
     std::vector<uint8_t> codes(300 * 200 * 3);
-    try {
-        truncated.decode(codes.data());
-        FAIL("half a file decoded without a complaint");
-    } catch (const ddt::UserError& error) {
-        CHECK_THAT(error.what(), Catch::StartsWith("cut.jpg: truncated or corrupt image ("));
-    }
+    CHECK_THAT(ddt::test::userErrorOf([&] { truncated.decode(codes.data()); }),
+               Catch::StartsWith("cut.jpg: truncated or corrupt image ("));
 
     const std::string cmyk = folder / "cmyk.jpg";
     writeByLibjpeg(cmyk, 16, 8, JCS_CMYK);

@@ -67,6 +67,17 @@ ddt::TetDeviceReport compareWithCore(ddt::VulkanContext& context, const ddt::Tet
     return report;
 }
 
+// The mesh optimized for one random field, compacted (no free slots): optimized again for
+// another field (randomField({7, 6, 5}, 2, 1000)), its first rounds append slots.
+ddt::TetMesh compactedMeshOfAnotherField() {
+    ddt::TetParallelOptions options;
+    options.weight = TetWeight::variance;
+    const ddt::TetCostField first = randomField({7, 6, 5}, 1, 1000);
+    ddt::TetMesh mesh = ddt::kuhnTetMesh(first.size);
+    ddt::optimizeTetMeshParallel(mesh, first, options);
+    return compacted(mesh);
+}
+
 }  // namespace
 
 TEST_CASE("tet vulkan: a sphere and a slanted plane equal core's parallel rule bit for bit", "[tet-vulkan][vulkan]") {
@@ -96,12 +107,8 @@ TEST_CASE("tet vulkan: slots appended beyond the arrays: they grow mid-round to 
     // The mesh of one random field, compacted (no free slots), optimized for another: its first
     // rounds append slots. With no slack the arrays must grow, in the middle of a round.
     std::unique_ptr<ddt::VulkanContext> context = validatedContext();
-    const ddt::TetCostField first = randomField({7, 6, 5}, 1, 1000), second = randomField({7, 6, 5}, 2, 1000);
-    ddt::TetParallelOptions options;
-    options.weight = TetWeight::variance;
-    ddt::TetMesh mesh = ddt::kuhnTetMesh(first.size);
-    ddt::optimizeTetMeshParallel(mesh, first, options);
-    mesh = compacted(mesh);
+    const ddt::TetCostField second = randomField({7, 6, 5}, 2, 1000);
+    ddt::TetMesh mesh = compactedMeshOfAnotherField();
     for (TetWeight weight : {TetWeight::variance, TetWeight::face_scf}) {
         const ddt::TetDeviceReport tight = compareWithCore(*context, second, weight, 100000, {4, 0.0}, &mesh);
         if (weight == TetWeight::variance) CHECK(tight.grows > 0);
@@ -143,12 +150,8 @@ TEST_CASE("tet vulkan: arrays full of garbage at the start change nothing", "[te
         compareWithCore(*context, randomField({7, 6, 5}, 11, 1000), weight, 100000, poisoned);
     }
     // Slots appended at once and after growths (no slack), as in the growth test above.
-    const ddt::TetCostField first = randomField({7, 6, 5}, 1, 1000), second = randomField({7, 6, 5}, 2, 1000);
-    ddt::TetParallelOptions options;
-    options.weight = TetWeight::variance;
-    ddt::TetMesh mesh = ddt::kuhnTetMesh(first.size);
-    ddt::optimizeTetMeshParallel(mesh, first, options);
-    mesh = compacted(mesh);
+    const ddt::TetCostField second = randomField({7, 6, 5}, 2, 1000);
+    ddt::TetMesh mesh = compactedMeshOfAnotherField();
     poisoned.slack = 0.0;
     CHECK(compareWithCore(*context, second, TetWeight::variance, 100000, poisoned, &mesh).grows > 0);
     CHECK(context->validation_messages == 0);
