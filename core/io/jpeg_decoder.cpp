@@ -67,6 +67,7 @@ bool named(const jpeg_saved_marker_ptr marker, const char* name, size_t name_siz
 
 }  // namespace
 
+// Frees libjpeg's state and closes the file also when the constructor throws.
 struct JpegDecoder::State {
     std::string name;
     std::FILE* file = nullptr;
@@ -74,6 +75,11 @@ struct JpegDecoder::State {
     jpeg_decompress_struct info{};
     bool created = false;
     bool decoded = false;
+
+    ~State() {
+        if (created) jpeg_destroy_decompress(&info);
+        if (file) std::fclose(file);
+    }
 };
 
 JpegDecoder::JpegDecoder(const std::string& path, const std::string& name) : state_(std::make_unique<State>()) {
@@ -104,10 +110,7 @@ JpegDecoder::JpegDecoder(const std::string& path, const std::string& name) : sta
     for (const auto& [number, chunk] : icc_chunks) icc_.insert(icc_.end(), chunk.begin(), chunk.end());
 }
 
-JpegDecoder::~JpegDecoder() {
-    if (state_->created) jpeg_destroy_decompress(&state_->info);
-    if (state_->file) std::fclose(state_->file);
-}
+JpegDecoder::~JpegDecoder() = default;
 
 uint32_t JpegDecoder::width() const { return state_->info.image_width; }
 uint32_t JpegDecoder::height() const { return state_->info.image_height; }

@@ -40,6 +40,7 @@ Output outputFor(const spng_ihdr& header, bool transparency) {
 
 }  // namespace
 
+// Frees libspng's context and closes the file also when the constructor throws.
 struct PngDecoder::State {
     std::string name;
     std::FILE* file = nullptr;
@@ -47,6 +48,11 @@ struct PngDecoder::State {
     spng_ihdr header{};
     Output output{};
     bool decoded = false;
+
+    ~State() {
+        spng_ctx_free(context);
+        if (file) std::fclose(file);
+    }
 };
 
 PngDecoder::PngDecoder(const std::string& path, const std::string& name) : state_(std::make_unique<State>()) {
@@ -63,10 +69,7 @@ PngDecoder::PngDecoder(const std::string& path, const std::string& name) : state
     s.output = outputFor(s.header, spng_get_trns(s.context, &transparency) == 0);
 }
 
-PngDecoder::~PngDecoder() {
-    spng_ctx_free(state_->context);
-    if (state_->file) std::fclose(state_->file);
-}
+PngDecoder::~PngDecoder() = default;
 
 uint32_t PngDecoder::width() const { return state_->header.width; }
 uint32_t PngDecoder::height() const { return state_->header.height; }
