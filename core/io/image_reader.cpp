@@ -21,9 +21,9 @@
 #include "image_metadata.h"
 #include "input_check.h"
 #include "jpeg_decoder.h"
-#include "png_decoder.h"
 #include "oiio_codec.h"
 #include "oiio_metadata.h"
+#include "png_decoder.h"
 #include "temp_files.h"
 
 namespace ddt {
@@ -311,7 +311,7 @@ std::vector<Sample> ImageReader::decode() {
         }
     }
     if constexpr (std::is_same_v<Sample, uint8_t> || std::is_same_v<Sample, uint16_t>) {
-        if (s.png && s.png->sampleBits() == 8 * sizeof(Sample)) {
+        if (s.png) {  // its depth is the file's (checked against OpenImageIO's), which chose Sample
             s.png->decode(samples.data());
             decoded = true;
         }
