@@ -93,13 +93,30 @@ std::string exifBlock(const ImageAttributes& attributes) {
     bool any = false;
     for (const ImageAttribute& attribute : attributes.all())
         any = any || OIIO::Strutil::istarts_with(attribute.name, "Exif:") || OIIO::Strutil::istarts_with(attribute.name, "GPS:");
-    if (!any) return "";
+    return any ? exifBlockOfAll(attributes) : "";
+}
+
+std::string exifBlockOfAll(const ImageAttributes& attributes) {
     OIIO::ImageSpec spec;
     addAttributes(attributes, spec);
     std::vector<char> block;
     // Little-endian: OpenImageIO 2.4 writes a wrong signature for big endian.
     OIIO::encode_exif(spec, block, OIIO::endian::little);
     return std::string(block.begin(), block.end());
+}
+
+std::string iptcBlock(const ImageAttributes& attributes) {
+    OIIO::ImageSpec spec;
+    addAttributes(attributes, spec);
+    std::vector<char> block;
+    OIIO::encode_iptc_iim(spec, block);
+    return std::string(block.begin(), block.end());
+}
+
+std::string xmpPacket(const ImageAttributes& attributes) {
+    OIIO::ImageSpec spec;
+    addAttributes(attributes, spec);
+    return OIIO::encode_xmp(spec, true);
 }
 
 }  // namespace ddt

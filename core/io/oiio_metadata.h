@@ -21,5 +21,13 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec);
 // encoded as the little-endian TIFF structure of PNG's eXIf chunk; "" when there is no EXIF
 // or GPS attribute.
 std::string exifBlock(const ImageAttributes& attributes);
+// The same encoding also when there is no EXIF or GPS attribute (the TIFF tags alone, or an
+// empty directory), as OpenImageIO's JPEG writer always wrote one.
+std::string exifBlockOfAll(const ImageAttributes& attributes);
+
+// The IPTC-IIM records and the XMP packet OpenImageIO 2.4's JPEG writer made of the attributes
+// (encode_iptc_iim, encode_xmp with its "minimal" choice), "" for none.
+std::string iptcBlock(const ImageAttributes& attributes);
+std::string xmpPacket(const ImageAttributes& attributes);
 
 }  // namespace ddt
