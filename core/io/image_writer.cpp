@@ -1,5 +1,5 @@
 // Writing image files: format limits checked first, a temporary file renamed over the output
-// on commit, PNG through ddtup's parallel encoder, every other format through OpenImageIO.
+// on commit, PNG and JPEG through ddtup's own encoders, every other format through OpenImageIO.
 #include "image_file.h"
 
 #include <OpenImageIO/imageio.h>
@@ -16,6 +16,7 @@
 #include "checked_file.h"
 #include "image_formats.h"
 #include "image_metadata.h"
+#include "jpeg_encoder.h"
 #include "oiio_codec.h"
 #include "oiio_metadata.h"
 #include "output_file.h"
@@ -29,16 +30,32 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The formats ddtup writes with its own encoders, OpenImageIO's names, and the largest side
+// each takes (the one OpenImageIO 2.4's writer took, so that the same jobs are refused).
+struct OwnWriter {
+    const char* format;
+    bool alpha;
+    uint32_t max_side;
+};
+const OwnWriter kOwnWriters[] = {
+    {"png", true, 1000000},  // libpng's default user limit (the format itself allows 2^31 - 1)
+    {"jpeg", false, 65500},  // libjpeg's JPEG_MAX_DIMENSION (the format itself stops at 65535)
+};
+
+const OwnWriter* ownWriter(const std::string& format) {
+    for (const OwnWriter& own : kOwnWriters)
+        if (format == own.format) return &own;
+    return nullptr;
+}
+
 // The largest side a format can hold, for the formats where OIIO 2.4 does not refuse a larger
-// one cleanly when the output is opened (measured): libjpeg ends the whole process, libpng
-// prints its own error, GIF files come out corrupt, WebP fails only after all the work.
+// one cleanly when the output is opened (measured): GIF files come out corrupt, WebP fails
+// only after all the work.
 struct SideLimit {
     const char* format;
     uint32_t max_side;
 };
 const SideLimit kSideLimits[] = {
-    {"jpeg", 65500},    // libjpeg's JPEG_MAX_DIMENSION (the format itself stops at 65535)
-    {"png", 1000000},   // libpng's default user limit (the format itself allows 2^31 - 1)
     {"gif", 65535},     // 16-bit size fields
     {"webp", 16383},    // 14-bit size fields
 };
@@ -72,14 +89,19 @@ std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t 
         return (extension.empty() || extension == "." ? std::string("the output has no file extension")
                                                       : "the extension " + extension + " is not a format ddtup writes") +
                " (" + imageFormatTitles() + "; see --format)";
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(ours->oiio_name);
-    if (!output) return std::string("OpenImageIO has no ") + ours->title + " writer";
+    const OwnWriter* own = ownWriter(ours->oiio_name);
+    std::string name = ours->oiio_name;
+    uint32_t max_side = own ? own->max_side : kMaxSide;
+    if (!own) {
+        std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(ours->oiio_name);
+        if (!output) return std::string("OpenImageIO has no ") + ours->title + " writer";
+        name = output->format_name();
+    }
     if (width < 1 || height < 1) return "an image needs at least 1×1 pixels";
-    uint32_t max_side = kMaxSide;
     for (const SideLimit& limit : kSideLimits)
-        if (output->format_name() == std::string(limit.format)) max_side = limit.max_side;
+        if (name == limit.format) max_side = limit.max_side;
     if (width > max_side || height > max_side)
-        return std::string(output->format_name()) + " holds at most " + std::to_string(max_side) + " pixels a side; the output would be " +
+        return name + " holds at most " + std::to_string(max_side) + " pixels a side; the output would be " +
                std::to_string(width) + "×" + std::to_string(height);
     return "";
 }
@@ -147,8 +169,9 @@ struct ImageWriter::State {
     std::unique_ptr<TempFile> temp;
     std::unique_ptr<CheckedFile> file;  // null for the few codecs that cannot write through one
     std::unique_ptr<CheckedFileProxy> proxy;    // `file` as OIIO's writer sees it
-    std::unique_ptr<OIIO::ImageOutput> output;  // OIIO's writer, for every format but PNG
+    std::unique_ptr<OIIO::ImageOutput> output;  // OIIO's writer, for every format but PNG and JPEG
     std::unique_ptr<PngWriter> png;             // ddtup's own, for PNG
+    std::unique_ptr<JpegWriter> jpeg;           // ddtup's own, for JPEG
     uint32_t width = 0, height = 0;
     OutputLayout layout;
     uint32_t next_row = 0;
@@ -190,14 +213,16 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
     if (path != kStandardStream) checkOutputPath(path);
     if (std::string problem = checkOutputFormat(path, width, height, options.format); !problem.empty())
         throw UserError(s.name + ": " + problem);
-    s.output = OIIO::ImageOutput::create(formatOfExtension(outputExtension(path, options.format))->oiio_name);
-    const std::string format = s.output->format_name();
+    const std::string format_name = formatOfExtension(outputExtension(path, options.format))->oiio_name;
+    const OwnWriter* own = ownWriter(format_name);
+    if (!own) s.output = OIIO::ImageOutput::create(format_name);
+    const std::string format = own ? format_name : s.output->format_name();
     const SampleType wanted_type = options.depth.value_or(like.sample_type);
 
     OutputLayout& layout = s.layout;
     layout.in_channels = layout.out_channels = like.channels;
     layout.in_alpha = layout.out_alpha = like.hasAlpha();
-    if (like.hasAlpha() && !s.output->supports("alpha")) {
+    if (like.hasAlpha() && !(own ? own->alpha : s.output->supports("alpha"))) {
         // Dropping alpha would leave the premultiplied colour, i.e. black under transparent
         // areas; image editors flatten onto white when exporting to such formats, so do we.
         layout.flatten = true;
@@ -228,7 +253,6 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
     if (format == "png") {
         // PNG holds grey and alpha, 8 or 16 bits: wider samples are written as 16 bits.
         const SampleType written = wanted_type == SampleType::UInt8 ? SampleType::UInt8 : SampleType::UInt16;
-        s.output.reset();
         s.openCheckedFile();
         State* state = &s;  // owns the writer, so outlives it
         const PngFormat png_format{width, height, layout.out_channels, written == SampleType::UInt8 ? 8u : 16u};
@@ -243,6 +267,26 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         if (written != wanted_type)
             notes_.push_back(s.name + ": " + format + " cannot hold " + sampleTypeName(wanted_type) + " samples; written as " +
                              sampleTypeName(written));
+        return;
+    }
+
+    if (format == "jpeg") {
+        s.openCheckedFile();
+        State* state = &s;  // owns the writer, so outlives it
+        // The EXIF, IPTC and XMP encodings are OpenImageIO's encoders' still (oiio_metadata.h).
+        JpegMetadata metadata;
+        metadata.attributes = jpegAttributes(attributesFor());
+        metadata.exif = exifBlockOfAll(metadata.attributes);
+        metadata.iptc = iptcBlock(metadata.attributes);
+        metadata.xmp = xmpPacket(metadata.attributes);
+        const JpegFormat jpeg_format{width, height, layout.out_channels, options.quality};
+        s.jpeg = std::make_unique<JpegWriter>(jpeg_format, metadata, [state](const uint8_t* data, size_t size) {
+            if (state->file->write(data, size) != size) throw state->failure();
+        });
+        for (const std::string& missing : s.jpeg->leftOut()) notes_.push_back(s.name + ": " + missing + " is left out");
+        if (wanted_type != SampleType::UInt8)
+            notes_.push_back(s.name + ": " + format + " cannot hold " + sampleTypeName(wanted_type) + " samples; written as " +
+                             sampleTypeName(SampleType::UInt8));
         return;
     }
 
@@ -309,6 +353,11 @@ void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows)
         s.next_row = y_end;
         return;
     }
+    if (s.jpeg) {
+        s.jpeg->writeRows(data, y_end - y_begin);  // throws at the first failed write
+        s.next_row = y_end;
+        return;
+    }
     bool ok;
     {
         QuietStderr quiet;
@@ -324,6 +373,8 @@ void ImageWriter::commit() {
     bool ok = true;
     if (s.png) {
         s.png->finish();
+    } else if (s.jpeg) {
+        s.jpeg->finish();
     } else {
         QuietStderr quiet;
         ok = s.output->close();
@@ -332,6 +383,7 @@ void ImageWriter::commit() {
     if (!ok || (s.file && s.file->failure())) throw s.failure();
     s.output.reset();
     s.png.reset();
+    s.jpeg.reset();
     if (s.path == kStandardStream) {
         copyToStandardOutput(s.temp->path());
         return;
