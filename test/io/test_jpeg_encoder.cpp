@@ -268,7 +268,8 @@ TEST_CASE("jpeg: a sink that fails is one exception, from the call that was writ
     CHECK(calls == 2);
 }
 
-TEST_CASE("jpeg: ImageWriter's files are OpenImageIO's, the description and resolution carried over") {
+// ImageWriter gives the quality, and the input's attributes as outputAttributes kept them.
+TEST_CASE("jpeg: ImageWriter's files are OpenImageIO's, at its quality, with the attributes carried over") {
     TempFolder folder;
     ddt::Image image;
     image.width = 23;
@@ -278,7 +279,7 @@ TEST_CASE("jpeg: ImageWriter's files are OpenImageIO's, the description and reso
     Case c;
     c.width = image.width;
     c.height = image.height;
-    c.quality = 95;
+    c.quality = 80;
     c.values = randomValues(c);
     image.pixels = c.values;
     auto metadata = std::make_shared<ddt::ImageMetadata>();
@@ -287,9 +288,13 @@ TEST_CASE("jpeg: ImageWriter's files are OpenImageIO's, the description and reso
     metadata->attributes.set("XResolution", 300.0f);
     metadata->attributes.set("YResolution", 300.0f);
     metadata->attributes.set("ResolutionUnit", std::string("in"));
+    metadata->attributes.set("oiio:ColorSpace", std::string("sRGB"));  // becomes Exif:ColorSpace
+    metadata->attributes.set("exif:XResolution", 300.0f);              // dropped
     image.metadata = metadata;
-    ddt::writeImage(folder / "ours.jpg", image);
-    c.attributes = metadata->attributes;
+    ddt::WriteOptions options;
+    options.quality = c.quality;
+    CHECK(ddt::writeImage(folder / "ours.jpg", image, options).empty());
+    c.attributes = ddt::outputAttributes(image, image.width, image.height, "jpeg");
     const std::string expected = theirs(c);
     CHECK(readFile(folder / "ours.jpg") == expected);
 }
