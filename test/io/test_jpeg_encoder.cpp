@@ -8,6 +8,8 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <stdlib.h>
+
 #include <cmath>
 #include <limits>
 #include <random>
@@ -22,6 +24,7 @@
 #include "png_bytes.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
+#include "user_error.h"
 
 using ddt::ImageAttributes;
 
@@ -297,4 +300,37 @@ TEST_CASE("jpeg: ImageWriter's files are OpenImageIO's, at its quality, with the
     c.attributes = ddt::outputAttributes(image, image.width, image.height, "jpeg");
     const std::string expected = theirs(c);
     CHECK(readFile(folder / "ours.jpg") == expected);
+}
+
+// Injected through the writer's test hook (DDTUP_TEST_WRITE_LIMIT): the failure comes while
+// rows are written (the image is far larger than the limit), not at the end.
+TEST_CASE("jpeg: a disk that fills up in the middle of the image is one error, and no file stays") {
+    TempFolder folder;
+    Case c;
+    c.width = 600;
+    c.height = 400;
+    c.values = randomValues(c);
+    ddt::Image image;
+    image.width = c.width;
+    image.height = c.height;
+    image.channels = 3;
+    image.sample_type = ddt::SampleType::UInt8;
+    image.pixels = c.values;
+    REQUIRE(theirs(c).size() > 200000);  // twice the limit
+    ::setenv("DDTUP_TEST_WRITE_LIMIT", "100000", 1);
+    int failures = 0;
+    {
+        ddt::ImageWriter writer(folder / "full.jpg", c.width, c.height, image);
+        for (uint32_t y = 0; y < c.height && failures == 0; y += 20) {
+            try {
+                writer.writeRows(y, y + 20, image.row(y));
+            } catch (const ddt::UserError& error) {
+                CHECK(std::string(error.what()) == folder / "full.jpg" + ": No space left on device");
+                ++failures;
+            }
+        }
+    }
+    ::unsetenv("DDTUP_TEST_WRITE_LIMIT");
+    CHECK(failures == 1);
+    CHECK(folder.names().empty());
 }
