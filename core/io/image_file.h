@@ -50,9 +50,6 @@ private:
     std::vector<std::string> notes_;
 };
 
-// The threads OpenImageIO's codecs may use (its own pool, apart from parallel.h's).
-void setCodecThreads(unsigned count);
-
 // Reads a whole image through ImageReader.
 Image readImage(const std::string& path);
 
