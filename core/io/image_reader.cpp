@@ -1,10 +1,8 @@
-// Reading image files through OpenImageIO: checks, standard input, EXIF orientation, decoding
-// in bands, straight alpha premultiplied.
+// Reading image files: checks, standard input, EXIF orientation, straight alpha premultiplied;
+// JPEG and PNG pixels by libjpeg-turbo and libspng, everything else by OpenImageIO's codecs
+// (codec_module.h).
 #include "image_file.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -13,16 +11,16 @@
 #include <cstring>
 #include <filesystem>
 #include <new>
+#include <optional>
 #include <system_error>
 #include <type_traits>
 
 #include "checked_file.h"
+#include "codec_module.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "input_check.h"
 #include "jpeg_decoder.h"
-#include "oiio_codec.h"
-#include "oiio_metadata.h"
 #include "png_decoder.h"
 #include "temp_files.h"
 
@@ -31,27 +29,6 @@ namespace ddt {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string channelList(const OIIO::ImageSpec& spec) {
-    std::string list;
-    for (int c = 0; c < spec.nchannels; ++c) {
-        if (c) list += ", ";
-        list += spec.channel_name(c);
-    }
-    return list;
-}
-
-// "" for grey, grey+alpha, RGB or RGBA with alpha last, else the reason.
-std::string checkChannelLayout(const OIIO::ImageSpec& spec) {
-    const int n = spec.nchannels;
-    const bool valid_alpha = spec.alpha_channel >= 0 && spec.alpha_channel < n;
-    // OIIO 2.4's GIF reader reports alpha_channel = 4 for its R, G, B, A: trust the name too.
-    const bool alpha_last = spec.alpha_channel == n - 1 || (!valid_alpha && n > 0 && spec.channel_name(n - 1) == "A");
-    const bool ok = (n == 1 || n == 3) ? !valid_alpha : (n == 2 || n == 4) && alpha_last;
-    if (ok) return "";
-    return std::to_string(n) + " channels (" + channelList(spec) +
-           "); ddtup reads grey, grey+alpha, RGB or RGBA images with alpha last";
-}
 
 // Codecs seek, and a pipe cannot: standard input is copied to a temporary file first.
 std::unique_ptr<TempFile> copyStandardInput() {
@@ -88,87 +65,16 @@ std::string checkInputFile(const std::string& path) {
     return "";
 }
 
-// Whether the file holds a second image (a page, a frame; MIP levels do not count). Only
-// one seek: counting them all decodes every frame of an animated GIF (0.85 s for 300 frames
-// of 512², measured), for a note.
-bool hasSeveralImages(OIIO::ImageInput& input) {
-    // OIIO 2.4's WebP reader loses its frame when a seek fails (libwebp clears the iterator,
-    // and the seek back to 0 finds the reader already there), and a still image then fails
-    // to decode. Only animations hold more than one image, and its spec says which are.
-    if (input.format_name() == std::string("webp")) return input.spec().get_int_attribute("oiio:Movie") != 0;
-    const bool several = input.seek_subimage(1, 0);
-    input.seek_subimage(0, 0);
-    globalError();  // a failed seek past the last image leaves a message
-    codecError(input);
-    return several;
-}
-
 // EXIF orientation 5..8 turn the stored image a quarter: the upright size is the stored size swapped.
 bool swapsSides(int orientation) { return orientation >= 5 && orientation <= 8; }
 
-// Turns and mirrors `samples` (of `type`, the stored size) in place as EXIF orientation 2..8
-// asks, so that they are upright (`header`'s size).
-// Not ImageBufAlgo::reorient: OIIO 2.4 swaps 5 and 7 there (OpenImageIO issue #4661).
-void makeUpright(void* samples, OIIO::TypeDesc type, const Image& header, int orientation) {
-    namespace iba = OIIO::ImageBufAlgo;
-    const bool swapped = swapsSides(orientation);
-    const OIIO::ImageSpec stored_spec(int(swapped ? header.height : header.width), int(swapped ? header.width : header.height),
-                                      int(header.channels), type);
-    const OIIO::ImageBuf stored(stored_spec, samples);
-    OIIO::ImageBuf upright, half_turned;
-    bool ok = false;
-    switch (orientation) {
-        case 2: ok = iba::flop(upright, stored); break;        // mirrored left to right
-        case 3: ok = iba::rotate180(upright, stored); break;
-        case 4: ok = iba::flip(upright, stored); break;        // mirrored top to bottom
-        case 5: ok = iba::transpose(upright, stored); break;   // mirrored across the main diagonal
-        case 6: ok = iba::rotate90(upright, stored); break;    // clockwise
-        case 7: ok = iba::rotate180(half_turned, stored) && iba::transpose(upright, half_turned); break;
-        case 8: ok = iba::rotate270(upright, stored); break;
-    }
-    if (!ok) throw std::runtime_error("orienting the image: " + upright.geterror());
-    upright.get_pixels(OIIO::ROI::All(), type, samples);
-}
+uint32_t bitsOf(SampleType type) { return type == SampleType::UInt8 ? 8 : type == SampleType::Float ? 32 : 16; }
 
-// Rows decoded per call, a whole number of TIFF strips. OIIO 2.4's TIFF reader goes on through
-// every strip of a call after one fails, adding a message each (and then reports success),
-// and ends the process when its messages pass 16 MB: a damaged TIFF claiming 65536 rows of 3
-// planes did (found by the fuzzer). In bands of about 1024 rows, stopping at the first band
-// with an error, that cannot happen.
-int decodeBandRows(const OIIO::ImageSpec& spec) {
-    const int rows_per_strip = spec.get_int_attribute("tiff:RowsPerStrip", 64);
-    if (rows_per_strip <= 0 || rows_per_strip >= spec.height) return spec.height;
-    return std::min(spec.height, (1023 / rows_per_strip + 1) * rows_per_strip);
-}
-
-// Decodes the current image as samples of `type`, its channels interleaved; tiled files as OIIO does.
-// The file's own type is asked for as such (UNKNOWN): OIIO 2.4 reads any other request through
-// a 64 MiB buffer of its own and converts, even to the same type.
-bool decodePixels(OIIO::ImageInput& input, OIIO::TypeDesc type, void* pixels) {
-    const OIIO::ImageSpec& spec = input.spec();
-    const OIIO::TypeDesc request = spec.channelformats.empty() && type == spec.format ? OIIO::TypeDesc::UNKNOWN : type;
-    if (spec.tile_width) return input.read_image(0, 0, 0, spec.nchannels, request, pixels);
-    const int band = decodeBandRows(spec);
-    const size_t row_bytes = size_t(spec.width) * spec.nchannels * type.size();
-    for (int y = 0; y < spec.height; y += band) {
-        const int end = std::min(spec.height, y + band);
-        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, spec.nchannels, request,
-                                  static_cast<char*>(pixels) + size_t(y) * row_bytes) ||
-            input.has_error())
-            return false;
-    }
-    return true;
-}
-
-// The float the codec makes of each code of `Code` (its conversion when asked for floats), so
-// that unpacked codes equal a float read bit for bit.
-template <class Code>
-std::vector<float> valuesOfCodes(OIIO::TypeDesc type) {
-    std::vector<Code> codes(size_t(1) << (8 * sizeof(Code)));
-    for (size_t code = 0; code < codes.size(); ++code) codes[code] = Code(code);
-    std::vector<float> values(codes.size());
-    OIIO::convert_pixel_values(type, codes.data(), OIIO::TypeDesc::FLOAT, values.data(), int(codes.size()));
-    return values;
+template <class Sample>
+SampleType sampleTypeOfC() {
+    if constexpr (std::is_same_v<Sample, uint8_t>) return SampleType::UInt8;
+    else if constexpr (std::is_same_v<Sample, uint16_t>) return SampleType::UInt16;
+    else return SampleType::Float;
 }
 
 bool allFinite(const std::vector<float>& pixels) {
@@ -185,10 +91,10 @@ struct ImageReader::State {
     std::string file;                      // the path, or the copy of standard input
     std::unique_ptr<JpegDecoder> jpeg;     // decodes the pixels of a grey, YCbCr or RGB JPEG file
     std::unique_ptr<PngDecoder> png;       // decodes the pixels of a PNG file
-    std::unique_ptr<OIIO::ImageInput> input;
+    std::unique_ptr<CodecInput> input;     // the header, and the pixels of every other file
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
     int orientation = 1;
-    OIIO::TypeDesc codes = OIIO::TypeDesc::UNKNOWN;  // UINT8 or UINT16: the samples are kept as such
+    std::optional<SampleType> codes;  // UInt8 or UInt16: the samples are kept as such
 };
 
 ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<State>()) {
@@ -213,42 +119,21 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
         throw UserError(s.name + ": not an image in a format ddtup reads (" + imageFormatTitles() + ")");
     if (std::string problem = checkBeforeDecoding(file, format->oiio_name); !problem.empty())
         throw UserError(s.name + ": " + problem);
-    // Ask readers for straight alpha as stored; premultiplying in float loses nothing.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    {
-        QuietStderr quiet;
-        s.input = OIIO::ImageInput::create(format->oiio_name);
-        OIIO::ImageSpec opened;
-        if (s.input && !s.input->open(file, opened, config)) {
-            const std::string reason = firstLine(codecError(*s.input));
-            throw UserError(s.name + ": not a readable " + format->title + " image (" + reason + ")");
-        }
-    }
-    if (!s.input) throw std::runtime_error(std::string("OpenImageIO has no ") + format->title + " reader");
-
-    bool several;
-    {
-        QuietStderr quiet;
-        several = hasSeveralImages(*s.input);
-    }
-    if (several) notes_.push_back(s.name + ": has more than one image (pages or frames); using the first");
-    const OIIO::ImageSpec& spec = s.input->spec();
-    if (spec.deep) throw UserError(s.name + ": deep images are not supported");
-    if (spec.depth > 1) throw UserError(s.name + ": volume images are not supported");
-    if (spec.width < 1 || spec.height < 1) throw UserError(s.name + ": the image has no pixels");
-    if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxInputPixels)
-        throw UserError(s.name + ": image is " + std::to_string(spec.width) + "×" + std::to_string(spec.height) +
+    s.input = codecModule().openInput(file, s.name, *format);
+    const StoredImage& stored = s.input->stored();
+    if (stored.several_images) notes_.push_back(s.name + ": has more than one image (pages or frames); using the first");
+    if (uint64_t(stored.width) * uint64_t(stored.height) > kMaxInputPixels)
+        throw UserError(s.name + ": image is " + std::to_string(stored.width) + "×" + std::to_string(stored.height) +
                         " pixels; ddtup reads at most " + std::to_string(kMaxInputPixels) + " pixels (16384×16384)");
-    if (std::string problem = checkChannelLayout(spec); !problem.empty()) throw UserError(s.name + ": " + problem);
+    if (!stored.channel_layout_problem.empty()) throw UserError(s.name + ": " + stored.channel_layout_problem);
 
-    const int orientation = spec.get_int_attribute("Orientation", 1);
+    const int orientation = stored.attributes.getInt("Orientation", 1);
     if (orientation >= 2 && orientation <= 8) s.orientation = orientation;
     const bool swapped = swapsSides(s.orientation);
 
     auto metadata = std::make_shared<ImageMetadata>();
-    metadata->attributes = attributesOf(spec);
-    metadata->format_name = s.input->format_name();
+    metadata->attributes = stored.attributes;
+    metadata->format_name = stored.format_name;
     metadata->alpha_storage = inputAlphaStorage(metadata->attributes, metadata->format_name);
     // The metadata describes the upright image the reader returns.
     ImageAttributes& attributes = metadata->attributes;
@@ -263,16 +148,16 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     }
     s.alpha_storage = metadata->alpha_storage;
 
-    header_.width = uint32_t(swapped ? spec.height : spec.width);
-    header_.height = uint32_t(swapped ? spec.width : spec.height);
-    header_.channels = uint32_t(spec.nchannels);
-    header_.sample_type = sampleTypeOf(spec.format);
+    header_.width = swapped ? stored.height : stored.width;
+    header_.height = swapped ? stored.width : stored.height;
+    header_.channels = stored.channels;
+    header_.sample_type = stored.sample_type;
     header_.metadata = metadata;
     // JPEG and PNG pixels come from libjpeg-turbo (where it takes the colour model) and libspng
     // directly, the same samples (jpeg_decoder.h, png_decoder.h).
     auto check_layout = [&](uint32_t width, uint32_t height, uint32_t channels, uint32_t bits) {
-        if (width != uint32_t(spec.width) || height != uint32_t(spec.height) || channels != uint32_t(spec.nchannels) ||
-            bits != spec.format.size() * 8)
+        if (width != stored.width || height != stored.height || channels != stored.channels ||
+            bits != bitsOf(stored.sample_type))
             throw std::logic_error(s.name + ": the decoder and OpenImageIO disagree on the image's layout");
     };
     if (format->oiio_name == std::string("jpeg")) {
@@ -284,16 +169,14 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
         s.png = std::make_unique<PngDecoder>(s.file, s.name);
         check_layout(s.png->width(), s.png->height(), s.png->channels(), s.png->sampleBits());
     }
-    // Signed and mixed per-channel types are converted to floats as they are read.
-    if (spec.channelformats.empty() && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16))
-        s.codes = spec.format;
+    if (stored.keeps_codes) s.codes = stored.sample_type;
 }
 
 ImageReader::~ImageReader() = default;
 
 template <class Sample>
 std::vector<Sample> ImageReader::decode() {
-    const OIIO::TypeDesc type = OIIO::BaseTypeFromC<Sample>::value;
+    const SampleType type = sampleTypeOfC<Sample>();
     State& s = *state_;
     if (!s.input) throw std::logic_error("ImageReader::read called twice");
     std::vector<Sample> samples;
@@ -316,34 +199,26 @@ std::vector<Sample> ImageReader::decode() {
             decoded = true;
         }
     }
-    if (!decoded) {
-        bool ok;
-        {
-            QuietStderr quiet;
-            ok = decodePixels(*s.input, type, samples.data());
-        }
-        // libjpeg fills a truncated file with grey and OIIO returns success, but records the error.
-        if (!ok || s.input->has_error())
-            throw UserError(s.name + ": truncated or corrupt image (" + firstLine(codecError(*s.input)) + ")");
-    }
+    if (!decoded) s.input->decode(type, samples.data());
     s.jpeg.reset();
     s.png.reset();
     s.input.reset();
     s.stdin_copy.reset();
-    if (s.orientation != 1) makeUpright(samples.data(), type, header_, s.orientation);
+    if (s.orientation != 1)
+        codecModule().makeUpright(samples.data(), type, header_.width, header_.height, header_.channels, s.orientation);
     return samples;
 }
 
 PackedImage ImageReader::readPacked() {
     const bool straight = header_.hasAlpha() && state_->alpha_storage == AlphaStorage::Straight;
     // 8- and 16-bit files are kept as their codes (packed_image.h); anything else as floats.
-    if (state_->codes == OIIO::TypeDesc::UINT8) {
+    if (state_->codes == SampleType::UInt8) {
         std::vector<uint8_t> codes = decode<uint8_t>();
-        return PackedImage(header_, std::move(codes), valuesOfCodes<uint8_t>(state_->codes), straight);
+        return PackedImage(header_, std::move(codes), codecModule().valuesOfCodes(SampleType::UInt8), straight);
     }
-    if (state_->codes == OIIO::TypeDesc::UINT16) {
+    if (state_->codes == SampleType::UInt16) {
         std::vector<uint16_t> codes = decode<uint16_t>();
-        return PackedImage(header_, std::move(codes), valuesOfCodes<uint16_t>(state_->codes), straight);
+        return PackedImage(header_, std::move(codes), codecModule().valuesOfCodes(SampleType::UInt16), straight);
     }
     Image image = header_;
     image.pixels = decode<float>();
@@ -357,8 +232,8 @@ PackedImage ImageReader::readPacked() {
 Image ImageReader::read() { return readPacked().unpack(); }
 
 uint32_t ImageReader::keptSampleBytes() const {
-    const OIIO::TypeDesc codes = state_->codes;
-    return codes == OIIO::TypeDesc::UNKNOWN ? uint32_t(sizeof(float)) : uint32_t(codes.size());
+    const std::optional<SampleType> codes = state_->codes;
+    return !codes ? uint32_t(sizeof(float)) : codes == SampleType::UInt8 ? 1u : 2u;
 }
 
 Image readImage(const std::string& path) { return ImageReader(path).read(); }

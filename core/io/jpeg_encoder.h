@@ -26,7 +26,8 @@ struct JpegFormat {
 };
 
 // What the markers are made of. The EXIF, IPTC and XMP encodings come from the caller (today
-// OpenImageIO's encoders, oiio_metadata.h), made of jpegAttributes(), as the writer made them.
+// OpenImageIO's encoders, through the codec module: codec_module.h's jpegMetadataBlocks), made
+// of jpegAttributes(), as the writer made them.
 struct JpegMetadata {
     ImageAttributes attributes;  // jpegAttributes() of the output's
     std::string exif;            // the TIFF structure of the APP1 EXIF marker, written always
