@@ -1,10 +1,9 @@
 #include "oiio_metadata.h"
 
-#include <OpenImageIO/strutil.h>
-#include <OpenImageIO/tiffutils.h>
-
 #include <algorithm>
 #include <optional>
+
+#include "exif.h"
 
 namespace ddt {
 
@@ -89,17 +88,6 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec) {
     }
 }
 
-std::string exifBlock(const ImageAttributes& attributes) {
-    bool any = false;
-    for (const ImageAttribute& attribute : attributes.all())
-        any = any || OIIO::Strutil::istarts_with(attribute.name, "Exif:") || OIIO::Strutil::istarts_with(attribute.name, "GPS:");
-    if (!any) return "";
-    OIIO::ImageSpec spec;
-    addAttributes(attributes, spec);
-    std::vector<char> block;
-    // Little-endian: OpenImageIO 2.4 writes a wrong signature for big endian.
-    OIIO::encode_exif(spec, block, OIIO::endian::little);
-    return std::string(block.begin(), block.end());
-}
+std::string exifBlock(const ImageAttributes& attributes) { return encodeExif(attributes); }
 
 }  // namespace ddt
