@@ -16,14 +16,14 @@ namespace ddt {
 // interoperability directories it points to; a tag whose attribute is already there is passed
 // over. Reads nothing outside the block: entries and values out of it are passed over, as
 // OpenImageIO passes them over. Returns false, adding nothing, where the header or the first
-// directory is damaged. Unlike OpenImageIO, Canon's maker note is not read (its "Canon:"
-// attributes): other makers' are not read by either.
+// directory is damaged. Of maker notes, Canon's is read ("Canon:" attributes), as
+// OpenImageIO reads it; others are not, by either.
 bool decodeExif(const uint8_t* data, size_t size, ImageAttributes& attributes);
 
 // The EXIF and GPS attributes, and the TIFF tags EXIF carries (resolution, date, camera, …), as
 // a little-endian TIFF structure for PNG's eXIf chunk or JPEG's APP1; "" when no attribute's
-// name starts with "Exif:" or "GPS:". Unlike OpenImageIO, no Canon maker note is written from
-// "Canon:" attributes (none are read, above).
+// name starts with "Exif:" or "GPS:"; with Canon's maker note from "Canon:" attributes when
+// the make is Canon.
 std::string encodeExif(const ImageAttributes& attributes);
 
 }  // namespace ddt

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cstring>
 #include <set>
+#include <utility>
 
 #include "exif.h"
+#include "exif_canon.h"
 #include "exif_tags.h"
 
 namespace ddt {
@@ -21,6 +23,7 @@ using exif::Tag;
 constexpr size_t kEntryBytes = 12;  // tag, type, count, value or offset
 // Where the maker note is, noted while reading and dropped at the end (decodeExif).
 constexpr const char* kMakerNoteOffset = "oiio:MakerNoteOffset";
+constexpr int kMaxMakerNoteDepth = 4;
 
 class Block {
 public:
@@ -73,6 +76,12 @@ class Decoder {
 public:
     Decoder(const Block& block, ImageAttributes& attributes) : block_(block), attributes_(attributes) {}
 
+    // Canon's maker note, read last with the sub-directories seen so far.
+    bool readMakerNoteAtEnd(uint32_t offset) {
+        ++maker_note_depth_;
+        return readDirectory(offset, exif::canonTags());
+    }
+
     // Reads the directory at `offset`; false where its entries do not fit in the block.
     bool readDirectory(size_t offset, std::span<const Tag> table) {
         if (offset + 2 > block_.size()) return false;
@@ -111,11 +120,42 @@ private:
                 }
                 break;
             case exif::Reading::MakerNote:
-                // Canon's is read at once where the make is known (by OpenImageIO: not by ddtup,
-                // exif.h), others noted for the end, when the make surely is.
-                if (entry.bytes() > 4 && attributes_.getString("Make") != "Canon")
-                    attributes_.set(kMakerNoteOffset, int32_t(entry.offset));
+                if (entry.bytes() > 4) readMakerNote(entry.offset);
                 break;
+            case exif::Reading::Indexed:
+                addArray(*exif::findCanonArray(entry.tag), entry);
+                break;
+        }
+    }
+
+    // Canon's maker note is read at once where the make is already known, with sub-directories
+    // seen before read again (OpenImageIO's fresh list); any other's offset is noted for the
+    // end (decodeExif), when the make surely is known. A maker note that leads to itself would
+    // take OpenImageIO round until its stack overflowed: ddtup stops at a depth no camera has.
+    void readMakerNote(uint32_t offset) {
+        if (attributes_.getString("Make") != "Canon") {
+            attributes_.set(kMakerNoteOffset, int32_t(offset));
+            return;
+        }
+        if (maker_note_depth_ == kMaxMakerNoteDepth) return;
+        ++maker_note_depth_;
+        std::set<uint32_t> outer = std::exchange(seen_, {});
+        readDirectory(offset, exif::canonTags());
+        seen_ = std::move(outer);
+        --maker_note_depth_;
+    }
+
+    // Canon's arrays of SHORT or SSHORT: each named position present, as an int.
+    void addArray(const exif::CanonArray& array, const Entry& entry) {
+        if (entry.type != uint16_t(FieldType::Short) && entry.type != uint16_t(FieldType::SShort)) return;
+        const uint8_t* values = entry.value();
+        if (!values) return;
+        for (const exif::NamedIndex& named : array.names) {
+            if (named.index >= entry.count) continue;
+            const uint16_t bits = block_.u16(values + 2 * named.index);
+            const int32_t value = array.is_signed ? int32_t(int16_t(bits)) : int32_t(bits);
+            if (array.minus_one_is_missing && value == -1) continue;
+            attributes_.set(named.name, value);
         }
     }
 
@@ -183,6 +223,7 @@ private:
     const Block& block_;
     ImageAttributes& attributes_;
     std::set<uint32_t> seen_;  // sub-directories read, so that a loop of pointers ends
+    int maker_note_depth_ = 0;  // maker notes being read, one inside another
 };
 
 // OpenImageIO's reading of EXIF's colour space: any value but 0xFFFF (uncalibrated) is sRGB.
@@ -217,9 +258,13 @@ bool decodeExif(const uint8_t* data, size_t size, ImageAttributes& attributes) {
     if (!decoder.readDirectory(block.u32(data + 4), exif::mainTags())) return false;
 
     noteColourSpace(attributes);
-    // The maker note's directory is read only for Canon cameras, which ddtup does not (exif.h);
-    // OpenImageIO drops the note of where it is only when that is above 0.
-    if (attributes.getInt(kMakerNoteOffset) > 0) attributes.erase(kMakerNoteOffset);
+    // A maker note met before the make: read now if Canon's (any case here). The note of where
+    // it is goes, but only when above 0, as OpenImageIO leaves it.
+    const int32_t maker_note = attributes.getInt(kMakerNoteOffset);
+    if (maker_note > 0) {
+        if (sameName(attributes.getString("Make"), "Canon") && !decoder.readMakerNoteAtEnd(uint32_t(maker_note))) return false;
+        attributes.erase(kMakerNoteOffset);
+    }
     return true;
 }
 

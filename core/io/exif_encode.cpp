@@ -1,13 +1,15 @@
 // Writing attributes as a little-endian EXIF block (exif.h), byte for byte as OpenImageIO 2.4's
 // encode_exif writes it: the TIFF header; the values longer than 4 bytes, in the attributes'
-// order; the first directory (its entries in the attributes' order, then the pointers to the
-// EXIF and GPS directories); the EXIF directory; the GPS directory (these two sorted by tag).
+// order, then Canon's maker note's; the first directory (its entries in the attributes' order,
+// then the pointers to the EXIF and GPS directories); the EXIF directory; the GPS directory;
+// the maker note's directory (these three sorted by tag).
 #include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstring>
 
 #include "exif.h"
+#include "exif_canon.h"
 #include "exif_tags.h"
 
 namespace ddt {
@@ -21,6 +23,7 @@ using Base = AttributeType::Base;
 // EXIF tags from ExposureTime to ImageUniqueID go in the EXIF directory, all others in the
 // first (OpenImageIO's range: the EXIF 2.3 tags after ImageUniqueID land in the first too).
 constexpr uint16_t kFirstExifDirectoryTag = 33434, kLastExifDirectoryTag = 42016;
+constexpr uint16_t kMakerNoteTag = 37500;
 
 struct Entry {
     uint16_t tag;
@@ -46,21 +49,24 @@ public:
     // Adds an entry with its little-endian value; one of the same tag is replaced where it stands
     // (its value, if in the block, stays there unused).
     void add(uint16_t tag, FieldType type, uint32_t count, const std::string& value) {
-        Entry entry{tag, type, count, {}};
         if (value.size() <= 4) {
+            Entry entry{tag, type, count, {}};
             std::memcpy(entry.field, value.data(), value.size());
-        } else {
-            std::string offset;
-            append32(offset, uint32_t(block_.size()));
-            std::memcpy(entry.field, offset.data(), 4);
-            block_ += value;
+            return put(entry);
         }
-        for (Entry& existing : entries_)
-            if (existing.tag == tag) {
-                existing = entry;
-                return;
-            }
-        entries_.push_back(entry);
+        addAt(tag, type, count, block_.size());
+        block_ += value;
+    }
+    // Adds an entry whose value is at `offset` in the block.
+    void addAt(uint16_t tag, FieldType type, uint32_t count, size_t offset) {
+        Entry entry{tag, type, count, {}};
+        std::string bytes;
+        append32(bytes, uint32_t(offset));
+        std::memcpy(entry.field, bytes.data(), 4);
+        put(entry);
+    }
+    bool has(uint16_t tag) const {
+        return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& entry) { return entry.tag == tag; });
     }
 
     void sortByTag() {
@@ -79,6 +85,15 @@ public:
     }
 
 private:
+    void put(const Entry& entry) {
+        for (Entry& existing : entries_)
+            if (existing.tag == entry.tag) {
+                existing = entry;
+                return;
+            }
+        entries_.push_back(entry);
+    }
+
     std::string& block_;
     std::vector<Entry> entries_;
 };
@@ -177,6 +192,42 @@ void addAttribute(const ImageAttribute& attribute, const Tag& tag, Directory& di
     }
 }
 
+// Canon's maker note from "Canon:" attributes, as OpenImageIO writes it: each tag of a value
+// whose attribute is there, its bytes as they are in the attribute (a string's up to a NUL,
+// with one after it); then the arrays of which any named value is there, the others 0.
+void addCanonMakerNote(const ImageAttributes& attributes, Directory& directory) {
+    for (const Tag& tag : exif::canonTags()) {
+        const ImageAttribute* attribute = tag.reading == exif::Reading::ByType ? attributes.find(tag.name) : nullptr;
+        if (!attribute) continue;
+        const bool is_string = attribute->type.base == Base::String;
+        if (tag.type == FieldType::Ascii) {
+            // OpenImageIO writes a number's text here; ddtup reads none such, so writes none.
+            if (!is_string) continue;
+            const std::string text = attribute->strings.front().c_str();
+            directory.add(tag.number, tag.type, uint32_t(text.size() + 1), std::string(text.c_str(), text.size() + 1));
+        } else if (!is_string) {
+            // The tag's count of values, whatever the attribute holds: missing bytes are 0 here
+            // (OpenImageIO reads past the value).
+            std::string value(exif::fieldTypeBytes(uint16_t(tag.type)) * tag.count, '\0');
+            std::memcpy(value.data(), attribute->bytes.data(), std::min(value.size(), attribute->bytes.size()));
+            directory.add(tag.number, tag.type, tag.count, value);
+        }
+    }
+    for (const exif::CanonArray* array : exif::canonArraysWritten()) {
+        std::vector<uint16_t> values(array->names.back().index + 1u, 0);
+        bool any = false;
+        for (const exif::NamedIndex& named : array->names)
+            if (attributes.find(named.name)) {
+                values[named.index] = uint16_t(attributes.getInt(named.name));
+                any = true;
+            }
+        if (!any) continue;
+        std::string bytes;
+        for (uint16_t value : values) append16(bytes, value);
+        directory.add(array->number, array->written_as, uint32_t(values.size()), bytes);
+    }
+}
+
 bool startsWith(std::string_view name, std::string_view prefix, bool ignore_case) {
     if (name.size() < prefix.size()) return false;
     return ignore_case ? sameName(name.substr(0, prefix.size()), prefix) : name.substr(0, prefix.size()) == prefix;
@@ -206,9 +257,12 @@ std::string encodeExif(const ImageAttributes& attributes) {
         }
     }
 
+    Directory maker_directory(block);
+    if (sameName(attributes.getString("Make"), "Canon")) addCanonMakerNote(attributes, maker_directory);
+
     // The versions EXIF and GPS directories must hold (EXIF 2.3, FlashPix 1.0, GPS 2.2), and
     // the order of the YCbCr components.
-    if (!exif_directory.empty()) {
+    if (!exif_directory.empty() || !maker_directory.empty()) {
         exif_directory.add(36864, FieldType::Undefined, 4, "0230");
         exif_directory.add(40960, FieldType::Undefined, 4, "0100");
         exif_directory.add(37121, FieldType::Undefined, 4, std::string("\1\2\3\0", 4));
@@ -218,7 +272,14 @@ std::string encodeExif(const ImageAttributes& attributes) {
     const size_t first_offset = block.size();
     const size_t first_bytes = first_directory.bytes() + 12 * (!exif_directory.empty() + !gps_directory.empty());
     const size_t exif_offset = first_offset + first_bytes;
-    const size_t gps_offset = exif_offset + (exif_directory.empty() ? 0 : exif_directory.bytes());
+    // The EXIF directory's size counts the maker note's entry to come, unless it replaces one of
+    // an attribute ("Exif:MakerNote"): OpenImageIO counts it again there, and stops on an assertion.
+    const bool maker_note_entry = !maker_directory.empty() && !exif_directory.has(kMakerNoteTag);
+    const size_t exif_bytes = exif_directory.empty() ? 0 : exif_directory.bytes() + 12 * maker_note_entry;
+    const size_t gps_offset = exif_offset + exif_bytes;
+    const size_t maker_offset = gps_offset + (gps_directory.empty() ? 0 : gps_directory.bytes());
+    if (!maker_directory.empty())
+        exif_directory.addAt(kMakerNoteTag, FieldType::Byte, uint32_t(maker_directory.bytes()), maker_offset);
     std::string pointer;
     if (!exif_directory.empty()) {
         append32(pointer, uint32_t(exif_offset));
@@ -231,10 +292,12 @@ std::string encodeExif(const ImageAttributes& attributes) {
     }
     exif_directory.sortByTag();
     gps_directory.sortByTag();
+    maker_directory.sortByTag();
 
     first_directory.write();
     if (!exif_directory.empty()) exif_directory.write();
     if (!gps_directory.empty()) gps_directory.write();
+    if (!maker_directory.empty()) maker_directory.write();
     pointer.clear();
     append32(pointer, uint32_t(first_offset));
     block.replace(4, 4, pointer);

@@ -37,7 +37,8 @@ enum class Reading : uint8_t {
     ByType,
     FourCharacters,  // a version ("0230"): the 4 bytes as a string, up to a NUL
     FourBytes,       // GPS's version: the 4 bytes as 4 ints
-    MakerNote,       // the camera maker's own directory: its offset noted, read last (exif_decode.cpp)
+    MakerNote,       // the camera maker's own directory (Canon's only: exif_canon.h)
+    Indexed,         // Canon's arrays of numbers, each named (exif_canon.h)
 };
 
 struct Tag {

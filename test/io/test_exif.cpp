@@ -219,6 +219,42 @@ std::vector<std::vector<Field>> cameraDirectories() {
 
 Bytes cameraBlock(bool big_endian) { return buildBlock(cameraDirectories(), big_endian, 4); }
 
+// A Canon camera's block: its maker note (directory 5) with every tag OpenImageIO reads, and
+// some it does not. `make_last`: the make comes after the EXIF directory, so that the maker
+// note is read at the end.
+Bytes canonBlock(const std::string& make, bool make_last, bool big_endian) {
+    auto directories = cameraDirectories();
+    auto& first = directories[0];
+    first.erase(first.begin());  // Nikon's make
+    const Field make_field = raw(271, 2, make + std::string(1, '\0'));
+    if (make_last) first.push_back(make_field);
+    else first.insert(first.begin(), make_field);
+    auto& exif = directories[1];
+    for (Field& f : exif)
+        if (f.tag == 37500) f = Field{37500, 7, 600, Bytes(4, 0), 4, 5};
+    std::vector<uint16_t> settings(47), focal = {1, 50, 2240, 1490}, shot(34), panorama(6), sensor(17);
+    for (size_t i = 0; i < settings.size(); ++i) settings[i] = i % 5 == 0 ? 0xFFFF : uint16_t(i * 3);  // -1: no value
+    for (size_t i = 0; i < shot.size(); ++i) shot[i] = uint16_t(int16_t(i * 7 - 100));
+    for (size_t i = 0; i < sensor.size(); ++i) sensor[i] = uint16_t(6000 + i);
+    Field shot_info = shorts(4, shot);
+    shot_info.type = 8;  // SSHORT
+    directories.push_back({shorts(1, settings), shorts(2, focal), shorts(3, {1, 2, 3, 4}), shot_info, shorts(5, panorama),
+                           raw(6, 2, "IMG:EOS 5D JPEG"), raw(7, 2, std::string("Firmware 1.0.2\0", 15)), longs(8, {1001234}),
+                           raw(9, 2, "Owner"), longs(12, {123456789}), longs(16, {0x80000213}), longs(19, {0, 5471, 0, 3647}),
+                           longs(21, {1}), shorts(26, {0}), shorts(28, {0}), longs(30, {0x01020300}), longs(35, {8, 0}),
+                           raw(40, 1, std::string(16, '\7')), raw(149, 2, "EF24-105mm f/4L IS USM"), shorts(152, {0, 0, 0, 0}),
+                           shorts(174, {5200}), shorts(224, sensor), raw(0x4010, 2, "")});
+    return buildBlock(directories, big_endian, 4);
+}
+
+std::vector<Bytes> canonBlocks() {
+    std::vector<Bytes> blocks;
+    for (bool big_endian : {false, true})
+        for (const auto& [make, last] : {std::pair{"Canon", false}, std::pair{"Canon", true}, std::pair{"CANON", false}})
+            blocks.push_back(canonBlock(make, last, big_endian));
+    return blocks;
+}
+
 // The EXIF blocks of JPEG files: APP1 segments that start with "Exif\0\0".
 std::vector<Bytes> jpegExifBlocks(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -329,6 +365,16 @@ TEST_CASE("exif: a camera's block decodes as OpenImageIO decodes it, in either b
     }
 }
 
+TEST_CASE("exif: Canon's maker note decodes as OpenImageIO decodes it", "[io]") {
+    // At once where the make is known as "Canon"; at the end where it comes later, or as
+    // "CANON" (OpenImageIO's two tests of the make differ in case).
+    for (const Bytes& block : canonBlocks()) {
+        requireSameDecoding(block);
+        const ImageAttributes decoded = ddtupDecode(block).attributes;
+        CHECK(decoded.find("Canon:MacroMode"));  // something of the maker note at all
+    }
+}
+
 TEST_CASE("exif: attributes already there are kept, as OpenImageIO keeps them", "[io]") {
     const Bytes block = cameraBlock(false);
     ImageAttributes before;
@@ -367,6 +413,7 @@ TEST_CASE("exif: damaged blocks decode as OpenImageIO decodes them, reading noth
     // --sanitize) sees a read past its end.
     std::vector<Bytes> blocks = {cameraBlock(false), cameraBlock(true), bytesOf(oiioEncode(everyTag(1)))};
     for (Bytes& block : photographBlocks()) blocks.push_back(std::move(block));
+    for (Bytes& block : canonBlocks()) blocks.push_back(std::move(block));
 
     SECTION("truncated at every length") {
         for (const Bytes& block : blocks)
@@ -460,10 +507,35 @@ TEST_CASE("exif: blocks written are OpenImageIO's bytes for the same attributes"
             requireSameBlock(shuffled);
         }
     }
-    SECTION("the attributes decoded from blocks") {
+    SECTION("the attributes decoded from blocks, Canon's maker note's among them") {
         std::vector<Bytes> blocks = {cameraBlock(false), cameraBlock(true)};
         for (Bytes& block : photographBlocks()) blocks.push_back(std::move(block));
+        for (Bytes& block : canonBlocks()) blocks.push_back(std::move(block));
         for (const Bytes& block : blocks) requireSameBlock(oiioDecode(block).attributes);
+    }
+    SECTION("Canon's maker note: attributes of other types, some arrays partly there") {
+        ImageAttributes attributes = oiioDecode(canonBlock("Canon", false, false)).attributes;
+        attributes.erase("Canon:FocalType");                         // the array's other values stay
+        attributes.set("Canon:MacroMode", 70000);                   // wraps to 16 bits
+        attributes.set("Canon:BaseISO", 12.7f);                     // a float: its int
+        attributes.set("Canon:FileNumber", 3.5f);                   // a float's bytes, as they are
+        attributes.set("Canon:OwnerName", std::string("a"));        // fits in the entry
+        attributes.set("Canon:ModelID", int32_t(-1));
+        requireSameBlock(attributes);
+        // An "Exif:MakerNote" beside them stops OpenImageIO on an assertion (its EXIF directory
+        // counted one entry too many); ddtup's note's entry replaces the attribute's, and the
+        // directories are where the pointers say.
+        attributes.set("Exif:MakerNote", int32_t(3));
+        ImageAttributes decoded;
+        REQUIRE(ddt::decodeExif(bytesOf(ddt::encodeExif(attributes)).data(), ddt::encodeExif(attributes).size(), decoded));
+        CHECK(decoded.getInt("Canon:MacroMode") == 70000 - 65536);
+        CHECK(decoded.getFloat("GPS:Altitude") == 35.0f);
+        CHECK(decoded.getInt("Exif:Flash") == 16);
+        ImageAttributes only_canon;
+        only_canon.set("Make", std::string("canon"));
+        only_canon.set("Canon:PanoramaDirection", int32_t(4));     // the maker note alone: EXIF's versions too
+        only_canon.set("GPS:Altitude", 3.0f);
+        requireSameBlock(only_canon);
     }
     SECTION("awkward rationals") {
         for (float f : awkwardFloats()) {
