@@ -15,8 +15,8 @@ namespace ddt {
 // big-endian, to `attributes`: those of the first directory, the EXIF, GPS and
 // interoperability directories it points to; a tag whose attribute is already there is passed
 // over. Reads nothing outside the block: entries and values out of it are passed over, as
-// OpenImageIO passes them over. Returns false, adding nothing, where the header or the first
-// directory is damaged. Of maker notes, Canon's is read ("Canon:" attributes), as
+// OpenImageIO passes them over. Returns false where the header or the first directory is
+// damaged (adding nothing), or where a Canon maker note read last is (keeping what was read). Of maker notes, Canon's is read ("Canon:" attributes), as
 // OpenImageIO reads it; others are not, by either.
 bool decodeExif(const uint8_t* data, size_t size, ImageAttributes& attributes);
 

@@ -46,8 +46,8 @@ struct Entry {
     uint16_t tag;
     uint16_t type;
     uint32_t count;
-    uint32_t offset;    // the last field read as a number: where a longer value starts
-    uint8_t field[4]; // the same field's bytes: a value of up to 4 bytes
+    uint32_t offset;   // the last field read as a number: where a longer value starts
+    uint8_t field[4];  // the same field's bytes: a value of up to 4 bytes
     const Block* block;
 
     // The value's bytes, wrapping as OpenImageIO's size_t does for types TIFF does not define.
@@ -233,11 +233,13 @@ void noteColourSpace(ImageAttributes& attributes) {
     if (!space) return;
     int32_t value = -1;
     const AttributeType& type = space->type;
-    if (type.isScalar()) {
-        using Base = AttributeType::Base;
-        if (type.base == Base::UInt32 || type.base == Base::Int32) std::memcpy(&value, space->bytes.data(), 4);
-        if (type.base == Base::UInt16) value = *reinterpret_cast<const uint16_t*>(space->bytes.data());
-        if (type.base == Base::Int16) value = *reinterpret_cast<const int16_t*>(space->bytes.data());
+    using Base = AttributeType::Base;
+    if (type.isScalar() && (type.base == Base::UInt32 || type.base == Base::Int32)) {
+        std::memcpy(&value, space->bytes.data(), 4);
+    } else if (type.isScalar() && (type.base == Base::UInt16 || type.base == Base::Int16)) {
+        uint16_t bits;
+        std::memcpy(&bits, space->bytes.data(), 2);
+        value = type.base == Base::UInt16 ? int32_t(bits) : int32_t(int16_t(bits));
     }
     if (value != 0xFFFF) attributes.set("oiio:ColorSpace", std::string("sRGB"));
 }
