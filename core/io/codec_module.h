@@ -82,9 +82,6 @@ public:
     // that they are upright (`upright_width` × `upright_height`).
     virtual void makeUpright(void* samples, SampleType type, uint32_t upright_width, uint32_t upright_height,
                              uint32_t channels, int orientation) = 0;
-    // The EXIF and GPS attributes as the little-endian TIFF structure of PNG's eXIf chunk; "" when
-    // there are none.
-    virtual std::string exifBlock(const ImageAttributes& attributes) = 0;
     // The threads the codecs may use.
     virtual void setThreads(unsigned count) = 0;
 };

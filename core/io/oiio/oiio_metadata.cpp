@@ -1,11 +1,7 @@
 #include "oiio_metadata.h"
 
-#include <OpenImageIO/tiffutils.h>
-
 #include <algorithm>
 #include <optional>
-
-#include "image_metadata.h"
 
 namespace ddt {
 
@@ -88,16 +84,6 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec) {
             spec.extra_attribs.emplace_back(attribute.name, type, 1, attribute.bytes.data());
         }
     }
-}
-
-std::string exifBlock(const ImageAttributes& attributes) {
-    if (!hasExif(attributes)) return "";
-    OIIO::ImageSpec spec;
-    addAttributes(attributes, spec);
-    std::vector<char> block;
-    // Little-endian: OpenImageIO 2.4 writes a wrong signature for big endian.
-    OIIO::encode_exif(spec, block, OIIO::endian::little);
-    return std::string(block.begin(), block.end());
 }
 
 }  // namespace ddt

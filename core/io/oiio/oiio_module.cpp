@@ -65,8 +65,6 @@ public:
         upright.get_pixels(OIIO::ROI::All(), type_desc, samples);
     }
 
-    std::string exifBlock(const ImageAttributes& attributes) override { return ddt::exifBlock(attributes); }
-
     void setThreads(unsigned count) override { OIIO::attribute("threads", int(count)); }
 };
 
