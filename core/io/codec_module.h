@@ -64,10 +64,9 @@ struct OutputRequest {
     ImageAttributes attributes;
 };
 
-// What OpenImageIO 2.4's JPEG writer encoded of an image's attributes for its markers
-// (jpeg_encoder.h).
+// What OpenImageIO 2.4's JPEG writer encoded of an image's attributes for its APP13 and second
+// APP1 markers (jpeg_encoder.h); ddtup has no IPTC or XMP encoder of its own yet.
 struct JpegMetadataBlocks {
-    std::string exif;  // the TIFF structure, also where there is no EXIF attribute
     std::string iptc;  // IPTC-IIM records, or ""
     std::string xmp;   // the XMP packet, or ""
 };
@@ -90,10 +89,7 @@ public:
     // that they are upright (`upright_width` × `upright_height`).
     virtual void makeUpright(void* samples, SampleType type, uint32_t upright_width, uint32_t upright_height,
                              uint32_t channels, int orientation) = 0;
-    // The EXIF and GPS attributes as the little-endian TIFF structure of PNG's eXIf chunk; "" when
-    // there are none.
-    virtual std::string exifBlock(const ImageAttributes& attributes) = 0;
-    // The EXIF, IPTC and XMP blocks for a JPEG file with these attributes (jpegAttributes()).
+    // The IPTC and XMP blocks for a JPEG file with these attributes (jpegAttributes()).
     virtual JpegMetadataBlocks jpegMetadataBlocks(const ImageAttributes& attributes) = 0;
     // The threads the codecs may use.
     virtual void setThreads(unsigned count) = 0;

@@ -14,6 +14,7 @@
 
 #include "checked_file.h"
 #include "codec_module.h"
+#include "exif.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "jpeg_encoder.h"
@@ -182,7 +183,7 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         PngMetadataSource metadata;
         metadata.attributes = attributesFor();
         metadata.channels = layout.out_channels;
-        metadata.exif = hasExif(metadata.attributes) ? codecModule().exifBlock(metadata.attributes) : "";
+        metadata.exif = encodeExif(metadata.attributes);
         s.png = std::make_unique<PngWriter>(png_format, metadata, [state](const uint8_t* data, size_t size) {
             if (state->file->write(data, size) != size) throw state->failure();
         });
@@ -198,9 +199,9 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         State* state = &s;  // owns the writer, so outlives it
         JpegMetadata metadata;
         metadata.attributes = jpegAttributes(attributesFor());
-        // OpenImageIO's encoders still, through the codec module: a JPEG file always has EXIF.
+        metadata.exif = encodeExifBlock(metadata.attributes);
+        // IPTC and XMP by OpenImageIO's encoders still, through the codec module.
         JpegMetadataBlocks blocks = codecModule().jpegMetadataBlocks(metadata.attributes);
-        metadata.exif = std::move(blocks.exif);
         metadata.iptc = std::move(blocks.iptc);
         metadata.xmp = std::move(blocks.xmp);
         const JpegFormat jpeg_format{width, height, layout.out_channels, options.quality};

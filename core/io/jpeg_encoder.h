@@ -25,9 +25,9 @@ struct JpegFormat {
     int quality = 95;       // 1 to 100, libjpeg's scale
 };
 
-// What the markers are made of. The EXIF, IPTC and XMP encodings come from the caller (today
-// OpenImageIO's encoders, through the codec module: codec_module.h's jpegMetadataBlocks), made
-// of jpegAttributes(), as the writer made them.
+// What the markers are made of. The EXIF, IPTC and XMP encodings come from the caller (exif.h's
+// encodeExifBlock; OpenImageIO's encoders through codec_module.h's jpegMetadataBlocks), made of
+// jpegAttributes(), as the writer made them.
 struct JpegMetadata {
     ImageAttributes attributes;  // jpegAttributes() of the output's
     std::string exif;            // the TIFF structure of the APP1 EXIF marker, written always

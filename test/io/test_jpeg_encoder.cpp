@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "exif.h"
 #include "image_file.h"
 #include "image_metadata.h"
 #include "jpeg_encoder.h"
@@ -65,7 +66,7 @@ std::string theirs(const Case& c) {
 ddt::JpegMetadata metadataOf(const ImageAttributes& attributes) {
     ddt::JpegMetadata metadata;
     metadata.attributes = ddt::jpegAttributes(attributes);
-    metadata.exif = ddt::exifBlockOfAll(metadata.attributes);
+    metadata.exif = ddt::encodeExifBlock(metadata.attributes);
     metadata.iptc = ddt::iptcBlock(metadata.attributes);
     metadata.xmp = ddt::xmpPacket(metadata.attributes);
     return metadata;

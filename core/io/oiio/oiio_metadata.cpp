@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <optional>
 
-#include "image_metadata.h"
-
 namespace ddt {
 
 namespace {
@@ -88,19 +86,6 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec) {
             spec.extra_attribs.emplace_back(attribute.name, type, 1, attribute.bytes.data());
         }
     }
-}
-
-std::string exifBlock(const ImageAttributes& attributes) {
-    return hasExif(attributes) ? exifBlockOfAll(attributes) : "";
-}
-
-std::string exifBlockOfAll(const ImageAttributes& attributes) {
-    OIIO::ImageSpec spec;
-    addAttributes(attributes, spec);
-    std::vector<char> block;
-    // Little-endian: OpenImageIO 2.4 writes a wrong signature for big endian.
-    OIIO::encode_exif(spec, block, OIIO::endian::little);
-    return std::string(block.begin(), block.end());
 }
 
 std::string iptcBlock(const ImageAttributes& attributes) {

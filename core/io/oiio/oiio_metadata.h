@@ -1,5 +1,5 @@
 // ddtup's image attributes to and from OpenImageIO's ImageSpec, for the files that call its
-// codecs, and what only OpenImageIO makes of them today (the EXIF block).
+// codecs.
 #pragma once
 
 #include <OpenImageIO/imageio.h>
@@ -16,14 +16,6 @@ ImageAttributes attributesOf(const OIIO::ImageSpec& spec);
 
 // Appends `attributes` to the spec's extra attributes, as they are.
 void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec);
-
-// The EXIF and GPS attributes, and the TIFF tags EXIF carries (resolution, date, camera, …),
-// encoded as the little-endian TIFF structure of PNG's eXIf chunk; "" when there is no EXIF
-// or GPS attribute.
-std::string exifBlock(const ImageAttributes& attributes);
-// The same encoding also when there is no EXIF or GPS attribute (the TIFF tags alone, or an
-// empty directory), as OpenImageIO's JPEG writer always wrote one.
-std::string exifBlockOfAll(const ImageAttributes& attributes);
 
 // The IPTC-IIM records and the XMP packet OpenImageIO 2.4's JPEG writer made of the attributes
 // (encode_iptc_iim, encode_xmp with its "minimal" choice), "" for none.

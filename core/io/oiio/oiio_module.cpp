@@ -65,10 +65,8 @@ public:
         upright.get_pixels(OIIO::ROI::All(), type_desc, samples);
     }
 
-    std::string exifBlock(const ImageAttributes& attributes) override { return ddt::exifBlock(attributes); }
-
     JpegMetadataBlocks jpegMetadataBlocks(const ImageAttributes& attributes) override {
-        return {exifBlockOfAll(attributes), iptcBlock(attributes), xmpPacket(attributes)};
+        return {iptcBlock(attributes), xmpPacket(attributes)};
     }
 
     void setThreads(unsigned count) override { OIIO::attribute("threads", int(count)); }
