@@ -1,5 +1,6 @@
-// Reading image files through OpenImageIO: checks, standard input, EXIF orientation, decoding
-// in bands, straight alpha premultiplied.
+// Reading image files: checks, standard input, EXIF orientation, straight alpha premultiplied.
+// PNG and JPEG files (but CMYK ones) with libpng's and libjpeg's headers and libspng's and
+// libjpeg's pixels, without OpenImageIO; the others through OpenImageIO, decoded in bands.
 #include "image_file.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -17,6 +18,7 @@
 #include <type_traits>
 
 #include "checked_file.h"
+#include "code_values.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "input_check.h"
@@ -24,7 +26,9 @@
 #include "oiio_codec.h"
 #include "oiio_metadata.h"
 #include "png_decoder.h"
+#include "png_header.h"
 #include "temp_files.h"
+#include "upright.h"
 
 namespace ddt {
 
@@ -103,33 +107,6 @@ bool hasSeveralImages(OIIO::ImageInput& input) {
     return several;
 }
 
-// EXIF orientation 5..8 turn the stored image a quarter: the upright size is the stored size swapped.
-bool swapsSides(int orientation) { return orientation >= 5 && orientation <= 8; }
-
-// Turns and mirrors `samples` (of `type`, the stored size) in place as EXIF orientation 2..8
-// asks, so that they are upright (`header`'s size).
-// Not ImageBufAlgo::reorient: OIIO 2.4 swaps 5 and 7 there (OpenImageIO issue #4661).
-void makeUpright(void* samples, OIIO::TypeDesc type, const Image& header, int orientation) {
-    namespace iba = OIIO::ImageBufAlgo;
-    const bool swapped = swapsSides(orientation);
-    const OIIO::ImageSpec stored_spec(int(swapped ? header.height : header.width), int(swapped ? header.width : header.height),
-                                      int(header.channels), type);
-    const OIIO::ImageBuf stored(stored_spec, samples);
-    OIIO::ImageBuf upright, half_turned;
-    bool ok = false;
-    switch (orientation) {
-        case 2: ok = iba::flop(upright, stored); break;        // mirrored left to right
-        case 3: ok = iba::rotate180(upright, stored); break;
-        case 4: ok = iba::flip(upright, stored); break;        // mirrored top to bottom
-        case 5: ok = iba::transpose(upright, stored); break;   // mirrored across the main diagonal
-        case 6: ok = iba::rotate90(upright, stored); break;    // clockwise
-        case 7: ok = iba::rotate180(half_turned, stored) && iba::transpose(upright, half_turned); break;
-        case 8: ok = iba::rotate270(upright, stored); break;
-    }
-    if (!ok) throw std::runtime_error("orienting the image: " + upright.geterror());
-    upright.get_pixels(OIIO::ROI::All(), type, samples);
-}
-
 // Rows decoded per call, a whole number of TIFF strips. OIIO 2.4's TIFF reader goes on through
 // every strip of a call after one fails, adding a message each (and then reports success),
 // and ends the process when its messages pass 16 MB: a damaged TIFF claiming 65536 rows of 3
@@ -160,21 +137,120 @@ bool decodePixels(OIIO::ImageInput& input, OIIO::TypeDesc type, void* pixels) {
     return true;
 }
 
-// The float the codec makes of each code of `Code` (its conversion when asked for floats), so
-// that unpacked codes equal a float read bit for bit.
-template <class Code>
-std::vector<float> valuesOfCodes(OIIO::TypeDesc type) {
-    std::vector<Code> codes(size_t(1) << (8 * sizeof(Code)));
-    for (size_t code = 0; code < codes.size(); ++code) codes[code] = Code(code);
-    std::vector<float> values(codes.size());
-    OIIO::convert_pixel_values(type, codes.data(), OIIO::TypeDesc::FLOAT, values.data(), int(codes.size()));
-    return values;
-}
-
 bool allFinite(const std::vector<float>& pixels) {
     for (float value : pixels)
         if (!std::isfinite(value)) return false;
     return true;
+}
+
+// What the reader takes from a file's header, whichever library read it.
+struct OpenedHeader {
+    uint32_t width = 0, height = 0, channels = 0;  // as stored, before any EXIF orientation
+    SampleType sample_type = SampleType::UInt8;
+    uint32_t code_bits = 0;  // 8 or 16: the samples are kept as such; 0: read as floats
+    ImageAttributes attributes;
+    std::string format_name;  // OpenImageIO's name of the format ("png", "jpeg", …)
+};
+
+void checkPixelCount(const std::string& name, uint64_t width, uint64_t height) {
+    if (width * height > kMaxInputPixels)
+        throw UserError(name + ": image is " + std::to_string(width) + "×" + std::to_string(height) +
+                        " pixels; ddtup reads at most " + std::to_string(kMaxInputPixels) + " pixels (16384×16384)");
+}
+
+// A PNG or JPEG file's header without OpenImageIO, its decoder made. nullopt where the file
+// needs OpenImageIO: a CMYK or YCCK JPEG, XMP or IPTC metadata, or a header libpng, libspng or
+// libjpeg refuses (OpenImageIO's reader then words the reason, as it always has).
+std::optional<OpenedHeader> openWithoutOiio(const ImageFormat& format, const std::string& file, const std::string& name,
+                                            std::unique_ptr<PngDecoder>& png, std::unique_ptr<JpegDecoder>& jpeg) {
+    const DecodeExif decode_exif = decodeExifWithOiio;
+    OpenedHeader opened;
+    try {
+        if (format.oiio_name == std::string("png")) {
+            std::optional<PngHeader> header = readPngHeader(file, name, decode_exif);
+            if (!header) return std::nullopt;
+            png = std::make_unique<PngDecoder>(file, name);
+            if (png->width() != header->width || png->height() != header->height || png->channels() != header->channels ||
+                png->sampleBits() != header->bits) {
+                png.reset();  // OpenImageIO's path reports the disagreement
+                return std::nullopt;
+            }
+            opened = {header->width, header->height, header->channels, header->bits == 16 ? SampleType::UInt16 : SampleType::UInt8,
+                      header->bits, std::move(header->attributes), "png"};
+        } else if (format.oiio_name == std::string("jpeg")) {
+            jpeg = std::make_unique<JpegDecoder>(file, name);
+            std::optional<ImageAttributes> attributes;
+            if (jpeg->decodable()) attributes = jpeg->attributes(decode_exif);
+            if (!attributes) {
+                jpeg.reset();
+                return std::nullopt;
+            }
+            opened = {jpeg->width(), jpeg->height(), jpeg->channels(), SampleType::UInt8, 8, std::move(*attributes), "jpeg"};
+        } else {
+            return std::nullopt;
+        }
+    } catch (const UserError&) {
+        png.reset();
+        jpeg.reset();
+        return std::nullopt;
+    }
+    return opened;
+}
+
+// Any file through OpenImageIO's reader for its format, its checks made; for PNG and JPEG
+// files that openWithoutOiio left, the pixels still come from libspng and libjpeg where they can.
+OpenedHeader openWithOiio(const ImageFormat& format, const std::string& file, const std::string& name,
+                          std::unique_ptr<OIIO::ImageInput>& input, std::unique_ptr<PngDecoder>& png,
+                          std::unique_ptr<JpegDecoder>& jpeg, std::vector<std::string>& notes) {
+    // Ask readers for straight alpha as stored; premultiplying in float loses nothing.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    {
+        QuietStderr quiet;
+        input = OIIO::ImageInput::create(format.oiio_name);
+        OIIO::ImageSpec opened;
+        if (input && !input->open(file, opened, config)) {
+            const std::string reason = firstLine(codecError(*input));
+            throw UserError(name + ": not a readable " + format.title + " image (" + reason + ")");
+        }
+    }
+    if (!input) throw std::runtime_error(std::string("OpenImageIO has no ") + format.title + " reader");
+
+    bool several;
+    {
+        QuietStderr quiet;
+        several = hasSeveralImages(*input);
+    }
+    if (several) notes.push_back(name + ": has more than one image (pages or frames); using the first");
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.deep) throw UserError(name + ": deep images are not supported");
+    if (spec.depth > 1) throw UserError(name + ": volume images are not supported");
+    if (spec.width < 1 || spec.height < 1) throw UserError(name + ": the image has no pixels");
+    checkPixelCount(name, uint64_t(spec.width), uint64_t(spec.height));
+    if (std::string problem = checkChannelLayout(spec); !problem.empty()) throw UserError(name + ": " + problem);
+
+    // JPEG and PNG pixels come from libjpeg-turbo (where it takes the colour model) and libspng
+    // directly, the same samples (jpeg_decoder.h, png_decoder.h).
+    auto check_layout = [&](uint32_t width, uint32_t height, uint32_t channels, uint32_t bits) {
+        if (width != uint32_t(spec.width) || height != uint32_t(spec.height) || channels != uint32_t(spec.nchannels) ||
+            bits != spec.format.size() * 8)
+            throw std::logic_error(name + ": the decoder and OpenImageIO disagree on the image's layout");
+    };
+    if (format.oiio_name == std::string("jpeg")) {
+        jpeg = std::make_unique<JpegDecoder>(file, name);
+        if (!jpeg->decodable()) jpeg.reset();
+        else check_layout(jpeg->width(), jpeg->height(), jpeg->channels(), 8);
+    }
+    if (format.oiio_name == std::string("png")) {
+        png = std::make_unique<PngDecoder>(file, name);
+        check_layout(png->width(), png->height(), png->channels(), png->sampleBits());
+    }
+    OpenedHeader opened{uint32_t(spec.width), uint32_t(spec.height), uint32_t(spec.nchannels), sampleTypeOf(spec.format), 0,
+                        attributesOf(spec), input->format_name()};
+    // Signed and mixed per-channel types are converted to floats as they are read.
+    if (spec.channelformats.empty() && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16))
+        opened.code_bits = uint32_t(spec.format.size() * 8);
+    return opened;
 }
 
 }  // namespace
@@ -185,10 +261,12 @@ struct ImageReader::State {
     std::string file;                      // the path, or the copy of standard input
     std::unique_ptr<JpegDecoder> jpeg;     // decodes the pixels of a grey, YCbCr or RGB JPEG file
     std::unique_ptr<PngDecoder> png;       // decodes the pixels of a PNG file
-    std::unique_ptr<OIIO::ImageInput> input;
+    std::unique_ptr<OIIO::ImageInput> input;  // decodes the others; null where the two above do
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
     int orientation = 1;
-    OIIO::TypeDesc codes = OIIO::TypeDesc::UNKNOWN;  // UINT8 or UINT16: the samples are kept as such
+    uint32_t stored_width = 0, stored_height = 0;  // before the orientation is applied
+    uint32_t code_bits = 0;                        // 8 or 16: the samples are kept as such; 0: as floats
+    bool decoded = false;
 };
 
 ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<State>()) {
@@ -213,42 +291,22 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
         throw UserError(s.name + ": not an image in a format ddtup reads (" + imageFormatTitles() + ")");
     if (std::string problem = checkBeforeDecoding(file, format->oiio_name); !problem.empty())
         throw UserError(s.name + ": " + problem);
-    // Ask readers for straight alpha as stored; premultiplying in float loses nothing.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    {
-        QuietStderr quiet;
-        s.input = OIIO::ImageInput::create(format->oiio_name);
-        OIIO::ImageSpec opened;
-        if (s.input && !s.input->open(file, opened, config)) {
-            const std::string reason = firstLine(codecError(*s.input));
-            throw UserError(s.name + ": not a readable " + format->title + " image (" + reason + ")");
-        }
-    }
-    if (!s.input) throw std::runtime_error(std::string("OpenImageIO has no ") + format->title + " reader");
 
-    bool several;
-    {
-        QuietStderr quiet;
-        several = hasSeveralImages(*s.input);
-    }
-    if (several) notes_.push_back(s.name + ": has more than one image (pages or frames); using the first");
-    const OIIO::ImageSpec& spec = s.input->spec();
-    if (spec.deep) throw UserError(s.name + ": deep images are not supported");
-    if (spec.depth > 1) throw UserError(s.name + ": volume images are not supported");
-    if (spec.width < 1 || spec.height < 1) throw UserError(s.name + ": the image has no pixels");
-    if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxInputPixels)
-        throw UserError(s.name + ": image is " + std::to_string(spec.width) + "×" + std::to_string(spec.height) +
-                        " pixels; ddtup reads at most " + std::to_string(kMaxInputPixels) + " pixels (16384×16384)");
-    if (std::string problem = checkChannelLayout(spec); !problem.empty()) throw UserError(s.name + ": " + problem);
+    std::optional<OpenedHeader> opened = openWithoutOiio(*format, file, s.name, s.png, s.jpeg);
+    if (opened) checkPixelCount(s.name, opened->width, opened->height);
+    else opened = openWithOiio(*format, file, s.name, s.input, s.png, s.jpeg, notes_);
 
-    const int orientation = spec.get_int_attribute("Orientation", 1);
+    s.orientation = 1;
+    const int orientation = opened->attributes.getInt("Orientation", 1);
     if (orientation >= 2 && orientation <= 8) s.orientation = orientation;
     const bool swapped = swapsSides(s.orientation);
+    s.stored_width = opened->width;
+    s.stored_height = opened->height;
+    s.code_bits = opened->code_bits;
 
     auto metadata = std::make_shared<ImageMetadata>();
-    metadata->attributes = attributesOf(spec);
-    metadata->format_name = s.input->format_name();
+    metadata->attributes = std::move(opened->attributes);
+    metadata->format_name = opened->format_name;
     metadata->alpha_storage = inputAlphaStorage(metadata->attributes, metadata->format_name);
     // The metadata describes the upright image the reader returns.
     ImageAttributes& attributes = metadata->attributes;
@@ -263,39 +321,21 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     }
     s.alpha_storage = metadata->alpha_storage;
 
-    header_.width = uint32_t(swapped ? spec.height : spec.width);
-    header_.height = uint32_t(swapped ? spec.width : spec.height);
-    header_.channels = uint32_t(spec.nchannels);
-    header_.sample_type = sampleTypeOf(spec.format);
+    header_.width = swapped ? opened->height : opened->width;
+    header_.height = swapped ? opened->width : opened->height;
+    header_.channels = opened->channels;
+    header_.sample_type = opened->sample_type;
     header_.metadata = metadata;
-    // JPEG and PNG pixels come from libjpeg-turbo (where it takes the colour model) and libspng
-    // directly, the same samples (jpeg_decoder.h, png_decoder.h).
-    auto check_layout = [&](uint32_t width, uint32_t height, uint32_t channels, uint32_t bits) {
-        if (width != uint32_t(spec.width) || height != uint32_t(spec.height) || channels != uint32_t(spec.nchannels) ||
-            bits != spec.format.size() * 8)
-            throw std::logic_error(s.name + ": the decoder and OpenImageIO disagree on the image's layout");
-    };
-    if (format->oiio_name == std::string("jpeg")) {
-        s.jpeg = std::make_unique<JpegDecoder>(s.file, s.name);
-        if (!s.jpeg->decodable()) s.jpeg.reset();
-        else check_layout(s.jpeg->width(), s.jpeg->height(), s.jpeg->channels(), 8);
-    }
-    if (format->oiio_name == std::string("png")) {
-        s.png = std::make_unique<PngDecoder>(s.file, s.name);
-        check_layout(s.png->width(), s.png->height(), s.png->channels(), s.png->sampleBits());
-    }
-    // Signed and mixed per-channel types are converted to floats as they are read.
-    if (spec.channelformats.empty() && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16))
-        s.codes = spec.format;
 }
+
 
 ImageReader::~ImageReader() = default;
 
 template <class Sample>
 std::vector<Sample> ImageReader::decode() {
-    const OIIO::TypeDesc type = OIIO::BaseTypeFromC<Sample>::value;
     State& s = *state_;
-    if (!s.input) throw std::logic_error("ImageReader::read called twice");
+    if (s.decoded) throw std::logic_error("ImageReader::read called twice");
+    s.decoded = true;
     std::vector<Sample> samples;
     try {
         samples.resize(size_t(header_.width) * header_.height * header_.channels);
@@ -311,12 +351,14 @@ std::vector<Sample> ImageReader::decode() {
         }
     }
     if constexpr (std::is_same_v<Sample, uint8_t> || std::is_same_v<Sample, uint16_t>) {
-        if (s.png) {  // its depth is the file's (checked against OpenImageIO's), which chose Sample
+        if (s.png) {  // its depth is the file's (checked against the header's), which chose Sample
             s.png->decode(samples.data());
             decoded = true;
         }
     }
     if (!decoded) {
+        if (!s.input) throw std::logic_error(s.name + ": no decoder for these samples");
+        const OIIO::TypeDesc type = OIIO::BaseTypeFromC<Sample>::value;
         bool ok;
         {
             QuietStderr quiet;
@@ -330,20 +372,20 @@ std::vector<Sample> ImageReader::decode() {
     s.png.reset();
     s.input.reset();
     s.stdin_copy.reset();
-    if (s.orientation != 1) makeUpright(samples.data(), type, header_, s.orientation);
+    makeUpright(samples.data(), sizeof(Sample) * header_.channels, s.stored_width, s.stored_height, s.orientation);
     return samples;
 }
 
 PackedImage ImageReader::readPacked() {
     const bool straight = header_.hasAlpha() && state_->alpha_storage == AlphaStorage::Straight;
     // 8- and 16-bit files are kept as their codes (packed_image.h); anything else as floats.
-    if (state_->codes == OIIO::TypeDesc::UINT8) {
+    if (state_->code_bits == 8) {
         std::vector<uint8_t> codes = decode<uint8_t>();
-        return PackedImage(header_, std::move(codes), valuesOfCodes<uint8_t>(state_->codes), straight);
+        return PackedImage(header_, std::move(codes), valuesOfCodes(8), straight);
     }
-    if (state_->codes == OIIO::TypeDesc::UINT16) {
+    if (state_->code_bits == 16) {
         std::vector<uint16_t> codes = decode<uint16_t>();
-        return PackedImage(header_, std::move(codes), valuesOfCodes<uint16_t>(state_->codes), straight);
+        return PackedImage(header_, std::move(codes), valuesOfCodes(16), straight);
     }
     Image image = header_;
     image.pixels = decode<float>();
@@ -357,8 +399,7 @@ PackedImage ImageReader::readPacked() {
 Image ImageReader::read() { return readPacked().unpack(); }
 
 uint32_t ImageReader::keptSampleBytes() const {
-    const OIIO::TypeDesc codes = state_->codes;
-    return codes == OIIO::TypeDesc::UNKNOWN ? uint32_t(sizeof(float)) : uint32_t(codes.size());
+    return state_->code_bits ? state_->code_bits / 8 : uint32_t(sizeof(float));
 }
 
 Image readImage(const std::string& path) { return ImageReader(path).read(); }

@@ -102,4 +102,13 @@ std::string exifBlock(const ImageAttributes& attributes) {
     return std::string(block.begin(), block.end());
 }
 
+void decodeExifWithOiio(const uint8_t* block, size_t size, ImageAttributes& attributes) {
+    // Into a spec holding the attributes so far, as OpenImageIO's readers decode it: it
+    // replaces some and reads others (Make, ColorSpace).
+    OIIO::ImageSpec spec;
+    addAttributes(attributes, spec);
+    OIIO::decode_exif(OIIO::cspan<uint8_t>(block, size), spec);
+    attributes = attributesOf(spec);
+}
+
 }  // namespace ddt
