@@ -3,8 +3,6 @@
 // libjpeg's pixels, without OpenImageIO; the others through OpenImageIO, decoded in bands.
 #include "image_file.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
