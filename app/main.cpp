@@ -13,6 +13,7 @@
 #include "buffer.h"
 #include "batch_plan.h"
 #include "cli.h"
+#include "codec_module.h"
 #include "context.h"
 #include "exit_codes.h"
 #include "image_file.h"

@@ -1,6 +1,7 @@
-// Image files: reading (image_reader.cpp) and writing (image_writer.cpp) through OpenImageIO,
-// PNG through ddtup's own parallel encoder. Kept apart from core/image.h so that code without
-// file I/O does not link OIIO.
+// Image files: reading (image_reader.cpp) and writing (image_writer.cpp); PNG and JPEG by
+// ddtup's own code over libspng, libjpeg-turbo and its parallel PNG encoder, the other formats
+// by OpenImageIO's codecs in a module loaded when needed (codec_module.h). Kept apart from
+// core/image.h so that code without file I/O links none of it.
 #pragma once
 
 #include <memory>
@@ -15,7 +16,7 @@ namespace ddt {
 
 // Opens an image file and reads its header; the pixels follow with read(). Splitting the two
 // lets a caller check sizes and open the output before the expensive decode.
-// Any format OpenImageIO reads, recognised by content; "-" reads standard input (copied to a
+// Any format of image_formats.h, recognised by content; "-" reads standard input (copied to a
 // temporary file first: codecs seek). Throws UserError("PATH: reason") for a missing, empty or
 // non-image file, a folder, a channel layout other than the four above, or more than
 // kMaxInputPixels pixels. The image is made upright by its EXIF orientation; of a file with
@@ -49,9 +50,6 @@ private:
     Image header_;
     std::vector<std::string> notes_;
 };
-
-// The threads OpenImageIO's codecs may use (its own pool, apart from parallel.h's).
-void setCodecThreads(unsigned count);
 
 // Reads a whole image through ImageReader.
 Image readImage(const std::string& path);

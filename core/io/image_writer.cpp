@@ -1,10 +1,9 @@
 // Writing image files: format limits checked first, a temporary file renamed over the output
-// on commit, PNG through ddtup's parallel encoder, every other format through OpenImageIO.
+// on commit, PNG through ddtup's parallel encoder, every other format through OpenImageIO's
+// codecs (codec_module.h).
 #include "image_file.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
-#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cassert>
@@ -14,11 +13,11 @@
 #include <filesystem>
 
 #include "checked_file.h"
+#include "codec_module.h"
 #include "image_formats.h"
 #include "image_metadata.h"
-#include "oiio_codec.h"
-#include "oiio_metadata.h"
 #include "output_file.h"
+#include "output_layout.h"
 #include "parallel.h"
 #include "png_writer.h"
 #include "temp_files.h"
@@ -72,42 +71,17 @@ std::string checkOutputFormat(const std::string& path, uint32_t width, uint32_t 
         return (extension.empty() || extension == "." ? std::string("the output has no file extension")
                                                       : "the extension " + extension + " is not a format ddtup writes") +
                " (" + imageFormatTitles() + "; see --format)";
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(ours->oiio_name);
-    if (!output) return std::string("OpenImageIO has no ") + ours->title + " writer";
     if (width < 1 || height < 1) return "an image needs at least 1×1 pixels";
     uint32_t max_side = kMaxSide;
     for (const SideLimit& limit : kSideLimits)
-        if (output->format_name() == std::string(limit.format)) max_side = limit.max_side;
+        if (ours->oiio_name == std::string(limit.format)) max_side = limit.max_side;
     if (width > max_side || height > max_side)
-        return std::string(output->format_name()) + " holds at most " + std::to_string(max_side) + " pixels a side; the output would be " +
+        return std::string(ours->oiio_name) + " holds at most " + std::to_string(max_side) + " pixels a side; the output would be " +
                std::to_string(width) + "×" + std::to_string(height);
     return "";
 }
 
 namespace {
-
-// How the premultiplied rows the caller gives become the rows the file stores.
-struct OutputLayout {
-    uint32_t in_channels = 0;
-    uint32_t out_channels = 0;
-    bool in_alpha = false;
-    bool out_alpha = false;
-    bool straight = false;  // divide colour by alpha
-    bool flatten = false;   // composite onto white, drop alpha
-    bool grey_to_rgb = false;
-};
-
-bool needsConversion(const OutputLayout& layout) { return layout.straight || layout.flatten || layout.grey_to_rgb; }
-
-void expandGreyToRgb(OutputLayout& layout) {
-    layout.grey_to_rgb = true;
-    layout.out_channels += 2;
-}
-
-void closeQuietly(OIIO::ImageOutput& output) {
-    QuietStderr quiet;  // libpng complains about a file closed without pixels
-    output.close();
-}
 
 // One pixel from the premultiplied layout the caller gives to the stored layout.
 void convertRows(const OutputLayout& layout, const float* in, size_t count, float* out) {
@@ -126,13 +100,6 @@ void convertRows(const OutputLayout& layout, const float* in, size_t count, floa
     }
 }
 
-// Whether the file system holding `path` has no space left, to name the cause of a failed
-// write by a codec that writes its file itself (TIFF) and reports it in its own words.
-bool noSpaceLeft(const std::string& path) {
-    struct statvfs status {};
-    return ::statvfs(path.c_str(), &status) == 0 && status.f_bavail == 0;
-}
-
 // The quality setting of the lossy formats, in OIIO's "compression" attribute.
 void setQuality(const std::string& format, int quality, ImageAttributes& attributes) {
     assert(quality >= 1 && quality <= 100);
@@ -145,38 +112,16 @@ struct ImageWriter::State {
     std::string path;
     std::string name;  // for messages: the path, or "standard output"
     std::unique_ptr<TempFile> temp;
-    std::unique_ptr<CheckedFile> file;  // null for the few codecs that cannot write through one
-    std::unique_ptr<CheckedFileProxy> proxy;    // `file` as OIIO's writer sees it
-    std::unique_ptr<OIIO::ImageOutput> output;  // OIIO's writer, for every format but PNG
-    std::unique_ptr<PngWriter> png;             // ddtup's own, for PNG
+    std::unique_ptr<CheckedFile> file;    // what ddtup's own encoder writes to
+    std::unique_ptr<PngWriter> png;       // ddtup's own, for PNG
+    std::unique_ptr<CodecOutput> output;  // OpenImageIO's writer, for every other format
     uint32_t width = 0, height = 0;
     OutputLayout layout;
     uint32_t next_row = 0;
     std::vector<float> scratch;
 
-    // The reason a write failed: the file's own error where it saw one, since codecs that
-    // ignore failed writes report something vaguer or nothing.
-    UserError failure() {
-        std::string codec_reason = output ? firstLine(codecError(*output)) : "";  // read either way: it clears it
-        if (file && file->failure()) return UserError(name + ": " + std::strerror(file->failure()));
-        if (!file && noSpaceLeft(temp->path())) return UserError(name + ": " + std::strerror(ENOSPC));
-        return UserError(name + ": cannot write (" + codec_reason + ")");
-    }
-
-    // Opens the temporary file as a CheckedFile, empty.
-    void openCheckedFile() {
-        proxy.reset();
-        file.reset();
-        try {
-            file = std::make_unique<CheckedFile>(temp->path());
-        } catch (const std::system_error& error) {
-            throw UserError(name + ": cannot write (" + std::strerror(error.code().value()) + ")");
-        }
-    }
-
-    ~State() {
-        if (output) closeQuietly(*output);
-    }
+    // The reason a write to `file` failed.
+    UserError failure() const { return UserError(name + ": " + std::strerror(file->failure())); }
 };
 
 ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t height, const Image& like,
@@ -190,14 +135,14 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
     if (path != kStandardStream) checkOutputPath(path);
     if (std::string problem = checkOutputFormat(path, width, height, options.format); !problem.empty())
         throw UserError(s.name + ": " + problem);
-    s.output = OIIO::ImageOutput::create(formatOfExtension(outputExtension(path, options.format))->oiio_name);
-    const std::string format = s.output->format_name();
+    const ImageFormat& image_format = *formatOfExtension(outputExtension(path, options.format));
+    const std::string format = image_format.oiio_name;
     const SampleType wanted_type = options.depth.value_or(like.sample_type);
 
     OutputLayout& layout = s.layout;
     layout.in_channels = layout.out_channels = like.channels;
     layout.in_alpha = layout.out_alpha = like.hasAlpha();
-    if (like.hasAlpha() && !s.output->supports("alpha")) {
+    if (like.hasAlpha() && format != "png" && !codecModule().writesAlpha(image_format)) {
         // Dropping alpha would leave the premultiplied colour, i.e. black under transparent
         // areas; image editors flatten onto white when exporting to such formats, so do we.
         layout.flatten = true;
@@ -216,26 +161,20 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         setQuality(format, options.quality, attributes);
         return attributes;
     };
-    // The spec OIIO's writer gets.
-    auto specFor = [&](OIIO::TypeDesc type) {
-        OIIO::ImageSpec spec(int(width), int(height), int(layout.out_channels), type);
-        addAttributes(attributesFor(), spec);
-        spec.channelnames = channelNames(layout.out_channels);
-        spec.alpha_channel = layout.out_alpha ? int(layout.out_channels) - 1 : -1;
-        return spec;
-    };
-
     if (format == "png") {
         // PNG holds grey and alpha, 8 or 16 bits: wider samples are written as 16 bits.
         const SampleType written = wanted_type == SampleType::UInt8 ? SampleType::UInt8 : SampleType::UInt16;
-        s.output.reset();
-        s.openCheckedFile();
+        try {
+            s.file = std::make_unique<CheckedFile>(s.temp->path());
+        } catch (const std::system_error& error) {
+            throw UserError(s.name + ": cannot write (" + std::strerror(error.code().value()) + ")");
+        }
         State* state = &s;  // owns the writer, so outlives it
         const PngFormat png_format{width, height, layout.out_channels, written == SampleType::UInt8 ? 8u : 16u};
         PngMetadataSource metadata;
         metadata.attributes = attributesFor();
         metadata.channels = layout.out_channels;
-        metadata.exif = exifBlock(metadata.attributes);
+        metadata.exif = hasExif(metadata.attributes) ? codecModule().exifBlock(metadata.attributes) : "";
         s.png = std::make_unique<PngWriter>(png_format, metadata, [state](const uint8_t* data, size_t size) {
             if (state->file->write(data, size) != size) throw state->failure();
         });
@@ -246,45 +185,19 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         return;
     }
 
-    // OIIO 2.4's TIFF writer loses the main directory when it writes EXIF data through a
-    // proxy (measured, with OIIO's own IOFile too); libtiff reports failed writes itself.
-    const bool checked = s.output->supports("ioproxy") && format != "tiff";
-    auto openAs = [&](OIIO::TypeDesc type) {
-        const OIIO::ImageSpec spec = specFor(type);
-        if (checked) {
-            // Each attempt starts an empty file: a refused one may have written a header.
-            s.openCheckedFile();
-            s.proxy = std::make_unique<CheckedFileProxy>(*s.file);
-            s.output->set_ioproxy(s.proxy.get());
-        }
-        QuietStderr quiet;
-        return s.output->open(s.temp->path(), spec);
-    };
-
-    const OIIO::TypeDesc wanted = typeDescOf(wanted_type);
-    if (!openAs(wanted)) {
-        // Some formats hold no grey (WebP, GIF, HDR) or no grey+alpha (BMP): try RGB(A).
-        if (layout.out_channels > 2 || layout.grey_to_rgb) throw s.failure();
-        UserError first_failure = s.failure();
-        expandGreyToRgb(layout);
-        if (!openAs(wanted)) {
-            codecError(*s.output);  // drop the second attempt's message, the first says more
-            throw first_failure;
-        }
-    }
+    OutputRequest request;
+    request.temp_path = s.temp->path();
+    request.name = s.name;
+    request.format = &image_format;
+    request.width = width;
+    request.height = height;
+    request.wanted = wanted_type;
+    request.attributes = attributesFor();
+    s.output = codecModule().openOutput(request, layout);
     if (layout.grey_to_rgb)
         notes_.push_back(s.name + ": " + format + " cannot hold " + (layout.out_alpha ? "grey+alpha" : "grey") +
                          " images; written as " + (layout.out_alpha ? "RGBA" : "RGB"));
-    // Formats that cannot hold a type fall back to 8 bits in OIIO 2.4 (PNG turns float into
-    // 8-bit), while 16 bits is nearer for anything wider: ask for it once.
-    if (sampleTypeOf(s.output->spec().format) == SampleType::UInt8 && wanted_type != SampleType::UInt8) {
-        closeQuietly(*s.output);
-        if (!openAs(OIIO::TypeDesc::UINT16)) {
-            codecError(*s.output);  // this format refuses 16 bits: back to its own choice
-            if (!openAs(wanted)) throw s.failure();
-        }
-    }
-    const SampleType written = sampleTypeOf(s.output->spec().format);
+    const SampleType written = s.output->written();
     if (written != wanted_type)
         notes_.push_back(s.name + ": " + format + " cannot hold " + sampleTypeName(wanted_type) +
                          " samples; written as " + sampleTypeName(written));
@@ -309,27 +222,20 @@ void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows)
         s.next_row = y_end;
         return;
     }
-    bool ok;
-    {
-        QuietStderr quiet;
-        ok = s.output->write_scanlines(int(y_begin), int(y_end), 0, OIIO::TypeDesc::FLOAT, data);
-    }
-    if (!ok || (s.file && s.file->failure())) throw s.failure();
+    s.output->writeRows(y_begin, y_end, data);
     s.next_row = y_end;
 }
 
 void ImageWriter::commit() {
     State& s = *state_;
     if (s.next_row != s.height) throw std::logic_error("commit before all rows were written");
-    bool ok = true;
     if (s.png) {
         s.png->finish();
+        s.file->close();
+        if (s.file->failure()) throw s.failure();
     } else {
-        QuietStderr quiet;
-        ok = s.output->close();
+        s.output->finish();
     }
-    if (s.file) s.file->close();
-    if (!ok || (s.file && s.file->failure())) throw s.failure();
     s.output.reset();
     s.png.reset();
     if (s.path == kStandardStream) {

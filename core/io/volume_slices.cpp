@@ -1,18 +1,11 @@
 #include "volume_slices.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <system_error>
 
-#include "checked_file.h"
-#include "oiio_codec.h"
-#include "output_file.h"
-#include "user_error.h"
+#include "image_file.h"
 
 namespace ddt {
 
@@ -26,30 +19,16 @@ struct Window {
     }
 };
 
-// One 8-bit grey image through OIIO's PNG writer, into a CheckedFile (OIIO 2.4's PNG writer
-// reports a failed write as success: checked_file.h).
-void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& pixels) {
-    checkOutputPath(path);
-    const std::unique_ptr<TempFile> temp = createTempFile(path);
-    std::unique_ptr<CheckedFile> file;
-    try {
-        file = std::make_unique<CheckedFile>(temp->path());
-    } catch (const std::system_error& error) {
-        throw UserError(path + ": cannot write (" + std::strerror(error.code().value()) + ")");
-    }
-    CheckedFileProxy proxy(*file);  // outlives the output
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("png");
-    if (!output) throw UserError(path + ": cannot write (OpenImageIO has no PNG writer)");
-    output->set_ioproxy(&proxy);
-    const OIIO::ImageSpec spec(int(width), int(height), 1, OIIO::TypeDesc::UINT8);
-    const bool written = output->open(temp->path(), spec) && output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) &&
-                         output->close();
-    const std::string reason = output->has_error() ? output->geterror() : "OpenImageIO failed";
-    output.reset();
-    file->close();
-    if (file->failure()) throw UserError(path + ": " + std::strerror(file->failure()));
-    if (!written) throw UserError(path + ": cannot write (" + reason.substr(0, reason.find('\n')) + ")");
-    moveIntoPlace(*temp, path, path);
+// One 8-bit grey image, through ddtup's PNG writer.
+void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& levels) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = 1;
+    image.sample_type = SampleType::UInt8;
+    image.pixels.resize(levels.size());
+    for (size_t i = 0; i < levels.size(); ++i) image.pixels[i] = float(levels[i]) / 255.0f;
+    writeImage(path, image);
 }
 
 }  // namespace

@@ -1,10 +1,9 @@
 #include "volume_stack.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <filesystem>
 
+#include "codec_module.h"
 #include "image_file.h"
 #include "image_formats.h"
 #include "user_error.h"
@@ -42,27 +41,18 @@ void addSlice(Volume& volume, SampleType& first_type, const std::string& name, u
     ++volume.size[2];
 }
 
-SampleType sampleTypeOf(const OIIO::TypeDesc& format) {
-    if (format == OIIO::TypeDesc::UINT8) return SampleType::UInt8;
-    if (format == OIIO::TypeDesc::UINT16) return SampleType::UInt16;
-    if (format == OIIO::TypeDesc::HALF) return SampleType::Half;
-    return SampleType::Float;
-}
-
+// The pages of a multi-page TIFF, through OpenImageIO's TIFF reader.
 void readTiffPages(const std::string& path, Volume& volume) {
-    auto input = OIIO::ImageInput::open(path);
-    if (!input) throw UserError(path + ": " + OIIO::geterror());
+    const std::unique_ptr<CodecInput> input = codecModule().openInput(path, path, *formatOfExtension("tif"));
     SampleType first_type = SampleType::UInt8;
-    for (int page = 0; input->seek_subimage(page, 0); ++page) {
-        const OIIO::ImageSpec& spec = input->spec();
+    for (uint32_t page = 0; page == 0 || input->seekImage(page); ++page) {
+        const StoredImage& stored = input->stored();
         const std::string name = path + " page " + std::to_string(page + 1);
-        if (uint64_t(spec.width) * spec.height * (page + 1) > kMaxVolumeVoxels)
+        if (uint64_t(stored.width) * stored.height * (page + 1) > kMaxVolumeVoxels)
             throw UserError(path + ": more than " + std::to_string(kMaxVolumeVoxels) + " voxels");
-        std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
-        if (!input->read_image(page, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
-            throw UserError(name + ": " + input->geterror());
-        addSlice(volume, first_type, name, uint32_t(spec.width), uint32_t(spec.height), uint32_t(spec.nchannels),
-                 sampleTypeOf(spec.format), pixels);
+        std::vector<float> pixels(size_t(stored.width) * stored.height * stored.channels);
+        input->decode(SampleType::Float, pixels.data());
+        addSlice(volume, first_type, name, stored.width, stored.height, stored.channels, stored.sample_type, pixels);
     }
     volume.type = voxelTypeOf(first_type);
 }

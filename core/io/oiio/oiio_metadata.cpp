@@ -1,10 +1,11 @@
 #include "oiio_metadata.h"
 
-#include <OpenImageIO/strutil.h>
 #include <OpenImageIO/tiffutils.h>
 
 #include <algorithm>
 #include <optional>
+
+#include "image_metadata.h"
 
 namespace ddt {
 
@@ -90,10 +91,7 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec) {
 }
 
 std::string exifBlock(const ImageAttributes& attributes) {
-    bool any = false;
-    for (const ImageAttribute& attribute : attributes.all())
-        any = any || OIIO::Strutil::istarts_with(attribute.name, "Exif:") || OIIO::Strutil::istarts_with(attribute.name, "GPS:");
-    if (!any) return "";
+    if (!hasExif(attributes)) return "";
     OIIO::ImageSpec spec;
     addAttributes(attributes, spec);
     std::vector<char> block;

@@ -22,7 +22,7 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec);
 // or GPS attribute.
 std::string exifBlock(const ImageAttributes& attributes);
 
-// OpenImageIO's decoding of an EXIF block (exif_decoding.h), until ddtup has its own.
+// OpenImageIO's decoding of an EXIF block (exif_decoding.h's DecodeExif), until ddtup has its own.
 void decodeExifWithOiio(const uint8_t* block, size_t size, ImageAttributes& attributes);
 
 }  // namespace ddt

@@ -1,6 +1,5 @@
 #include "oiio_codec.h"
 
-#include "image_file.h"
 
 namespace ddt {
 
@@ -10,8 +9,6 @@ std::string firstLine(std::string message) {
     while (!message.empty() && (message.back() == ' ' || message.back() == '.')) message.pop_back();
     return message.empty() ? "unknown error" : message;
 }
-
-void setCodecThreads(unsigned count) { OIIO::attribute("threads", int(count)); }
 
 std::string globalError() { return OIIO::has_error() ? OIIO::geterror() : std::string(); }
 

@@ -1,6 +1,6 @@
 // Talking to OpenImageIO's codecs: their errors as one line for the user, stderr kept quiet
 // while they run, ddtup's sample types in OIIO's terms, and a CheckedFile for them to write
-// to. Shared by the reader and the writers.
+// to. Shared by the module's reader and writer.
 #pragma once
 
 #include <OpenImageIO/filesystem.h>

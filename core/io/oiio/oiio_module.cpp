@@ -1,0 +1,44 @@
+// The entry of ddtup-oiio.so: OpenImageIO's codecs behind codec_module.h's CodecModule.
+#include <OpenImageIO/imageio.h>
+
+#include "codec_module.h"
+#include "oiio_codec.h"
+#include "oiio_input.h"
+#include "oiio_metadata.h"
+#include "oiio_output.h"
+
+namespace ddt {
+
+namespace {
+
+class OiioCodecModule final : public CodecModule {
+public:
+    std::unique_ptr<CodecInput> openInput(const std::string& file, const std::string& name,
+                                          const ImageFormat& format) override {
+        return openOiioInput(file, name, format);
+    }
+
+    bool writesAlpha(const ImageFormat& format) override { return oiioWritesAlpha(format); }
+
+    std::unique_ptr<CodecOutput> openOutput(const OutputRequest& request, OutputLayout& layout) override {
+        return openOiioOutput(request, layout);
+    }
+
+    void decodeExif(const uint8_t* block, size_t size, ImageAttributes& attributes) override {
+        decodeExifWithOiio(block, size, attributes);
+    }
+
+    std::string exifBlock(const ImageAttributes& attributes) override { return ddt::exifBlock(attributes); }
+
+    void setThreads(unsigned count) override { OIIO::attribute("threads", int(count)); }
+};
+
+}  // namespace
+
+}  // namespace ddt
+
+// What codec_module.cpp looks up after loading the module.
+extern "C" __attribute__((visibility("default"))) ddt::CodecModule* ddtupCodecModule() {
+    static ddt::OiioCodecModule module;
+    return &module;
+}
