@@ -65,7 +65,6 @@ void decodeTextExif(std::string_view raw, ImageAttributes& attributes, const Dec
     raw.remove_prefix(4);
     const std::string rest(raw);
     char* end = nullptr;
-    errno = 0;
     const long count = std::strtol(rest.c_str(), &end, 10);
     if (end == rest.c_str() || count == 0) return;
     raw.remove_prefix(size_t(end - rest.c_str()));
