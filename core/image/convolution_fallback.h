@@ -28,6 +28,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "assumed_kernel.h"
@@ -57,19 +58,29 @@ constexpr uint32_t kFallbackReach = 5;
 // of kGrainShare.
 std::vector<float> surfaceWeights(const Image& image, float grain_share);
 
+struct LanczosTaps;
+
 // Blends rendered rows of a window towards the Lanczos3 convolution of the input the window's
 // mesh was made of (its crop at window.crop_x, crop_y).
 class ConvolutionFallback {
 public:
     // `input` is the crop the surface was made of; it is copied, so the caller may drop it.
     ConvolutionFallback(const Image& input, float grain_share);
+    ~ConvolutionFallback();
+    ConvolutionFallback(ConvolutionFallback&&) noexcept;
+    ConvolutionFallback& operator=(ConvolutionFallback&&) noexcept;
 
-    // `rows` as MeshRenderer::renderWindow writes them for `window`.
+    // `rows` as MeshRenderer::renderWindow writes them for `window`; bands of one window may
+    // be blended on several threads at once.
     void blend(const RenderWindow& window, float* rows, size_t row_stride = 0) const;
 
 private:
+    struct ColumnCache;
+    std::shared_ptr<const std::vector<LanczosTaps>> columnsOf(const RenderWindow& window) const;
+
     Image input_;
     std::vector<float> weights_;
+    std::unique_ptr<ColumnCache> columns_;
 };
 
 }  // namespace ddt

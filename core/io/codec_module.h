@@ -76,11 +76,6 @@ public:
     // Opens the output as `request` asks. A format without grey gets RGB (`layout` says so;
     // the note is the caller's), one without the wanted sample type its nearest.
     virtual std::unique_ptr<CodecOutput> openOutput(const OutputRequest& request, OutputLayout& layout) = 0;
-    // Adds what an EXIF block holds to `attributes`, as exif_decoding.h's DecodeExif does.
-    virtual void decodeExif(const uint8_t* block, size_t size, ImageAttributes& attributes) = 0;
-    // The EXIF and GPS attributes as the little-endian TIFF structure of PNG's eXIf chunk; "" when
-    // there are none.
-    virtual std::string exifBlock(const ImageAttributes& attributes) = 0;
     // The threads the codecs may use.
     virtual void setThreads(unsigned count) = 0;
 };

@@ -68,13 +68,4 @@ std::vector<std::string> channelNames(uint32_t channels) {
     }
 }
 
-bool hasExif(const ImageAttributes& attributes) {
-    auto starts = [](const std::string& name, std::string_view prefix) {
-        return name.size() >= prefix.size() && sameName(std::string_view(name).substr(0, prefix.size()), prefix);
-    };
-    for (const ImageAttribute& attribute : attributes.all())
-        if (starts(attribute.name, "Exif:") || starts(attribute.name, "GPS:")) return true;
-    return false;
-}
-
 }  // namespace ddt

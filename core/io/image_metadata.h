@@ -30,9 +30,6 @@ AlphaStorage outputAlphaStorage(const std::string& format, const Image& like);
 // scaled with the magnification, attributes of the old file dropped, compression settings only
 // to the same format.
 ImageAttributes outputAttributes(const Image& like, uint32_t width, uint32_t height, const std::string& format);
-// Whether there are EXIF or GPS attributes (which an EXIF block carries).
-bool hasExif(const ImageAttributes& attributes);
-
 // Conventional channel names, so that OpenEXR readers find grey and alpha again.
 std::vector<std::string> channelNames(uint32_t channels);
 

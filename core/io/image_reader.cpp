@@ -19,6 +19,7 @@
 #include "checked_file.h"
 #include "code_values.h"
 #include "codec_module.h"
+#include "exif.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "input_check.h"
@@ -78,11 +79,8 @@ SampleType sampleTypeOfC() {
     else return SampleType::Float;
 }
 
-// EXIF blocks through the codec module (loaded for the first file that has one) until ddtup
-// decodes them itself.
-void decodeExifByModule(const uint8_t* block, size_t size, ImageAttributes& attributes) {
-    codecModule().decodeExif(block, size, attributes);
-}
+// EXIF blocks by ddtup's own decoder (exif.h), which follows OpenImageIO's rules.
+void decodeExifBlock(const uint8_t* block, size_t size, ImageAttributes& attributes) { decodeExif(block, size, attributes); }
 
 // A PNG or JPEG file's header without OpenImageIO, its decoder made. nullopt where the file
 // needs OpenImageIO: a CMYK or YCCK JPEG, XMP or IPTC metadata, or a header libpng, libspng or
@@ -92,7 +90,7 @@ std::optional<StoredImage> openWithoutOiio(const ImageFormat& format, const std:
     StoredImage stored;
     try {
         if (format.oiio_name == std::string("png")) {
-            std::optional<PngHeader> header = readPngHeader(file, name, decodeExifByModule);
+            std::optional<PngHeader> header = readPngHeader(file, name, decodeExifBlock);
             if (!header) return std::nullopt;
             png = std::make_unique<PngDecoder>(file, name);
             if (png->width() != header->width || png->height() != header->height || png->channels() != header->channels ||
@@ -108,7 +106,7 @@ std::optional<StoredImage> openWithoutOiio(const ImageFormat& format, const std:
         } else if (format.oiio_name == std::string("jpeg")) {
             jpeg = std::make_unique<JpegDecoder>(file, name);
             std::optional<ImageAttributes> attributes;
-            if (jpeg->decodable()) attributes = jpeg->attributes(decodeExifByModule);
+            if (jpeg->decodable()) attributes = jpeg->attributes(decodeExifBlock);
             if (!attributes) {
                 jpeg.reset();
                 return std::nullopt;

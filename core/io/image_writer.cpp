@@ -14,6 +14,7 @@
 
 #include "checked_file.h"
 #include "codec_module.h"
+#include "exif.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "output_file.h"
@@ -174,7 +175,7 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         PngMetadataSource metadata;
         metadata.attributes = attributesFor();
         metadata.channels = layout.out_channels;
-        metadata.exif = hasExif(metadata.attributes) ? codecModule().exifBlock(metadata.attributes) : "";
+        metadata.exif = encodeExif(metadata.attributes);
         s.png = std::make_unique<PngWriter>(png_format, metadata, [state](const uint8_t* data, size_t size) {
             if (state->file->write(data, size) != size) throw state->failure();
         });

@@ -30,7 +30,7 @@ struct PngMetadataSource {
     ImageAttributes attributes;
     uint32_t channels = 0;               // 1 to 4: the colour model the ICC profile must match
     int32_t x_offset = 0, y_offset = 0;  // the oFFs chunk's (OpenImageIO's spec.x, spec.y)
-    std::string exif;                    // the eXIf chunk's data (exifBlock in oiio_metadata.h), or ""
+    std::string exif;                    // the eXIf chunk's data (encodeExif in exif.h), or ""
 };
 
 PngMetadata pngMetadata(const PngMetadataSource& source);

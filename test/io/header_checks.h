@@ -1,18 +1,35 @@
 // Shared by the PNG and JPEG header tests: OpenImageIO's own reading of a file's attributes
-// (the reference), an entry-by-entry comparison, and an ICC profile with every kind of text
+// (the reference), EXIF decoders to give the header readers (OpenImageIO's and ddtup's), an
+// entry-by-entry comparison, and an ICC profile with every kind of text
 // tag OpenImageIO decodes.
 #pragma once
 
 #include <catch2/catch.hpp>
 
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/tiffutils.h>
 
 #include <string>
 
+#include "exif.h"
 #include "image_attributes.h"
 #include "oiio_metadata.h"
 
 namespace ddt::test {
+
+// OpenImageIO's decode_exif as the header readers' DecodeExif (exif_decoding.h): into a spec
+// holding the attributes so far, as its readers decode the block.
+inline void decodeExifByOpenImageIO(const uint8_t* block, size_t size, ImageAttributes& attributes) {
+    OIIO::ImageSpec spec;
+    addAttributes(attributes, spec);
+    OIIO::decode_exif(OIIO::cspan<uint8_t>(block, size), spec);
+    attributes = attributesOf(spec);
+}
+
+// ddtup's own decoder (exif.h), the one the reader passes.
+inline void decodeExifByDdtup(const uint8_t* block, size_t size, ImageAttributes& attributes) {
+    decodeExif(block, size, attributes);
+}
 
 // The attributes OpenImageIO's reader gives, opened as ImageReader opens (straight alpha).
 inline ImageAttributes attributesByOpenImageIO(const std::string& path) {

@@ -159,7 +159,7 @@ TEST_CASE("png decoder: every sample equals OpenImageIO's for each colour type, 
                     CHECK(ours.bits == theirs.bits);
                     CHECK(ours.bytes == theirs.bytes);
                     // The header the reader takes instead of OpenImageIO's: its layout and attributes.
-                    const std::optional<ddt::PngHeader> header = ddt::readPngHeader(path, path, ddt::decodeExifWithOiio);
+                    const std::optional<ddt::PngHeader> header = ddt::readPngHeader(path, path, ddt::test::decodeExifByOpenImageIO);
                     REQUIRE(header);
                     CHECK(header->channels == theirs.channels);
                     CHECK(header->bits == theirs.bits);

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "exif.h"
 #include "image_file.h"
 #include "parallel.h"
 #include "png_encoder.h"
@@ -214,7 +215,7 @@ ddt::PngMetadata pngMetadataOf(const OIIO::ImageSpec& spec) {
     source.channels = uint32_t(spec.nchannels);
     source.x_offset = spec.x;
     source.y_offset = spec.y;
-    source.exif = ddt::exifBlock(source.attributes);
+    source.exif = ddt::encodeExif(source.attributes);
     return ddt::pngMetadata(source);
 }
 

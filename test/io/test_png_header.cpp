@@ -13,6 +13,7 @@
 #include "header_checks.h"
 #include "image_file.h"
 #include "image_metadata.h"
+#include "exif.h"
 #include "oiio_metadata.h"
 #include "png_bytes.h"
 #include "png_header.h"
@@ -64,7 +65,7 @@ std::string exifBlock(int orientation) {
     attributes.set("DateTime", std::string("2024:01:02 03:04:05"));
     attributes.set("Exif:ColorSpace", int32_t(1));
     attributes.set("Exif:FNumber", 2.8f);
-    return ddt::exifBlock(attributes);
+    return ddt::encodeExif(attributes);
 }
 
 // ImageMagick's "Raw profile type exif" text: "exif", the byte count, the bytes in hex.
@@ -82,7 +83,7 @@ std::string hexExifText(const std::string& block) {
 
 void requireSameAsOpenImageIO(const std::string& path) {
     INFO(path);
-    const std::optional<ddt::PngHeader> ours = ddt::readPngHeader(path, path, ddt::decodeExifWithOiio);
+    const std::optional<ddt::PngHeader> ours = ddt::readPngHeader(path, path, ddt::test::decodeExifByOpenImageIO);
     REQUIRE(ours);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
@@ -94,6 +95,10 @@ void requireSameAsOpenImageIO(const std::string& path) {
     CHECK(ours->channels == uint32_t(spec.nchannels));
     CHECK(ours->bits == spec.format.size() * 8);
     ddt::test::requireSameAttributes(ours->attributes, ddt::attributesOf(spec));
+    // With the EXIF decoder the reader passes.
+    const std::optional<ddt::PngHeader> reader_s = ddt::readPngHeader(path, path, ddt::test::decodeExifByDdtup);
+    REQUIRE(reader_s);
+    ddt::test::requireSameAttributes(reader_s->attributes, ddt::attributesOf(spec));
 }
 
 }  // namespace
@@ -168,7 +173,7 @@ TEST_CASE("png header: XMP is left to OpenImageIO, and the reader then gives its
                             "<rdf:Description xmlns:tiff='http://ns.adobe.com/tiff/1.0/' tiff:Make='ddtup'/></rdf:RDF></x:xmpmeta>";
     writeBytes(path, withChunks(readBytes(ddt::test::testDataPath("two_2x1_rgb.png")),
                                 pngChunk("iTXt", std::string("XML:com.adobe.xmp") + '\0' + '\0' + '\0' + '\0' + '\0' + xmp)));
-    CHECK(!ddt::readPngHeader(path, path, ddt::decodeExifWithOiio));
+    CHECK(!ddt::readPngHeader(path, path, ddt::test::decodeExifByOpenImageIO));
     const ddt::ImageReader reader(path);
     ddt::test::requireSameAttributes(reader.header().metadata->attributes, ddt::test::attributesByOpenImageIO(path));
 }
@@ -177,6 +182,6 @@ TEST_CASE("png header: a damaged header is refused in OpenImageIO's words", "[io
     TempFolder folder;
     const std::string path = (folder.path() / "zero.png").string();
     writeBytes(path, ddt::test::pngClaiming(0, 0));
-    CHECK(ddt::test::userErrorOf([&] { ddt::readPngHeader(path, "zero.png", ddt::decodeExifWithOiio); }) ==
+    CHECK(ddt::test::userErrorOf([&] { ddt::readPngHeader(path, "zero.png", ddt::test::decodeExifByOpenImageIO); }) ==
           "zero.png: not a readable PNG image (PNG read error: Invalid IHDR data)");
 }

@@ -1,11 +1,7 @@
 #include "oiio_metadata.h"
 
-#include <OpenImageIO/tiffutils.h>
-
 #include <algorithm>
 #include <optional>
-
-#include "image_metadata.h"
 
 namespace ddt {
 
@@ -88,25 +84,6 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec) {
             spec.extra_attribs.emplace_back(attribute.name, type, 1, attribute.bytes.data());
         }
     }
-}
-
-std::string exifBlock(const ImageAttributes& attributes) {
-    if (!hasExif(attributes)) return "";
-    OIIO::ImageSpec spec;
-    addAttributes(attributes, spec);
-    std::vector<char> block;
-    // Little-endian: OpenImageIO 2.4 writes a wrong signature for big endian.
-    OIIO::encode_exif(spec, block, OIIO::endian::little);
-    return std::string(block.begin(), block.end());
-}
-
-void decodeExifWithOiio(const uint8_t* block, size_t size, ImageAttributes& attributes) {
-    // Into a spec holding the attributes so far, as OpenImageIO's readers decode it: it
-    // replaces some and reads others (Make, ColorSpace).
-    OIIO::ImageSpec spec;
-    addAttributes(attributes, spec);
-    OIIO::decode_exif(OIIO::cspan<uint8_t>(block, size), spec);
-    attributes = attributesOf(spec);
 }
 
 }  // namespace ddt

@@ -1,5 +1,5 @@
 // ddtup's image attributes to and from OpenImageIO's ImageSpec, for the files that call its
-// codecs, and what only OpenImageIO makes of them today (the EXIF block).
+// codecs.
 #pragma once
 
 #include <OpenImageIO/imageio.h>
@@ -16,13 +16,5 @@ ImageAttributes attributesOf(const OIIO::ImageSpec& spec);
 
 // Appends `attributes` to the spec's extra attributes, as they are.
 void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec);
-
-// The EXIF and GPS attributes, and the TIFF tags EXIF carries (resolution, date, camera, …),
-// encoded as the little-endian TIFF structure of PNG's eXIf chunk; "" when there is no EXIF
-// or GPS attribute.
-std::string exifBlock(const ImageAttributes& attributes);
-
-// OpenImageIO's decoding of an EXIF block (exif_decoding.h's DecodeExif), until ddtup has its own.
-void decodeExifWithOiio(const uint8_t* block, size_t size, ImageAttributes& attributes);
 
 }  // namespace ddt

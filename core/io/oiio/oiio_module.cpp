@@ -24,12 +24,6 @@ public:
         return openOiioOutput(request, layout);
     }
 
-    void decodeExif(const uint8_t* block, size_t size, ImageAttributes& attributes) override {
-        decodeExifWithOiio(block, size, attributes);
-    }
-
-    std::string exifBlock(const ImageAttributes& attributes) override { return ddt::exifBlock(attributes); }
-
     void setThreads(unsigned count) override { OIIO::attribute("threads", int(count)); }
 };
 
