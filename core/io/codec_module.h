@@ -64,13 +64,6 @@ struct OutputRequest {
     ImageAttributes attributes;
 };
 
-// What OpenImageIO 2.4's JPEG writer encoded of an image's attributes for its APP13 and second
-// APP1 markers (jpeg_encoder.h); ddtup has no IPTC or XMP encoder of its own yet.
-struct JpegMetadataBlocks {
-    std::string iptc;  // IPTC-IIM records, or ""
-    std::string xmp;   // the XMP packet, or ""
-};
-
 class CodecModule {
 public:
     virtual ~CodecModule() = default;
@@ -89,8 +82,6 @@ public:
     // that they are upright (`upright_width` × `upright_height`).
     virtual void makeUpright(void* samples, SampleType type, uint32_t upright_width, uint32_t upright_height,
                              uint32_t channels, int orientation) = 0;
-    // The IPTC and XMP blocks for a JPEG file with these attributes (jpegAttributes()).
-    virtual JpegMetadataBlocks jpegMetadataBlocks(const ImageAttributes& attributes) = 0;
     // The threads the codecs may use.
     virtual void setThreads(unsigned count) = 0;
 };

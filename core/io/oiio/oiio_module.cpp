@@ -65,10 +65,6 @@ public:
         upright.get_pixels(OIIO::ROI::All(), type_desc, samples);
     }
 
-    JpegMetadataBlocks jpegMetadataBlocks(const ImageAttributes& attributes) override {
-        return {iptcBlock(attributes), xmpPacket(attributes)};
-    }
-
     void setThreads(unsigned count) override { OIIO::attribute("threads", int(count)); }
 };
 
