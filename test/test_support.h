@@ -18,7 +18,12 @@
 namespace ddt::test {
 
 // Path of a fixture in test/data.
-inline std::string testDataPath(const std::string& name) { return std::string(DDTUP_TEST_DATA) + "/" + name; }
+inline std::string testDataPath(const std::string& name) {
+    std::string path = DDTUP_TEST_DATA;  // appended, not `+`: GCC 12 warns falsely about the temporaries
+    path += '/';
+    path += name;
+    return path;
+}
 
 // A width × height image made in memory; `pixels` row-major, `channels` floats per pixel.
 Image makeImage(uint32_t width, uint32_t height, uint32_t channels, std::vector<float> pixels);

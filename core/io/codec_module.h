@@ -76,12 +76,6 @@ public:
     // Opens the output as `request` asks. A format without grey gets RGB (`layout` says so;
     // the note is the caller's), one without the wanted sample type its nearest.
     virtual std::unique_ptr<CodecOutput> openOutput(const OutputRequest& request, OutputLayout& layout) = 0;
-    // The value the codec gives each code of `codes` (UInt8: 256, UInt16: 65536) read as float.
-    virtual std::vector<float> valuesOfCodes(SampleType codes) = 0;
-    // Turns `samples` (of `type`, the stored size) in place as EXIF orientation 2..8 asks, so
-    // that they are upright (`upright_width` × `upright_height`).
-    virtual void makeUpright(void* samples, SampleType type, uint32_t upright_width, uint32_t upright_height,
-                             uint32_t channels, int orientation) = 0;
     // The threads the codecs may use.
     virtual void setThreads(unsigned count) = 0;
 };

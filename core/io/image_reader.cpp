@@ -1,6 +1,7 @@
-// Reading image files: checks, standard input, EXIF orientation, straight alpha premultiplied;
-// JPEG and PNG pixels by libjpeg-turbo and libspng, everything else by OpenImageIO's codecs
-// (codec_module.h).
+// Reading image files: checks, standard input, EXIF orientation, straight alpha premultiplied.
+// PNG and JPEG files read by ddtup itself (headers by libpng and libjpeg, pixels by libspng and
+// libjpeg-turbo); everything else, CMYK JPEGs and files with XMP or IPTC by OpenImageIO's
+// codecs (codec_module.h), whose module is then loaded.
 #include "image_file.h"
 
 #include <fcntl.h>
@@ -16,13 +17,17 @@
 #include <type_traits>
 
 #include "checked_file.h"
+#include "code_values.h"
 #include "codec_module.h"
+#include "exif.h"
 #include "image_formats.h"
 #include "image_metadata.h"
 #include "input_check.h"
 #include "jpeg_decoder.h"
 #include "png_decoder.h"
+#include "png_header.h"
 #include "temp_files.h"
+#include "upright.h"
 
 namespace ddt {
 
@@ -65,9 +70,6 @@ std::string checkInputFile(const std::string& path) {
     return "";
 }
 
-// EXIF orientation 5..8 turn the stored image a quarter: the upright size is the stored size swapped.
-bool swapsSides(int orientation) { return orientation >= 5 && orientation <= 8; }
-
 uint32_t bitsOf(SampleType type) { return type == SampleType::UInt8 ? 8 : type == SampleType::Float ? 32 : 16; }
 
 template <class Sample>
@@ -75,6 +77,55 @@ SampleType sampleTypeOfC() {
     if constexpr (std::is_same_v<Sample, uint8_t>) return SampleType::UInt8;
     else if constexpr (std::is_same_v<Sample, uint16_t>) return SampleType::UInt16;
     else return SampleType::Float;
+}
+
+// EXIF blocks by ddtup's own decoder (exif.h), which follows OpenImageIO's rules.
+void decodeExifBlock(const uint8_t* block, size_t size, ImageAttributes& attributes) { decodeExif(block, size, attributes); }
+
+// A PNG or JPEG file's header without OpenImageIO, its decoder made. nullopt where the file
+// needs OpenImageIO: a CMYK or YCCK JPEG, XMP or IPTC metadata, or a header libpng, libspng or
+// libjpeg refuses (OpenImageIO's reader then words the reason, as it always has).
+std::optional<StoredImage> openWithoutOiio(const ImageFormat& format, const std::string& file, const std::string& name,
+                                           std::unique_ptr<PngDecoder>& png, std::unique_ptr<JpegDecoder>& jpeg) {
+    StoredImage stored;
+    try {
+        if (format.oiio_name == std::string("png")) {
+            std::optional<PngHeader> header = readPngHeader(file, name, decodeExifBlock);
+            if (!header) return std::nullopt;
+            png = std::make_unique<PngDecoder>(file, name);
+            if (png->width() != header->width || png->height() != header->height || png->channels() != header->channels ||
+                png->sampleBits() != header->bits) {
+                png.reset();  // OpenImageIO's path reports the disagreement
+                return std::nullopt;
+            }
+            stored.width = header->width;
+            stored.height = header->height;
+            stored.channels = header->channels;
+            stored.sample_type = header->bits == 16 ? SampleType::UInt16 : SampleType::UInt8;
+            stored.attributes = std::move(header->attributes);
+        } else if (format.oiio_name == std::string("jpeg")) {
+            jpeg = std::make_unique<JpegDecoder>(file, name);
+            std::optional<ImageAttributes> attributes;
+            if (jpeg->decodable()) attributes = jpeg->attributes(decodeExifBlock);
+            if (!attributes) {
+                jpeg.reset();
+                return std::nullopt;
+            }
+            stored.width = jpeg->width();
+            stored.height = jpeg->height();
+            stored.channels = jpeg->channels();
+            stored.attributes = std::move(*attributes);
+        } else {
+            return std::nullopt;
+        }
+    } catch (const UserError&) {
+        png.reset();
+        jpeg.reset();
+        return std::nullopt;
+    }
+    stored.keeps_codes = true;
+    stored.format_name = format.oiio_name;
+    return stored;
 }
 
 bool allFinite(const std::vector<float>& pixels) {
@@ -92,9 +143,11 @@ struct ImageReader::State {
     std::unique_ptr<JpegDecoder> jpeg;     // decodes the pixels of a grey, YCbCr or RGB JPEG file
     std::unique_ptr<PngDecoder> png;       // decodes the pixels of a PNG file
     std::unique_ptr<CodecInput> input;     // the header, and the pixels of every other file
+    StoredImage stored;                    // the header as stored, before the EXIF orientation
     AlphaStorage alpha_storage = AlphaStorage::Premultiplied;
     int orientation = 1;
     std::optional<SampleType> codes;  // UInt8 or UInt16: the samples are kept as such
+    bool decoded = false;
 };
 
 ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<State>()) {
@@ -119,8 +172,14 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
         throw UserError(s.name + ": not an image in a format ddtup reads (" + imageFormatTitles() + ")");
     if (std::string problem = checkBeforeDecoding(file, format->oiio_name); !problem.empty())
         throw UserError(s.name + ": " + problem);
-    s.input = codecModule().openInput(file, s.name, *format);
-    const StoredImage& stored = s.input->stored();
+    std::optional<StoredImage> own = openWithoutOiio(*format, file, s.name, s.png, s.jpeg);
+    if (own) {
+        s.stored = std::move(*own);
+    } else {
+        s.input = codecModule().openInput(file, s.name, *format);
+        s.stored = s.input->stored();
+    }
+    const StoredImage& stored = s.stored;
     if (stored.several_images) notes_.push_back(s.name + ": has more than one image (pages or frames); using the first");
     if (uint64_t(stored.width) * uint64_t(stored.height) > kMaxInputPixels)
         throw UserError(s.name + ": image is " + std::to_string(stored.width) + "×" + std::to_string(stored.height) +
@@ -153,19 +212,19 @@ ImageReader::ImageReader(const std::string& path) : state_(std::make_unique<Stat
     header_.channels = stored.channels;
     header_.sample_type = stored.sample_type;
     header_.metadata = metadata;
-    // JPEG and PNG pixels come from libjpeg-turbo (where it takes the colour model) and libspng
-    // directly, the same samples (jpeg_decoder.h, png_decoder.h).
+    // Where OpenImageIO read the header, JPEG and PNG pixels still come from libjpeg-turbo
+    // (where it takes the colour model) and libspng, the same samples (jpeg_decoder.h,
+    // png_decoder.h); openWithoutOiio made the decoders for the files it read.
     auto check_layout = [&](uint32_t width, uint32_t height, uint32_t channels, uint32_t bits) {
         if (width != stored.width || height != stored.height || channels != stored.channels ||
             bits != bitsOf(stored.sample_type))
             throw std::logic_error(s.name + ": the decoder and OpenImageIO disagree on the image's layout");
     };
-    if (format->oiio_name == std::string("jpeg")) {
+    if (s.input && format->oiio_name == std::string("jpeg")) {
         s.jpeg = std::make_unique<JpegDecoder>(s.file, s.name);
         if (!s.jpeg->decodable()) s.jpeg.reset();
         else check_layout(s.jpeg->width(), s.jpeg->height(), s.jpeg->channels(), 8);
-    }
-    if (format->oiio_name == std::string("png")) {
+    } else if (s.input && format->oiio_name == std::string("png")) {
         s.png = std::make_unique<PngDecoder>(s.file, s.name);
         check_layout(s.png->width(), s.png->height(), s.png->channels(), s.png->sampleBits());
     }
@@ -178,7 +237,8 @@ template <class Sample>
 std::vector<Sample> ImageReader::decode() {
     const SampleType type = sampleTypeOfC<Sample>();
     State& s = *state_;
-    if (!s.input) throw std::logic_error("ImageReader::read called twice");
+    if (s.decoded) throw std::logic_error("ImageReader::read called twice");
+    s.decoded = true;
     std::vector<Sample> samples;
     try {
         samples.resize(size_t(header_.width) * header_.height * header_.channels);
@@ -194,18 +254,18 @@ std::vector<Sample> ImageReader::decode() {
         }
     }
     if constexpr (std::is_same_v<Sample, uint8_t> || std::is_same_v<Sample, uint16_t>) {
-        if (s.png) {  // its depth is the file's (checked against OpenImageIO's), which chose Sample
+        if (s.png) {  // its depth is the file's (checked against the header's), which chose Sample
             s.png->decode(samples.data());
             decoded = true;
         }
     }
+    if (!decoded && !s.input) throw std::logic_error(s.name + ": no decoder for these samples");
     if (!decoded) s.input->decode(type, samples.data());
     s.jpeg.reset();
     s.png.reset();
     s.input.reset();
     s.stdin_copy.reset();
-    if (s.orientation != 1)
-        codecModule().makeUpright(samples.data(), type, header_.width, header_.height, header_.channels, s.orientation);
+    makeUpright(samples.data(), sizeof(Sample) * header_.channels, s.stored.width, s.stored.height, s.orientation);
     return samples;
 }
 
@@ -214,11 +274,11 @@ PackedImage ImageReader::readPacked() {
     // 8- and 16-bit files are kept as their codes (packed_image.h); anything else as floats.
     if (state_->codes == SampleType::UInt8) {
         std::vector<uint8_t> codes = decode<uint8_t>();
-        return PackedImage(header_, std::move(codes), codecModule().valuesOfCodes(SampleType::UInt8), straight);
+        return PackedImage(header_, std::move(codes), valuesOfCodes(8), straight);
     }
     if (state_->codes == SampleType::UInt16) {
         std::vector<uint16_t> codes = decode<uint16_t>();
-        return PackedImage(header_, std::move(codes), codecModule().valuesOfCodes(SampleType::UInt16), straight);
+        return PackedImage(header_, std::move(codes), valuesOfCodes(16), straight);
     }
     Image image = header_;
     image.pixels = decode<float>();

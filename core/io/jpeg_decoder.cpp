@@ -9,6 +9,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "jpeg_header.h"
 #include "user_error.h"
 
 namespace ddt {
@@ -94,8 +95,7 @@ JpegDecoder::JpegDecoder(const std::string& path, const std::string& name) : sta
         jpeg_create_decompress(&s.info);
         s.created = true;
         jpeg_stdio_src(&s.info, s.file);
-        jpeg_save_markers(&s.info, kExifMarker, 0xFFFF);
-        jpeg_save_markers(&s.info, kIccMarker, 0xFFFF);
+        keepMetadataMarkers(&s.info);
         jpeg_read_header(&s.info, TRUE);
     });
     if (!ok) throw UserError(name + ": not a readable JPEG image (" + s.errors.message + ")");
@@ -119,6 +119,10 @@ uint32_t JpegDecoder::channels() const { return state_->info.jpeg_color_space ==
 bool JpegDecoder::decodable() const {
     const J_COLOR_SPACE space = state_->info.jpeg_color_space;
     return space == JCS_GRAYSCALE || space == JCS_YCbCr || space == JCS_RGB;
+}
+
+std::optional<ImageAttributes> JpegDecoder::attributes(const DecodeExif& decode_exif) const {
+    return jpegAttributes(state_->info, decode_exif);
 }
 
 void JpegDecoder::decode(uint8_t* codes) {

@@ -9,8 +9,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "exif_decoding.h"
+#include "image_attributes.h"
 
 namespace ddt {
 
@@ -33,6 +37,9 @@ public:
     // stored (not turned by any EXIF orientation). Throws UserError for a truncated or corrupt
     // file: libjpeg's warnings (it fills what is missing with grey) count as errors. Once.
     void decode(uint8_t* codes);
+
+    // The attributes OpenImageIO's reader gives (jpeg_header.h); nullopt where it alone can.
+    std::optional<ImageAttributes> attributes(const DecodeExif& decode_exif) const;
 
     // The EXIF block (the APP1 payload after "Exif\0\0", a TIFF header first), or empty.
     const std::vector<uint8_t>& exif() const { return exif_; }

@@ -1,5 +1,6 @@
 // PngDecoder against OpenImageIO's PNG reader (libpng): every sample equal for each colour type,
-// depth and transparency a PNG file can have; its EXIF and ICC chunks; bad files in one line.
+// depth and transparency a PNG file can have (and readPngHeader's layout and attributes); its
+// EXIF and ICC chunks; bad files in one line.
 #include <catch2/catch.hpp>
 
 #include <OpenImageIO/imageio.h>
@@ -11,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "header_checks.h"
 #include "png_decoder.h"
+#include "png_header.h"
 #include "temp_folder.h"
 #include "test_support.h"
 
@@ -155,6 +158,12 @@ TEST_CASE("png decoder: every sample equals OpenImageIO's for each colour type, 
                     CHECK(ours.channels == theirs.channels);
                     CHECK(ours.bits == theirs.bits);
                     CHECK(ours.bytes == theirs.bytes);
+                    // The header the reader takes instead of OpenImageIO's: its layout and attributes.
+                    const std::optional<ddt::PngHeader> header = ddt::readPngHeader(path, path, ddt::test::decodeExifByOpenImageIO);
+                    REQUIRE(header);
+                    CHECK(header->channels == theirs.channels);
+                    CHECK(header->bits == theirs.bits);
+                    ddt::test::requireSameAttributes(header->attributes, ddt::test::attributesByOpenImageIO(path));
                 }
     CHECK(files == 44);
 }
