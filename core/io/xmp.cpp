@@ -19,8 +19,9 @@ const XmpTag* tagNamed(std::string_view name) {
     return nullptr;
 }
 
-// The property's value: a single string as it is (up to a NUL, as OpenImageIO reads it), a single int by %d (or True / False), a single
-// float by %g; "" for any other type, which OpenImageIO leaves out.
+// The property's value: a single string as it is (up to a NUL, as OpenImageIO reads it), a
+// single int by %d (or True / False), a single float by %g; "" for any other type, which
+// OpenImageIO leaves out.
 std::string propertyValue(const ImageAttribute& attribute, const XmpTag& tag) {
     const AttributeType& type = attribute.type;
     if (!type.isScalar() || type.meaning != AttributeType::Meaning::None) return "";
