@@ -64,13 +64,6 @@ struct OutputRequest {
     ImageAttributes attributes;
 };
 
-// What OpenImageIO 2.4's JPEG writer encoded of an image's attributes for its APP13 and second
-// APP1 markers (jpeg_encoder.h); ddtup has no IPTC or XMP encoder of its own yet.
-struct JpegMetadataBlocks {
-    std::string iptc;  // IPTC-IIM records, or ""
-    std::string xmp;   // the XMP packet, or ""
-};
-
 class CodecModule {
 public:
     virtual ~CodecModule() = default;
@@ -83,8 +76,6 @@ public:
     // Opens the output as `request` asks. A format without grey gets RGB (`layout` says so;
     // the note is the caller's), one without the wanted sample type its nearest.
     virtual std::unique_ptr<CodecOutput> openOutput(const OutputRequest& request, OutputLayout& layout) = 0;
-    // The IPTC and XMP blocks for a JPEG file with these attributes (jpegAttributes()).
-    virtual JpegMetadataBlocks jpegMetadataBlocks(const ImageAttributes& attributes) = 0;
     // The threads the codecs may use.
     virtual void setThreads(unsigned count) = 0;
 };

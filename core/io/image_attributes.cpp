@@ -7,11 +7,6 @@
 
 namespace ddt {
 
-namespace {
-
-using Base = AttributeType::Base;
-
-// An IEEE binary16 value (OpenEXR's half).
 double halfValue(uint16_t bits) {
     const int exponent = (bits >> 10) & 0x1F, mantissa = bits & 0x3FF;
     const double sign = bits & 0x8000 ? -1.0 : 1.0;
@@ -19,6 +14,10 @@ double halfValue(uint16_t bits) {
     if (exponent == 31) return mantissa ? NAN : sign * INFINITY;
     return sign * std::ldexp(mantissa + 1024, exponent - 25);
 }
+
+namespace {
+
+using Base = AttributeType::Base;
 
 char lowerAscii(char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; }
 

@@ -70,6 +70,9 @@ private:
     std::vector<ImageAttribute> list_;
 };
 
+// The value of an IEEE binary16 number (OpenEXR's half) of these bits.
+double halfValue(uint16_t bits);
+
 // Whether two names are equal regardless of ASCII case.
 bool sameName(std::string_view a, std::string_view b);
 

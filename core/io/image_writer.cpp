@@ -17,12 +17,14 @@
 #include "exif.h"
 #include "image_formats.h"
 #include "image_metadata.h"
+#include "iptc.h"
 #include "jpeg_encoder.h"
 #include "output_file.h"
 #include "output_layout.h"
 #include "parallel.h"
 #include "png_writer.h"
 #include "temp_files.h"
+#include "xmp.h"
 
 namespace ddt {
 
@@ -200,10 +202,8 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
         JpegMetadata metadata;
         metadata.attributes = jpegAttributes(attributesFor());
         metadata.exif = encodeExifBlock(metadata.attributes);
-        // IPTC and XMP by OpenImageIO's encoders still, through the codec module.
-        JpegMetadataBlocks blocks = codecModule().jpegMetadataBlocks(metadata.attributes);
-        metadata.iptc = std::move(blocks.iptc);
-        metadata.xmp = std::move(blocks.xmp);
+        metadata.iptc = encodeIptc(metadata.attributes);
+        metadata.xmp = encodeXmp(metadata.attributes);
         const JpegFormat jpeg_format{width, height, layout.out_channels, options.quality};
         s.jpeg = std::make_unique<JpegWriter>(jpeg_format, metadata, [state](const uint8_t* data, size_t size) {
             if (state->file->write(data, size) != size) throw state->failure();

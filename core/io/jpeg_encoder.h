@@ -26,7 +26,7 @@ struct JpegFormat {
 };
 
 // What the markers are made of. The EXIF, IPTC and XMP encodings come from the caller (exif.h's
-// encodeExifBlock; OpenImageIO's encoders through codec_module.h's jpegMetadataBlocks), made of
+// encodeExifBlock, iptc.h's encodeIptc, xmp.h's encodeXmp), made of
 // jpegAttributes(), as the writer made them.
 struct JpegMetadata {
     ImageAttributes attributes;  // jpegAttributes() of the output's

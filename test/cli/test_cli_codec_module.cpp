@@ -2,9 +2,16 @@
 // the dynamic loader's own log (LD_DEBUG=files, on stderr) says which libraries a run loaded.
 #include <catch2/catch.hpp>
 
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/tiffutils.h>
+
+#include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "image_file.h"
+#include "png_bytes.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "test_support.h"
@@ -44,4 +51,88 @@ TEST_CASE("codec module: a TIFF loads it and reads as its PNG twin does", "[cli]
     CHECK(a.width == 64);
     CHECK(a.height == 64);
     CHECK(a.pixels == b.pixels);
+}
+
+namespace {
+
+// The data of the first APP13 marker and of the APP1 marker holding XMP, walking the JPEG's
+// markers up to its scan; "" where there is none.
+struct JpegBlocks {
+    std::string app13;
+    std::string xmp;
+};
+
+JpegBlocks jpegBlocks(const std::string& jpeg) {
+    const std::string xmp_name("http://ns.adobe.com/xap/1.0/", 29);
+    JpegBlocks blocks;
+    size_t at = 2;  // after SOI
+    while (at + 4 <= jpeg.size() && uint8_t(jpeg[at]) == 0xFF && uint8_t(jpeg[at + 1]) != 0xDA) {
+        const uint8_t marker = uint8_t(jpeg[at + 1]);
+        const size_t length = size_t(uint8_t(jpeg[at + 2])) << 8 | uint8_t(jpeg[at + 3]);
+        const std::string data = jpeg.substr(at + 4, length - 2);
+        if (marker == 0xED && blocks.app13.empty()) blocks.app13 = data;
+        if (marker == 0xE1 && data.compare(0, xmp_name.size(), xmp_name) == 0) blocks.xmp = data.substr(xmp_name.size());
+        at += 2 + length;
+    }
+    return blocks;
+}
+
+// The IPTC and XMP blocks of `output` are OpenImageIO's encoders' on what OpenImageIO reads
+// from `input`.
+void checkBlocksOf(const std::string& input, const std::string& output) {
+    INFO(input << " to " << output);
+    auto reader = OIIO::ImageInput::open(input);
+    REQUIRE(reader);
+    std::vector<char> iptc;
+    OIIO::encode_iptc_iim(reader->spec(), iptc);
+    const std::string xmp = OIIO::encode_xmp(reader->spec(), true);
+    REQUIRE(!iptc.empty());
+    const JpegBlocks blocks = jpegBlocks(readFile(output));
+    REQUIRE(blocks.app13.size() >= iptc.size());
+    CHECK(blocks.app13.substr(blocks.app13.size() - iptc.size()) == std::string(iptc.begin(), iptc.end()));
+    CHECK(blocks.xmp == xmp);
+}
+
+}  // namespace
+
+TEST_CASE("codec module: PNG with text and plain JPEG to JPEG do not load it, and the IPTC and XMP are OpenImageIO's", "[cli]") {
+    TempFolder folder;
+    // The sample with text chunks after its header: what PNG readers turn into ImageDescription,
+    // Artist, Copyright and DocumentName, and two that are XMP properties.
+    std::string png = readFile(kSample);
+    std::string chunks;
+    for (const auto& [key, value] : {std::pair<std::string, std::string>{"Title", "A title"},
+                                     {"Author", "Ann Author; Bob <bob@example.org>"},
+                                     {"Description", "Rock & \"roll\""},
+                                     {"Copyright", "(c) 2024 Ann"},
+                                     {"GPano:ProjectionType", "equirectangular"},
+                                     {"crs:CameraProfile", "Adobe Standard"}})
+        chunks += ddt::test::pngChunk("tEXt", key + std::string(1, '\0') + value);
+    png.insert(33, chunks);  // after the signature (8) and IHDR (25)
+    const std::string input = folder / "text.png";
+    std::ofstream(input, std::ios::binary) << png;
+
+    const std::string from_png = folder / "from_png.jpg";
+    const Run run = runDdtup({input, "-s", "2", from_png, "-q"}, {"LD_DEBUG=files"});
+    REQUIRE(run.exit_code == 0);
+    REQUIRE(loaded(run, "libstdc++"));  // the log is on
+    CHECK_FALSE(loaded(run, "ddtup-oiio.so"));
+    CHECK_FALSE(loaded(run, "libOpenImageIO"));
+
+    checkBlocksOf(input, from_png);
+    CHECK(jpegBlocks(readFile(from_png)).xmp.find("GPano:ProjectionType=\"equirectangular\"") != std::string::npos);
+
+    // A JPEG with no IPTC or XMP to JPEG. (One with them is read by OpenImageIO's reader
+    // still, image_reader.cpp: its blocks are checked, not what it loads.)
+    const std::string plain = folder / "plain.jpg", from_plain = folder / "from_plain.jpg";
+    REQUIRE(runDdtup({kSample, plain, "-q"}).exit_code == 0);
+    const Run from_jpeg_run = runDdtup({plain, "-s", "2", from_plain, "-q"}, {"LD_DEBUG=files"});
+    REQUIRE(from_jpeg_run.exit_code == 0);
+    REQUIRE(loaded(from_jpeg_run, "libstdc++"));
+    CHECK_FALSE(loaded(from_jpeg_run, "ddtup-oiio.so"));
+    CHECK_FALSE(loaded(from_jpeg_run, "libOpenImageIO"));
+
+    const std::string from_jpeg = folder / "from_jpeg.jpg";
+    REQUIRE(runDdtup({from_png, "-s", "2", from_jpeg, "-q"}).exit_code == 0);
+    checkBlocksOf(from_png, from_jpeg);
 }

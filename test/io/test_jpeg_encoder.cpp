@@ -20,12 +20,14 @@
 #include "exif.h"
 #include "image_file.h"
 #include "image_metadata.h"
+#include "iptc.h"
 #include "jpeg_encoder.h"
 #include "oiio_metadata.h"
 #include "png_bytes.h"
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "user_error.h"
+#include "xmp.h"
 
 using ddt::ImageAttributes;
 
@@ -67,8 +69,8 @@ ddt::JpegMetadata metadataOf(const ImageAttributes& attributes) {
     ddt::JpegMetadata metadata;
     metadata.attributes = ddt::jpegAttributes(attributes);
     metadata.exif = ddt::encodeExifBlock(metadata.attributes);
-    metadata.iptc = ddt::iptcBlock(metadata.attributes);
-    metadata.xmp = ddt::xmpPacket(metadata.attributes);
+    metadata.iptc = ddt::encodeIptc(metadata.attributes);
+    metadata.xmp = ddt::encodeXmp(metadata.attributes);
     return metadata;
 }
 

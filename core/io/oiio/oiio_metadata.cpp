@@ -1,7 +1,5 @@
 #include "oiio_metadata.h"
 
-#include <OpenImageIO/tiffutils.h>
-
 #include <algorithm>
 #include <optional>
 
@@ -86,20 +84,6 @@ void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec) {
             spec.extra_attribs.emplace_back(attribute.name, type, 1, attribute.bytes.data());
         }
     }
-}
-
-std::string iptcBlock(const ImageAttributes& attributes) {
-    OIIO::ImageSpec spec;
-    addAttributes(attributes, spec);
-    std::vector<char> block;
-    OIIO::encode_iptc_iim(spec, block);
-    return std::string(block.begin(), block.end());
-}
-
-std::string xmpPacket(const ImageAttributes& attributes) {
-    OIIO::ImageSpec spec;
-    addAttributes(attributes, spec);
-    return OIIO::encode_xmp(spec, true);
 }
 
 }  // namespace ddt

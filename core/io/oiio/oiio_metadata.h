@@ -17,9 +17,4 @@ ImageAttributes attributesOf(const OIIO::ImageSpec& spec);
 // Appends `attributes` to the spec's extra attributes, as they are.
 void addAttributes(const ImageAttributes& attributes, OIIO::ImageSpec& spec);
 
-// The IPTC-IIM records and the XMP packet OpenImageIO 2.4's JPEG writer made of the attributes
-// (encode_iptc_iim, encode_xmp with its "minimal" choice), "" for none.
-std::string iptcBlock(const ImageAttributes& attributes);
-std::string xmpPacket(const ImageAttributes& attributes);
-
 }  // namespace ddt

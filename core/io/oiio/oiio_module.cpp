@@ -4,7 +4,6 @@
 #include "codec_module.h"
 #include "oiio_codec.h"
 #include "oiio_input.h"
-#include "oiio_metadata.h"
 #include "oiio_output.h"
 
 namespace ddt {
@@ -22,10 +21,6 @@ public:
 
     std::unique_ptr<CodecOutput> openOutput(const OutputRequest& request, OutputLayout& layout) override {
         return openOiioOutput(request, layout);
-    }
-
-    JpegMetadataBlocks jpegMetadataBlocks(const ImageAttributes& attributes) override {
-        return {iptcBlock(attributes), xmpPacket(attributes)};
     }
 
     void setThreads(unsigned count) override { OIIO::attribute("threads", int(count)); }
