@@ -40,9 +40,11 @@ CodecModule* load() {
         // Never closed: the codecs' libraries keep threads and state until the process ends.
         void* handle = ::dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!handle) throw std::runtime_error(std::string("cannot load OpenImageIO's codecs: ") + ::dlerror());
-        auto entry = reinterpret_cast<CodecModule* (*)()>(::dlsym(handle, "ddtupCodecModule"));
+        auto entry = reinterpret_cast<CodecModule* (*)(const char*)>(::dlsym(handle, "ddtupCodecModule"));
         if (!entry) throw std::runtime_error(place.string() + " is not ddtup's codec module");
-        return entry();
+        CodecModule* module = entry(DDTUP_CODEC_INTERFACE);
+        if (!module) throw std::runtime_error(place.string() + " was built from another version of ddtup");
+        return module;
     }
     throw std::runtime_error("OpenImageIO's codecs (" + std::string(kModuleFile) + ") are not installed; looked in " + tried);
 }

@@ -1,6 +1,8 @@
 // The entry of ddtup-oiio.so: OpenImageIO's codecs behind codec_module.h's CodecModule.
 #include <OpenImageIO/imageio.h>
 
+#include <cstring>
+
 #include "codec_module.h"
 #include "oiio_codec.h"
 #include "oiio_input.h"
@@ -30,8 +32,10 @@ public:
 
 }  // namespace ddt
 
-// What codec_module.cpp looks up after loading the module.
-extern "C" __attribute__((visibility("default"))) ddt::CodecModule* ddtupCodecModule() {
+// What codec_module.cpp looks up after loading the module: the module, if `interface` is the
+// hash of the interface headers it was built with (CMakeLists.txt), else null.
+extern "C" __attribute__((visibility("default"))) ddt::CodecModule* ddtupCodecModule(const char* interface) {
+    if (std::strcmp(interface, DDTUP_CODEC_INTERFACE) != 0) return nullptr;
     static ddt::OiioCodecModule module;
     return &module;
 }
