@@ -136,3 +136,32 @@ TEST_CASE("codec module: PNG with text and plain JPEG to JPEG do not load it, an
     REQUIRE(runDdtup({from_png, "-s", "2", from_jpeg, "-q"}).exit_code == 0);
     checkBlocksOf(from_png, from_jpeg);
 }
+
+TEST_CASE("codec module: PNG to PNG and a turned JPEG with EXIF to PNG do not load it", "[cli]") {
+    TempFolder folder;
+    // A JPEG with an EXIF block (orientation 6, a camera, an exposure), written by OpenImageIO.
+    const ddt::Image image = ddt::readImage(kSample);
+    const std::string jpeg = folder / "turned.jpg";
+    {
+        auto output = OIIO::ImageOutput::create("jpeg");
+        OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::FLOAT);
+        spec.attribute("Orientation", 6);
+        spec.attribute("Make", "Camera maker");
+        spec.attribute("Exif:ExposureTime", 0.01f);
+        REQUIRE(output->open(jpeg, spec));
+        REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()));
+        REQUIRE(output->close());
+    }
+    for (const std::string& input : {kSample, jpeg}) {
+        INFO(input);
+        const std::string out = folder / "out.png";
+        const Run run = runDdtup({input, "-s", "2", out, "-q"}, {"LD_DEBUG=files"});
+        REQUIRE(run.exit_code == 0);
+        REQUIRE(loaded(run, "libstdc++"));  // the log is on
+        CHECK_FALSE(loaded(run, "ddtup-oiio.so"));
+        CHECK_FALSE(loaded(run, "libOpenImageIO"));
+        const ddt::Image result = ddt::readImage(out);
+        CHECK(result.width == 64);
+        CHECK(result.height == 64);
+    }
+}
