@@ -22,17 +22,21 @@ const std::string kSample = ddt::test::testDataPath("crop32_astronaut.png");  //
 
 bool loaded(const Run& run, const std::string& library) { return run.err.find(library) != std::string::npos; }
 
+// Runs ddtup with `args` under the loader's log; it succeeds without loading OpenImageIO.
+void requireRunWithoutCodecModule(const std::vector<std::string>& args) {
+    const Run run = runDdtup(args, {"LD_DEBUG=files"});
+    REQUIRE(run.exit_code == 0);
+    REQUIRE(loaded(run, "libstdc++"));  // the log names every library loaded: it is on
+    CHECK_FALSE(loaded(run, "ddtup-oiio.so"));
+    CHECK_FALSE(loaded(run, "libOpenImageIO"));
+}
+
 }  // namespace
 
 TEST_CASE("codec module: OpenImageIO is not loaded by --version or --help", "[cli]") {
     for (const char* option : {"--version", "--help"}) {
         INFO(option);
-        const Run run = runDdtup({option}, {"LD_DEBUG=files"});
-        REQUIRE(run.exit_code == 0);
-        // The log names every library loaded: the C++ runtime at least, so it is on.
-        REQUIRE(loaded(run, "libstdc++"));
-        CHECK_FALSE(loaded(run, "libOpenImageIO"));
-        CHECK_FALSE(loaded(run, "ddtup-oiio.so"));
+        requireRunWithoutCodecModule({option});
     }
 }
 
@@ -113,11 +117,7 @@ TEST_CASE("codec module: PNG with text and plain JPEG to JPEG do not load it, an
     std::ofstream(input, std::ios::binary) << png;
 
     const std::string from_png = folder / "from_png.jpg";
-    const Run run = runDdtup({input, "-s", "2", from_png, "-q"}, {"LD_DEBUG=files"});
-    REQUIRE(run.exit_code == 0);
-    REQUIRE(loaded(run, "libstdc++"));  // the log is on
-    CHECK_FALSE(loaded(run, "ddtup-oiio.so"));
-    CHECK_FALSE(loaded(run, "libOpenImageIO"));
+    requireRunWithoutCodecModule({input, "-s", "2", from_png, "-q"});
 
     checkBlocksOf(input, from_png);
     CHECK(jpegBlocks(readFile(from_png)).xmp.find("GPano:ProjectionType=\"equirectangular\"") != std::string::npos);
@@ -126,11 +126,7 @@ TEST_CASE("codec module: PNG with text and plain JPEG to JPEG do not load it, an
     // still, image_reader.cpp: its blocks are checked, not what it loads.)
     const std::string plain = folder / "plain.jpg", from_plain = folder / "from_plain.jpg";
     REQUIRE(runDdtup({kSample, plain, "-q"}).exit_code == 0);
-    const Run from_jpeg_run = runDdtup({plain, "-s", "2", from_plain, "-q"}, {"LD_DEBUG=files"});
-    REQUIRE(from_jpeg_run.exit_code == 0);
-    REQUIRE(loaded(from_jpeg_run, "libstdc++"));
-    CHECK_FALSE(loaded(from_jpeg_run, "ddtup-oiio.so"));
-    CHECK_FALSE(loaded(from_jpeg_run, "libOpenImageIO"));
+    requireRunWithoutCodecModule({plain, "-s", "2", from_plain, "-q"});
 
     const std::string from_jpeg = folder / "from_jpeg.jpg";
     REQUIRE(runDdtup({from_png, "-s", "2", from_jpeg, "-q"}).exit_code == 0);
@@ -155,11 +151,7 @@ TEST_CASE("codec module: PNG to PNG and a turned JPEG with EXIF to PNG do not lo
     for (const std::string& input : {kSample, jpeg}) {
         INFO(input);
         const std::string out = folder / "out.png";
-        const Run run = runDdtup({input, "-s", "2", out, "-q"}, {"LD_DEBUG=files"});
-        REQUIRE(run.exit_code == 0);
-        REQUIRE(loaded(run, "libstdc++"));  // the log is on
-        CHECK_FALSE(loaded(run, "ddtup-oiio.so"));
-        CHECK_FALSE(loaded(run, "libOpenImageIO"));
+        requireRunWithoutCodecModule({input, "-s", "2", out, "-q"});
         const ddt::Image result = ddt::readImage(out);
         CHECK(result.width == 64);
         CHECK(result.height == 64);
