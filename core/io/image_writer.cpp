@@ -32,9 +32,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The largest side a format can hold, for the formats where OIIO 2.4 does not refuse a larger
-// one cleanly when the output is opened (measured): libjpeg ends the whole process, libpng
-// prints its own error, GIF files come out corrupt, WebP fails only after all the work.
+// The largest side a format can hold, checked before any work: libjpeg (under ddtup's JPEG
+// writer) ends the whole process past its limit, libpng's readers refuse PNG files past theirs,
+// and OpenImageIO 2.4's GIF writer makes corrupt files, its WebP writer fails only after all
+// the work (measured).
 struct SideLimit {
     const char* format;
     uint32_t max_side;
