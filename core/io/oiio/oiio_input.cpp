@@ -33,6 +33,16 @@ std::string checkChannelLayout(const OIIO::ImageSpec& spec) {
            "); ddtup reads grey, grey+alpha, RGB or RGBA images with alpha last";
 }
 
+// Moves to image `index`; false where there is none. A failed seek past the last image leaves
+// a message, dropped here.
+bool seekQuietly(OIIO::ImageInput& input, int index) {
+    QuietStderr quiet;
+    const bool found = input.seek_subimage(index, 0);
+    globalError();
+    codecError(input);
+    return found;
+}
+
 // Whether the file holds a second image (a page, a frame; MIP levels do not count). Only
 // one seek: counting them all decodes every frame of an animated GIF (0.85 s for 300 frames
 // of 512², measured), for a note.
@@ -41,10 +51,8 @@ bool hasSeveralImages(OIIO::ImageInput& input) {
     // and the seek back to 0 finds the reader already there), and a still image then fails
     // to decode. Only animations hold more than one image, and its spec says which are.
     if (input.format_name() == std::string("webp")) return input.spec().get_int_attribute("oiio:Movie") != 0;
-    const bool several = input.seek_subimage(1, 0);
-    input.seek_subimage(0, 0);
-    globalError();  // a failed seek past the last image leaves a message
-    codecError(input);
+    const bool several = seekQuietly(input, 1);
+    seekQuietly(input, 0);
     return several;
 }
 
@@ -81,11 +89,7 @@ bool decodePixels(OIIO::ImageInput& input, OIIO::TypeDesc type, void* pixels) {
 class OiioInput final : public CodecInput {
 public:
     OiioInput(std::unique_ptr<OIIO::ImageInput> input, std::string name) : input_(std::move(input)), name_(std::move(name)) {
-        bool several;
-        {
-            QuietStderr quiet;
-            several = hasSeveralImages(*input_);
-        }
+        const bool several = hasSeveralImages(*input_);
         describe();
         stored_.several_images = several;
     }
@@ -93,10 +97,7 @@ public:
     const StoredImage& stored() const override { return stored_; }
 
     bool seekImage(uint32_t index) override {
-        QuietStderr quiet;
-        const bool found = input_->seek_subimage(int(index), 0);
-        globalError();  // a failed seek past the last image leaves a message
-        codecError(*input_);
+        const bool found = seekQuietly(*input_, int(index));
         if (found) describe();
         return found;
     }
