@@ -140,7 +140,8 @@ std::string validatePoints(const CLI::App& app, const Settings& settings) {
     if (settings.simplifies()) return "point files and simplification (--simplify, --max-error) do not combine yet";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return "a point file is rendered linearly on its triangulation; --reconstruct consistent needs a full image";
-    if (settings.tile) return "a point file is triangulated in one piece; --tile does not apply";
+    if (settings.tile && !settings.mesh.empty())
+        return "a point file with --mesh writes the whole triangulation of the points; --tile does not apply";
     if (settings.format.empty() && (!settings.singleForm() || settings.output == kStandardStream))
         return "a point file's output needs a format: name the output file, or give -f png";
     if (app.count("--frame") && (settings.frame_width > kMaxDelaunaySide || settings.frame_height > kMaxDelaunaySide))
@@ -426,8 +427,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "grainy regions) or none (default: lanczos3 with the consistent surface, none with the plain one)")
         ->check(CLI::IsMember({"none", "lanczos3"}));
     app.add_option("--tile", settings.tile,
-                   "Tile side in input pixels for images too large for the device (with --mask, each tile's crop "
-                   "grows to hold the holes near it); for volumes the brick side in "
+                   "Tile side in input pixels for images too large for the device (with --mask or a point file, "
+                   "each tile's crop grows to hold the gaps between samples near it); for volumes the brick side in "
                    "voxels (optimized one by one, with a margin of 8; automatic: bricks of 128 above 2^22 voxels); "
                    "0 = automatic")
         ->capture_default_str();
@@ -444,8 +445,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     std::string memory_text;
     app.add_option("--memory", memory_text,
                    "Host memory the run may hold (512M, 4G …): the images in flight, and on the CPU backend a point "
-                   "file's mesh, which cannot be tiled (a mask's with --mesh too), or a whole simplification's "
-                   "(beyond it, tiles); automatic tiles stay small within it for speed")
+                   "file's mesh and output (beyond it, tiles), a mask's with --mesh, which cannot be tiled, or a "
+                   "whole simplification's (beyond it, tiles); automatic tiles stay small within it for speed")
         ->default_str("half the machine's memory");
     app.add_option("--variant", settings.variant,
                    "Vulkan flip rule: basic, exproi, exproi-N-maxgain, maxgain, exproi-maxgain, localmax, exproi-localmax")

@@ -89,7 +89,7 @@ struct Job {
     const TileStepCallback& on_step;
     RowEmitter& rows;
     StitchedMesh* strip_mesh;  // the current strip's tiles' meshes, if the caller wants them
-    const KnownPixels* known;  // a mask's: the tiles are of its known pixels
+    const KnownSamples* known;  // a mask's or a point file's: the tiles are of its samples
     std::mutex step_mutex;  // tiles in parallel report their steps one at a time
     std::mutex mesh_mutex;  // and add their meshes one at a time
 

@@ -10,7 +10,7 @@
 #include <functional>
 
 #include "backend.h"
-#include "known_pixels.h"
+#include "known_samples.h"
 #include "output_rows.h"
 #include "packed_image.h"
 #include "stitched_mesh.h"
@@ -45,10 +45,11 @@ struct TileOptions {
     AssumedKernel kernel = AssumedKernel::mixed;  // the consistent surface's assumed downscale filter
     bool fallback = false;               // blend towards Lanczos3 where contrast is low (core/image/convolution_fallback.h)
     StitchedMesh* mesh = nullptr;        // if set, gets every tile's optimised mesh (of the strips that succeed)
-    // A mask's known pixels (their holes measured): each tile then triangulates its crop's known
-    // pixels, the crop grown to hold the holes near it (app/delaunay/sampled_tile.h); the plain
-    // surface, no fallback, no mesh file.
-    const KnownPixels* known = nullptr;
+    // A mask's known pixels or a point file's points (their gaps measured): each tile then
+    // triangulates its crop's samples, the crop grown to hold the gaps near it
+    // (app/delaunay/sampled_tile.h); the plain surface, no fallback, no mesh file. A point
+    // file's `input` is a header of its frame, without pixels.
+    const KnownSamples* known = nullptr;
 };
 
 // The tile side automatic tiling picks for a width × height input with `channels` channels

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -10,6 +11,8 @@
 #include "delaunay/sampled_upscale.h"
 #include "image_metadata.h"
 #include "indexed_mesh.h"
+#include "known_pixels.h"
+#include "known_points.h"
 #include "mesh_file.h"
 #include "point_file.h"
 #include "delaunay/point_mesh.h"
@@ -78,8 +81,9 @@ KnownPixels knownPixelsOf(const std::string& mask_path, const Image& image) {
 struct ImageJob::State {
     std::optional<ImageReader> reader;  // from open() to decode()
     std::optional<PointSamples> points;  // a point file's, from open() to decode()
-    std::optional<MergedPoints> merged;  // a point file's, from decode() to render()
-    std::optional<KnownPixels> known;    // a mask's known pixels, from decode() to render()
+    std::optional<SampleSet> merged;     // a point file's, from decode() to render()
+    std::optional<KnownPixels> known;    // a mask's known pixels (or pixel-centred points in tiles), to render()
+    std::optional<KnownPoints> known_points;  // a point file's points in tiles, in render()
     Frame frame;                         // a point file's
     uint32_t channels = 0;
     PackedImage input;            // the input; for a point file, its vertex values (point_mesh.h)
@@ -167,9 +171,10 @@ Image ImageJob::openPoints() {
 uint64_t ImageJob::hostMemory() const {
     if (state_->points) {
         // The values image, twice (the file's and the merged copy), and the mesh: about 3
-        // edges a point of 32 bytes each, with the triangulation's scratch as much again.
+        // edges a point of 32 bytes each, with the triangulation's scratch as much again; in
+        // tiles, the points kept by block and their gaps' measure.
         const uint64_t n = state_->points->size();
-        return n * (2 * sizeof(float) * state_->channels + 2 * 3 * 32);
+        return n * (2 * sizeof(float) * state_->channels + 2 * 3 * 32 + KnownPoints::bytesPerPoint(state_->channels));
     }
     const Image& header = state_->reader->header();
     const uint64_t samples = uint64_t(header.width) * header.height * header.channels;
@@ -238,24 +243,72 @@ void ImageJob::triangulateSamples(Backend& backend) {
     }
 }
 
-uint32_t ImageJob::maskTileSide(const Backend& backend) const {
-    if (!state_->known || !task_.mesh.empty()) return 0;  // a mesh file is of the whole triangulation
-    const Image& header = state_->input.header();
-    const uint32_t side = settings_.tile ? settings_.tile
-                                         : automaticTileSide(backend, header.width, header.height, header.channels,
-                                                             kDefaultOverlap, false);
-    return side >= std::max(header.width, header.height) ? 0 : side;
+uint32_t ImageJob::sampledTileSide(const Backend& backend) const {
+    if (!task_.mesh.empty()) return 0;  // a mesh file is of the whole triangulation
+    if (state_->known) {
+        const Image& header = state_->input.header();
+        const uint32_t side = settings_.tile ? settings_.tile
+                                             : automaticTileSide(backend, header.width, header.height, header.channels,
+                                                                 kDefaultOverlap, false);
+        return side >= std::max(header.width, header.height) ? 0 : side;
+    }
+    if (!state_->merged) return 0;
+    const Frame frame = state_->frame;
+    const uint32_t largest = std::max(frame.width, frame.height);
+    if (settings_.tile) return settings_.tile >= largest ? 0 : settings_.tile;
+    // In one piece while the mesh and the whole output fit, as upscaleFromSamples checks.
+    const Image& values = state_->merged->values;
+    const OutputSize out = report_.out;
+    const uint64_t output_bytes = uint64_t(out.width) * out.height * values.channels * sizeof(float);
+    if (untiledMemoryProblem(backend, values.width, values.height, values.channels, output_bytes).empty()) return 0;
+    // Crops holding about as many points as automatic tiling's crops of an image hold pixels:
+    // sides scaled by the square root of the pixels a point, in steps of kMinTileSide.
+    const uint32_t pixel_side =
+        automaticTileSide(backend, frame.width, frame.height, values.channels, kDefaultOverlap, false);
+    const uint64_t points = state_->merged->places.empty() ? state_->merged->pixel_ids.size() : values.width;
+    const double crop_side = double(pixel_side ? pixel_side + 2 * kDefaultOverlap : largest) *
+                             std::sqrt(double(frame.width) * frame.height / double(points));
+    const double side = std::max(0.0, crop_side - 2 * kDefaultOverlap);
+    // Whole frames at once where the crop would hold it: tiles still keep the output in bands.
+    return uint32_t(std::clamp(std::floor(side / kMinTileSide) * kMinTileSide, double(kMinTileSide), double(largest)));
+}
+
+void ImageJob::keepPointsForTiles() {
+    SampleSet& merged = *state_->merged;
+    const Frame frame = state_->frame;
+    if (!merged.places.empty()) {
+        Image header;
+        header.width = frame.width;
+        header.height = frame.height;
+        header.channels = merged.values.channels;
+        header.sample_type = merged.values.sample_type;
+        header.metadata = merged.values.metadata;
+        state_->known_points.emplace(frame.width, frame.height, merged.places, merged.values);
+        state_->input = PackedImage(std::move(header));
+    } else {
+        // Points on pixel centres, as a mask's known pixels of the frame-sized values.
+        std::vector<uint8_t> bytes(size_t(frame.width) * frame.height, 0);
+        for (uint32_t id : merged.pixel_ids) bytes[id] = 1;
+        state_->known.emplace(frame.width, frame.height, std::move(bytes));
+        state_->input = PackedImage(std::move(merged.values));
+    }
+    state_->merged.reset();
 }
 
 void ImageJob::render(Backend& backend) {
-    const uint32_t mask_tile = maskTileSide(backend);
-    // Building the mesh counts as optimizing's (time-comp), as the grid's does; a mask's tiles
-    // triangulate theirs as they go.
+    const uint32_t sample_tile = sampledTileSide(backend);
+    // Building the mesh counts as optimizing's (time-comp), as the grid's does; tiles of
+    // samples triangulate theirs as they go.
     const auto triangulating = std::chrono::steady_clock::now();
-    if (mask_tile) state_->known->measureHoles();
-    else triangulateSamples(backend);
+    if (sample_tile) {
+        if (state_->merged) keepPointsForTiles();
+        if (state_->known) state_->known->measureHoles();
+        else state_->known_points->measureHoles();
+    } else {
+        triangulateSamples(backend);
+    }
     report_.times.comp_s += secondsSince(triangulating);
-    const bool sampled = state_->samples || mask_tile;
+    const bool sampled = state_->samples || sample_tile;
     const OutputSize out = report_.out;
     const Image& header = state_->input.header();
     const size_t row_floats = size_t(out.width) * header.channels;
@@ -304,13 +357,14 @@ void ImageJob::render(Backend& backend) {
             reporter_.notice(task_.input, inputName(task_.input) + ": rendered with the linear surface (the consistent "
                                               "one, the default, needs " +
                                               (sampled ? "every pixel's value)" : "the full mesh)"));
-        if (mask_tile) {
-            options.tile = mask_tile;
+        if (sample_tile) {
+            options.tile = sample_tile;
             options.reconstruct = options.fallback = false;
-            options.known = &*state_->known;
+            options.known = state_->known ? static_cast<const KnownSamples*>(&*state_->known) : &*state_->known_points;
             report_.stats = upscaleRows(backend, state_->input, out, options, sink, on_step);
             report_.delaunay_on_device = backend.lastDelaunayOnDevice();
             state_->known.reset();
+            state_->known_points.reset();
         } else if (state_->samples) {
             if (!task_.mesh.empty()) sample_mesh.emplace();
             report_.stats = upscaleFromSamples(backend, inputFloats(), std::move(*state_->samples), out, sink, on_step,

@@ -79,9 +79,13 @@ private:
     // A mask's or a point file's samples triangulated where the backend does it (--delaunay):
     // in the processing stage, which owns the device, not in the reader's.
     void triangulateSamples(Backend& backend);
-    // The tile side of a mask's tiles (--tile, else automatic), 0 when it is done in one piece:
-    // it fits the backend's working memory, or --mesh wants the whole triangulation.
-    uint32_t maskTileSide(const Backend& backend) const;
+    // The tile side of a mask's or a point file's tiles (--tile, else automatic), 0 when it is
+    // done in one piece: a mask that fits the backend's working memory, points whose mesh and
+    // output fit --memory, or --mesh wants the whole triangulation.
+    uint32_t sampledTileSide(const Backend& backend) const;
+    // A point file's samples kept for tiles (core/delaunay/known_samples.h), the input a header
+    // of the frame (or the frame's pixels for points on pixel centres, as a mask's).
+    void keepPointsForTiles();
     // The whole input as floats, for the paths that take it whole (samples, simplification,
     // the mesh file's colours); an input kept as codes is unpacked from then on.
     const Image& inputFloats();

@@ -40,7 +40,7 @@ Frame frameOfPoints(const PointSamples& points) {
     return {frameSide(largest_x), frameSide(largest_y)};
 }
 
-MergedPoints mergePoints(const PointSamples& points, Frame frame) {
+SampleSet mergePoints(const PointSamples& points, Frame frame) {
     const size_t n = points.size();
     const uint32_t c = points.channels;
     std::vector<Position> places(n);
@@ -77,7 +77,7 @@ MergedPoints mergePoints(const PointSamples& points, Frame frame) {
     if (std::string problem = delaunayInputProblem(distinct); !problem.empty())
         throw UserError("the points cannot be triangulated (" + problem + ")");
 
-    MergedPoints result;
+    SampleSet result;
     Image& values = result.values;
     values.channels = c;
     values.sample_type = points.sample_type;
@@ -115,13 +115,13 @@ MergedPoints mergePoints(const PointSamples& points, Frame frame) {
     return result;
 }
 
-Mesh triangulateMerged(const MergedPoints& merged, Frame frame, Backend& backend) {
+Mesh triangulateMerged(const SampleSet& merged, Frame frame, Backend& backend) {
     return merged.places.empty() ? backend.delaunayPixels(frame.width, frame.height, merged.pixel_ids)
                                  : backend.delaunayPoints(frame.width, frame.height, merged.places);
 }
 
 SampledPoints triangulatePoints(const PointSamples& points, Frame frame) {
-    MergedPoints merged = mergePoints(points, frame);
+    SampleSet merged = mergePoints(points, frame);
     Mesh mesh = merged.places.empty() ? delaunayOfPixels(frame.width, frame.height, merged.pixel_ids)
                                       : delaunayOfPoints(frame.width, frame.height, merged.places);
     return {std::move(mesh), std::move(merged.values)};

@@ -13,6 +13,7 @@
 
 #include "backend.h"
 #include "image.h"
+#include "known_samples.h"
 #include "mesh.h"
 #include "point_file.h"
 
@@ -36,21 +37,15 @@ struct SampledPoints {
 };
 
 // The distinct points of a file, checked and merged, ready to triangulate: the pixel form
-// (pixel_ids, values frame-sized) or the general one (places in row-major order, one value each).
-struct MergedPoints {
-    Image values;
-    std::vector<uint32_t> pixel_ids;
-    std::vector<Position> places;
-};
-
-// Checks and merges `points` in `frame` (sides of at most kMaxDelaunaySide).
+// (pixel_ids, values frame-sized) or the general one (places in row-major order, one value
+// each). Checks and merges `points` in `frame` (sides of at most kMaxDelaunaySide).
 // Throws UserError("reason"), one line without a file name, for a point outside the frame,
 // two points at one place with different values, and points with no triangulation
 // (fewer than 3 distinct, or all collinear).
-MergedPoints mergePoints(const PointSamples& points, Frame frame);
+SampleSet mergePoints(const PointSamples& points, Frame frame);
 
 // The merged points' Delaunay triangulation, where `backend` runs it (Backend::delaunayPixels).
-Mesh triangulateMerged(const MergedPoints& merged, Frame frame, Backend& backend);
+Mesh triangulateMerged(const SampleSet& merged, Frame frame, Backend& backend);
 
 // mergePoints, then the triangulation on the host.
 SampledPoints triangulatePoints(const PointSamples& points, Frame frame);

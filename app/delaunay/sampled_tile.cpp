@@ -6,8 +6,10 @@
 #include <limits>
 
 #include "nearest_fill.h"
+#include "point_mesh.h"
 #include "raster.h"
 #include "sampled_render.h"
+#include "tiled_upscale.h"
 
 namespace ddt {
 
@@ -24,16 +26,26 @@ void clearRows(const RenderWindow& window, uint32_t channels, float* rows, size_
 // but a window at a time; the pixels of its output outside the hull were filled when it was made.
 class SampledSurface final : public HostSurface {
 public:
+    // `frame`'s crop offset is the mesh's: the tile's crop may have grown past the one its
+    // windows name (cropHolding).
     SampledSurface(Image values, const Mesh& mesh, const RenderWindow& frame)
-        : values_(std::move(values)), renderer_(mesh, values_), edges_(hullEdgesOf(mesh, frame)) {}
+        : values_(std::move(values)),
+          renderer_(mesh, values_),
+          edges_(hullEdgesOf(mesh, frame)),
+          snapped_(!mesh.positions.empty()),
+          crop_x_(frame.crop_x),
+          crop_y_(frame.crop_y) {}
     SampledSurface(const SampledSurface&) = delete;  // renderer_ refers to values_
     SampledSurface& operator=(const SampledSurface&) = delete;
 
     // The surface's samples of `window` without the nearest fill: NaN outside the hull.
     void renderHull(const RenderWindow& window, float* rows, size_t row_stride) const {
         clearRows(window, values_.channels, rows, row_stride);
-        renderer_.renderWindow(window, rows, row_stride);
-        fillOnHullEdges(edges_, false, values_, window, rows, row_stride);
+        RenderWindow placed = window;
+        placed.crop_x = crop_x_;
+        placed.crop_y = crop_y_;
+        renderer_.renderWindow(placed, rows, row_stride);
+        fillOnHullEdges(edges_, snapped_, values_, window, rows, row_stride);
     }
 
     void renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const override {
@@ -48,7 +60,12 @@ public:
         }
     }
 
-    bool covers(int64_t x, int64_t y) const { return hullContains(edges_, x, y); }
+    // Whether the output sample at (x, y), in raster.h's units, lies in the hull (snapped as the
+    // renderer snaps it for a mesh of points).
+    bool covers(int64_t x, int64_t y, OutputSize out) const {
+        return snapped_ ? hullContains(edges_, snappedSample(x, out.width), snappedSample(y, out.height))
+                        : hullContains(edges_, x, y);
+    }
     // Fills the output pixels of `tile_output` outside the hull from the nearest pixel the
     // crop's output has inside it, and keeps them for renderWindow.
     void fillOutside(const RenderWindow& crop_output, const PixelRect& tile_output) {
@@ -71,33 +88,50 @@ private:
     Image values_;
     MeshRenderer renderer_;
     std::vector<HullEdge> edges_;
+    bool snapped_;                                          // the mesh has explicit positions
+    uint32_t crop_x_, crop_y_;                              // the mesh's crop's corner
     std::vector<std::pair<uint32_t, uint32_t>> filled_at_;  // output pixels outside the hull
     std::vector<float> filled_;                             // their values, channels each
 };
 
 }  // namespace
 
-SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownPixels& known, const Tile& tile,
+SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownSamples& known, const Tile& tile,
                              const RenderWindow& frame) {
-    Image crop = input.crop(tile.crop);
-    backend.prepareFrom(crop, backend.delaunayPixels(crop.width, crop.height, known.idsIn(tile.crop)));
+    // The triangles the tile's output and its flips read lie near its core grown by the overlap.
+    const uint32_t w = frame.input_width, h = frame.input_height;
+    const PixelRect reach{tile.core.x0 - std::min(tile.core.x0, kDefaultOverlap),
+                          tile.core.y0 - std::min(tile.core.y0, kDefaultOverlap),
+                          std::min(w, tile.core.x1 + kDefaultOverlap), std::min(h, tile.core.y1 + kDefaultOverlap)};
+    PixelRect crop = tile.crop;
+    SampleSet samples;
+    Mesh initial;
+    for (;;) {
+        samples = known.samplesIn(input, crop);
+        initial = triangulateMerged(samples, {crop.width(), crop.height()}, backend);
+        const PixelRect holding = known.cropHolding(initial, crop, reach);
+        if (holding.x0 == crop.x0 && holding.y0 == crop.y0 && holding.x1 == crop.x1 && holding.y1 == crop.y1) break;
+        crop = holding;
+    }
+    backend.prepareFrom(samples.values, std::move(initial));
     SampledTile shaped;
     shaped.stats = backend.optimize();
     const Mesh mesh = backend.takeMesh();
     RenderWindow placed = frame;
-    placed.crop_x = tile.crop.x0;
-    placed.crop_y = tile.crop.y0;
-    auto surface = std::make_unique<SampledSurface>(std::move(crop), mesh, placed);
+    placed.crop_x = crop.x0;
+    placed.crop_y = crop.y0;
+    auto surface = std::make_unique<SampledSurface>(std::move(samples.values), mesh, placed);
     // The hull is convex: if it holds the corners of the tile's samples, it holds them all.
     const uint32_t in_w = frame.input_width, in_h = frame.input_height, out_w = frame.out.width, out_h = frame.out.height;
     const int64_t left = sampleCoord(tile.output.x0, in_w, out_w), right = sampleCoord(tile.output.x1 - 1, in_w, out_w);
     const int64_t top = sampleCoord(tile.output.y0, in_h, out_h), bottom = sampleCoord(tile.output.y1 - 1, in_h, out_h);
-    if (!(surface->covers(left, top) && surface->covers(right, top) && surface->covers(left, bottom) &&
-          surface->covers(right, bottom))) {
-        placed.x_begin = firstOutputOf(tile.crop.x0, in_w, out_w);
-        placed.x_end = firstOutputOf(tile.crop.x1, in_w, out_w);
-        placed.y_begin = firstOutputOf(tile.crop.y0, in_h, out_h);
-        placed.y_end = firstOutputOf(tile.crop.y1, in_h, out_h);
+    const OutputSize out = frame.out;
+    if (!(surface->covers(left, top, out) && surface->covers(right, top, out) && surface->covers(left, bottom, out) &&
+          surface->covers(right, bottom, out))) {
+        placed.x_begin = firstOutputOf(crop.x0, in_w, out_w);
+        placed.x_end = firstOutputOf(crop.x1, in_w, out_w);
+        placed.y_begin = firstOutputOf(crop.y0, in_h, out_h);
+        placed.y_end = firstOutputOf(crop.y1, in_h, out_h);
         surface->fillOutside(placed, tile.output);
     }
     shaped.surface = std::move(surface);

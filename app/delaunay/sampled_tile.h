@@ -1,15 +1,15 @@
-// One tile of a masked image (--mask with tiles, app/tiled_upscale.h): the known pixels of the
-// tile's crop are triangulated and optimized on their own, and the tile renders only its
-// output. The crop is grown until the triangulation equals the whole image's where the tile
-// renders (core/delaunay/known_pixels.h), so tiles of holes that fit their crops join without
-// seams. Outside the crop's hull (a hole on the image's border) each output pixel takes the
-// nearest rendered one, searched in the output of the crop, not of the whole image.
+// One tile of known samples (--mask or a point file with tiles, app/tiled_upscale.h): the
+// samples of the tile's crop are triangulated and optimized on their own, and the tile renders
+// only its output. The crop is grown until the triangulation equals the whole frame's where the
+// tile renders (core/delaunay/known_samples.h), so tiles of gaps that fit their crops join
+// without seams. Outside the crop's hull (a gap on the frame's border) each output pixel takes
+// the nearest rendered one, searched in the output of the crop, not of the whole frame.
 #pragma once
 
 #include <memory>
 
 #include "backend.h"
-#include "known_pixels.h"
+#include "known_samples.h"
 #include "packed_image.h"
 #include "tiling.h"
 
@@ -20,10 +20,11 @@ struct SampledTile {
     OptimizeStats stats;
 };
 
-// Triangulates the known pixels of `tile.crop` (on `backend`, which --delaunay may place on its
-// device), optimizes that mesh there and hands over its surface. `frame`: the whole input's
-// size and the output's (its crop offset and rows unused).
-SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownPixels& known, const Tile& tile,
+// Triangulates the samples of `tile.crop` (on `backend`, which --delaunay may place on its
+// device), optimizes that mesh there and hands over its surface. `input`: a mask's image (a
+// point file's header only); `frame`: the whole input's size and the output's (its crop offset
+// and rows unused).
+SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownSamples& known, const Tile& tile,
                              const RenderWindow& frame);
 
 }  // namespace ddt

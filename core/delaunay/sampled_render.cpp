@@ -35,7 +35,10 @@ std::vector<HullEdge> hullEdgesOf(const Mesh& mesh, const RenderWindow& frame) {
     std::vector<HullEdge> edges;
     const bool snapped = !mesh.positions.empty();
     auto placeOf = [&](uint32_t v) -> std::pair<int64_t, int64_t> {
-        if (snapped) return {mesh.positions[v].x, mesh.positions[v].y};
+        // Explicit positions are the crop's, moved by its offset as the renderer moves them.
+        if (snapped)
+            return {mesh.positions[v].x + int64_t(frame.crop_x) * kPositionOne,
+                    mesh.positions[v].y + int64_t(frame.crop_y) * kPositionOne};
         return {vertexCoord(v % mesh.width + frame.crop_x, frame.out.width),
                 vertexCoord(v / mesh.width + frame.crop_y, frame.out.height)};
     };

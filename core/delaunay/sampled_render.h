@@ -17,8 +17,8 @@ namespace ddt {
 Image renderSampledMesh(const Mesh& mesh, const Image& values, OutputSize out);
 
 // A boundary edge of the mesh (on its hull): its vertices, their places in the renderer's units
-// (raster.h's for a grid's vertices, shifted by the crop's offset; explicit positions as they
-// are) and the side its one triangle is on.
+// (raster.h's for a grid's vertices, explicit positions in theirs, both shifted by the crop's
+// offset) and the side its one triangle is on.
 struct HullEdge {
     uint32_t a, b;
     int64_t px, py, qx, qy;

@@ -51,10 +51,10 @@ struct Option {
 
 // The options of the matrix; a mesh file is written to `mesh_file`.
 std::vector<Option> matrixOptions(const std::string& mesh_file) {
-    const std::string whole = "one piece; --tile does not apply", volumes = "does not apply to volumes";
+    const std::string volumes = "does not apply to volumes";
     const std::string cost_and_backend = "`--cost W`, `--backend cpu`/`vulkan`";
     return {
-        {{"--tile", "64"}, {"", "", whole, ""}, "`--tile N`"},
+        {{"--tile", "64"}, {"", "", "", ""}, "`--tile N`"},
         {{"--mesh", mesh_file}, {"", "", "", volumes}, "`--mesh F`"},
         {{"--simplify", "0.5"}, {"", "do not combine yet", "do not combine yet", volumes}, "`--simplify R`, `--max-error E`"},
         {{"--cost", "variance"}, {"", "", "", ""}, cost_and_backend},

@@ -131,5 +131,7 @@ TEST_CASE("cli points: bad point files and options are refused in one line", "[d
                         "point files");
     requireOneLineError(runDdtup({good, "--mask", work / "mask.png", out}), 2, "--mask", "point file");
     requireOneLineError(runDdtup({good, "-o", work / "dir"}), 2, "point file", "-f png");
-    requireOneLineError(runDdtup({good, out, "--tile", "64"}), 2, "point file", "--tile");
+    // Tiles take the points near each tile; a mesh file is of the whole triangulation.
+    requireOneLineError(runDdtup({good, out, "--tile", "64", "--mesh", work / "mesh.ply"}), 2, "point file", "--tile");
+    CHECK_FALSE(std::filesystem::exists(work / "mesh.ply"));
 }

@@ -1,0 +1,51 @@
+// A point file's points (app/delaunay/point_mesh.h's general form: anywhere in the frame, in
+// fixed point) kept by block for tiles (known_samples.h: the crop a tile of them needs).
+//
+// The distance grid's cells are 1, 2, 4 … 32 pixels wide, the smallest whose grid has at most
+// kCellsPerPoint cells a point: sparse points in a large frame do not cost a byte a pixel.
+// A point lies anywhere in its cell and so does a circle's centre: the spread is a cell's
+// diagonal.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "known_samples.h"
+
+namespace ddt {
+
+class KnownPoints final : public KnownSamples {
+public:
+    // `places`: distinct, inside [0, (width − 1) · kPositionOne] × [0, (height − 1) · kPositionOne];
+    // `values`: one pixel each (places.size() × 1).
+    KnownPoints(uint32_t width, uint32_t height, const std::vector<Position>& places, const Image& values);
+
+    // Bytes held a point (places, values and the block index) with `channels` channels.
+    static uint64_t bytesPerPoint(uint32_t channels);
+
+    std::string problemIn(const PixelRect& rect) const override;
+    // The points of `rect`, row-major, moved by its corner, with their values; `input` unused.
+    SampleSet samplesIn(const PackedImage& input, const PixelRect& rect) const override;
+    void measureHoles() override;
+    // Checks each triangle near `rect` against the points outside the crop in its circle (by
+    // blocks, then the exact in-circle test with its tie-break), and each hull edge near it
+    // against the whole hull's vertices.
+    PixelRect cropHolding(const Mesh& mesh, const PixelRect& crop, const PixelRect& rect) const override;
+
+private:
+    // Calls visit(i) for each point i (of the block order) inside `rect`.
+    template <typename Visit>
+    void forEachIn(const PixelRect& rect, Visit visit) const;
+    // Calls visit(i) for each point i (of the block order) that may lie in the disk (a superset).
+    template <typename Visit>
+    void forEachNear(long double cx, long double cy, long double radius, Visit visit) const;
+
+    std::vector<Position> places_;      // block by block, row-major blocks; row-major within each
+    Image values_;                      // in the same order
+    uint32_t block_columns_ = 0;
+    std::vector<uint32_t> block_first_;  // each block's first point, and the end
+    std::vector<Position> hull_;         // the vertices of all the points' convex hull
+};
+
+}  // namespace ddt

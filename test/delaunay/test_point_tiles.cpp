@@ -1,0 +1,232 @@
+// A point file's points in tiles (app/delaunay/sampled_tile.h, core/delaunay/known_points.h):
+// the grown crop's Delaunay triangulation holds every whole-frame triangle near its rect, and
+// tiled outputs equal the untiled ones, gaps across tile borders and on the frame's corners and
+// edges included, on both backends.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <random>
+#include <set>
+
+#include "backend.h"
+#include "delaunay.h"
+#include "delaunay/sampled_upscale.h"
+#include "known_points.h"
+#include "test_support.h"
+#include "tiled_upscale.h"
+#include "vulkan_backend.h"
+
+namespace {
+
+using namespace ddt;
+
+struct Points {
+    std::vector<Position> places;  // row-major, distinct
+    Image values;                  // one pixel a place
+};
+
+// `count` points at random places of a w × h frame (1/1024 pixel apart at the finest, off the
+// pixel centres), none inside the given discs (x, y, radius), coloured by `image` at the
+// nearest pixel; one point on each frame corner keeps the hull the frame's rectangle.
+Points scatteredPoints(uint32_t w, uint32_t h, uint32_t seed, int count, const std::vector<std::array<int, 3>>& gaps,
+                       const Image& image) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int32_t> x(0, int32_t(w - 1) * kPositionOne), y(0, int32_t(h - 1) * kPositionOne);
+    auto inGap = [&](const Position& p) {
+        for (const auto& [cx, cy, r] : gaps) {
+            const double dx = double(p.x) / kPositionOne - cx, dy = double(p.y) / kPositionOne - cy;
+            if (dx * dx + dy * dy < double(r) * r) return true;
+        }
+        return false;
+    };
+    std::set<std::pair<int32_t, int32_t>> row_major;  // (y, x)
+    for (int i = 0; i < count; ++i) {
+        const Position p{x(rng), y(rng)};
+        if (!inGap(p)) row_major.insert({p.y, p.x});
+    }
+    Points points;
+    for (const auto& [py, px] : row_major) points.places.push_back({px, py});
+    const uint32_t c = image.channels;
+    points.values.width = uint32_t(points.places.size());
+    points.values.height = 1;
+    points.values.channels = c;
+    for (const Position& p : points.places) {
+        const uint32_t px = uint32_t((p.x + kPositionOne / 2) / kPositionOne) % image.width;
+        const uint32_t py = uint32_t((p.y + kPositionOne / 2) / kPositionOne) % image.height;
+        const float* pixel = image.pixels.data() + (size_t(py) * image.width + px) * c;
+        points.values.pixels.insert(points.values.pixels.end(), pixel, pixel + c);
+    }
+    return points;
+}
+
+// The triangles of `mesh`, a mesh of points moved by (dx, dy) units, as sorted triples of places.
+using PlacedTriangle = std::array<std::pair<int32_t, int32_t>, 3>;
+std::set<PlacedTriangle> trianglesOf(const Mesh& mesh, int32_t dx, int32_t dy) {
+    std::set<PlacedTriangle> triangles;
+    forEachTriangle(mesh, [&](const Triangle& t) {
+        PlacedTriangle placed;
+        const uint32_t ids[3] = {t.v0, t.v1, t.v2};
+        for (int k = 0; k < 3; ++k) placed[k] = {mesh.positions[ids[k]].x + dx, mesh.positions[ids[k]].y + dy};
+        std::sort(placed.begin(), placed.end());
+        triangles.insert(placed);
+    });
+    return triangles;
+}
+
+// Whether the triangle meets the rect's pixel centres' rectangle: its bounding box does (a
+// superset of the triangles meeting it, all of which the crop must hold).
+bool near(const PlacedTriangle& t, const PixelRect& rect) {
+    int32_t x0 = t[0].first, x1 = x0, y0 = t[0].second, y1 = y0;
+    for (const auto& [x, y] : t) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    return x1 >= int32_t(rect.x0) * kPositionOne && x0 <= int32_t(rect.x1 - 1) * kPositionOne &&
+           y1 >= int32_t(rect.y0) * kPositionOne && y0 <= int32_t(rect.y1 - 1) * kPositionOne;
+}
+
+std::unique_ptr<Backend> makeBackendNamed(const std::string& name) {
+    if (name == "cpu") return makeCpuBackend();
+    VulkanOptions options;
+    options.validation = true;
+    return std::make_unique<VulkanBackend>(options);
+}
+
+std::vector<float> collect(const std::function<void(const std::function<void(OutputRows&&)>&)>& run, size_t row_floats) {
+    std::vector<float> pixels;
+    run([&](OutputRows&& rows) {
+        pixels.insert(pixels.end(), rows.floats.get(), rows.floats.get() + rows.rows() * row_floats);
+    });
+    return pixels;
+}
+
+}  // namespace
+
+TEST_CASE("known points: a grown, checked crop's triangulation holds every whole-frame triangle near its rect") {
+    const uint32_t w = 160, h = 120;
+    const Image colours = test::photoPiece();
+    // Inside the frame, and on its corners and left edge, where the hull's long thin triangles
+    // have circles centred outside the frame (known_samples.h: not covered by the rule).
+    const PixelRect inside[] = {{60, 40, 80, 60}, {30, 50, 130, 56}};
+    const PixelRect border[] = {{0, 0, 20, 20}, {140, 100, 160, 120}, {0, 60, 12, 90}};
+    size_t checked = 0, missing_without_rule = 0, missing_without_check = 0;
+    for (uint32_t seed = 1; seed <= 4; ++seed) {
+        // 1 point per 8 pixels, gaps across the rects' borders, on corners and on an edge.
+        const Points points = scatteredPoints(w, h, seed, int(w * h / 8),
+                                              {{70, 40, 12}, {80, 60, 7}, {0, 0, 9}, {159, 119, 6}, {0, 75, 10}}, colours);
+        KnownPoints known(w, h, points.places, points.values);
+        known.measureHoles();
+        const std::set<PlacedTriangle> whole = trianglesOf(delaunayOfPoints(w, h, points.places), 0, 0);
+        auto meshOf = [&](const PixelRect& crop) {
+            REQUIRE(known.problemIn(crop).empty());
+            const SampleSet samples = known.samplesIn(PackedImage(), crop);
+            CHECK(samples.values.width == samples.places.size());
+            return delaunayOfPoints(crop.width(), crop.height(), samples.places);
+        };
+        auto trianglesIn = [&](const PixelRect& crop) {
+            return trianglesOf(meshOf(crop), int32_t(crop.x0) * kPositionOne, int32_t(crop.y0) * kPositionOne);
+        };
+        // The count of whole-frame triangles near `rect` that `got` lacks.
+        auto missing = [&](const std::set<PlacedTriangle>& got, const PixelRect& rect) {
+            size_t count = 0;
+            for (const PlacedTriangle& t : whole) count += near(t, rect) && got.count(t) == 0;
+            return count;
+        };
+        for (const PixelRect& rect : inside) {
+            CAPTURE(seed, rect.x0, rect.y0);
+            // Inside, the rule alone holds every triangle; grown by 3 pixels alone, some are missed.
+            for (const PlacedTriangle& t : whole) checked += near(t, rect);
+            CHECK(missing(trianglesIn(known.cropFor(rect, w)), rect) == 0);
+            missing_without_rule += missing(trianglesIn(known.cropFor(rect, 3)), rect);
+        }
+        for (const PixelRect& rect : border) {
+            CAPTURE(seed, rect.x0, rect.y0);
+            for (const PlacedTriangle& t : whole) checked += near(t, rect);
+            PixelRect crop = known.cropFor(rect, w);
+            missing_without_check += missing(trianglesIn(crop), rect);
+            // Grown by cropHolding until it holds every point that breaks a triangle near rect.
+            for (int round = 0;; ++round) {
+                REQUIRE(round < 20);
+                const PixelRect holding = known.cropHolding(meshOf(crop), crop, rect);
+                if (holding.x0 == crop.x0 && holding.y0 == crop.y0 && holding.x1 == crop.x1 && holding.y1 == crop.y1) break;
+                crop = holding;
+            }
+            CHECK(missing(trianglesIn(crop), rect) == 0);
+            CHECK(crop.width() * crop.height() < w * h);  // not the whole frame
+        }
+    }
+    CHECK(checked > 1000);
+    CHECK(missing_without_rule > 0);
+    CHECK(missing_without_check > 0);
+}
+
+TEST_CASE("known points: a crop holds exactly the points of its pixel centres' rectangle, moved by its corner") {
+    // Points at the crop's edges (in), just past them (out) and between pixel centres.
+    const std::vector<Position> places = {{0, 0},         {10 * 1024, 0},      {3 * 1024, 2 * 1024 - 1},
+                                          {3 * 1024, 2 * 1024}, {5 * 1024 + 512, 3 * 1024}, {8 * 1024, 5 * 1024},
+                                          {8 * 1024 + 1, 6 * 1024}, {2 * 1024, 9 * 1024}};
+    Image values;
+    values.width = uint32_t(places.size());
+    values.height = 1;
+    values.channels = 1;
+    for (size_t i = 0; i < places.size(); ++i) values.pixels.push_back(float(i));
+    const KnownPoints known(11, 10, places, values);
+    const SampleSet crop = known.samplesIn(PackedImage(), {3, 2, 9, 7});  // centres x 3 … 8, y 2 … 6
+    // In: (3, 2), (5.5, 3), (8, 5); out: y just below 2, x just past 8, y 9, the corners.
+    REQUIRE(crop.places.size() == 3);
+    CHECK(crop.places[0] == Position{0, 0});
+    CHECK(crop.places[1] == Position{2 * 1024 + 512, 1024});
+    CHECK(crop.places[2] == Position{5 * 1024, 3 * 1024});
+    CHECK(crop.values.pixels == std::vector<float>{3.0f, 4.0f, 5.0f});
+    CHECK(known.problemIn({3, 2, 9, 7}).empty());
+    CHECK(known.problemIn({0, 0, 3, 2}) == "fewer than 3 points");
+}
+
+TEST_CASE("point tiles: tiled outputs equal the untiled one, gaps across tile borders included", "[vulkan]") {
+    const Image photo = test::photoCrop();  // 300 × 200, the colours
+    const uint32_t w = photo.width, h = photo.height;
+    // 10 % of the pixels as points; gaps centred on the 64-pixel tiles' borders (cores of
+    // 60 × 50: x = 60, 120, 180, 240, y = 50, 100, 150), two wider than the 16-pixel overlap,
+    // on the frame's corners and its left and bottom edges (the fill outside the hull).
+    const Points points = scatteredPoints(
+        w, h, 11, int(w * h / 10),
+        {{60, 50, 12}, {120, 100, 20}, {240, 150, 18}, {0, 0, 10}, {299, 0, 6}, {0, 120, 7}, {150, 199, 9}, {299, 199, 5}},
+        photo);
+    Image header;
+    header.width = w;
+    header.height = h;
+    header.channels = photo.channels;
+    const PackedImage frame(header);
+    for (const char* name : {"cpu", "vulkan"}) {
+        std::unique_ptr<Backend> backend = makeBackendNamed(name);
+        for (double scale : {1.0, 2.0}) {
+            CAPTURE(name, scale);
+            const OutputSize out = scaledOutputSize(w, h, scale);
+            const size_t row_floats = size_t(out.width) * photo.channels;
+            const std::vector<float> untiled = collect(
+                [&](const auto& sink) {
+                    upscaleFromSamples(*backend, points.values, backend->delaunayPoints(w, h, points.places), out, sink);
+                },
+                row_floats);
+            for (uint32_t side : {64u, 128u}) {
+                KnownPoints known(w, h, points.places, points.values);
+                known.measureHoles();
+                TileOptions options;
+                options.tile = side;
+                options.known = &known;
+                const std::vector<float> tiled =
+                    collect([&](const auto& sink) { upscaleRows(*backend, frame, out, options, sink); }, row_floats);
+                REQUIRE(tiled.size() == untiled.size());
+                size_t differing = 0;
+                float largest = 0.0f;
+                for (size_t i = 0; i < tiled.size(); ++i) {
+                    differing += tiled[i] != untiled[i];
+                    largest = std::max(largest, std::abs(tiled[i] - untiled[i]));
+                }
+                CAPTURE(side, differing, largest);
+                CHECK(differing == 0);
+            }
+        }
+        auto* vulkan = dynamic_cast<VulkanBackend*>(backend.get());
+        if (vulkan) CHECK(vulkan->validationMessages() == 0);
+    }
+}
