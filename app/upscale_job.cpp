@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "delaunay.h"
+#include "delaunay/sampled_tile.h"
 #include "delaunay/sampled_upscale.h"
 #include "image_metadata.h"
 #include "indexed_mesh.h"
@@ -263,12 +264,12 @@ uint32_t ImageJob::sampledTileSide(const Backend& backend) const {
     if (untiledMemoryProblem(backend, values.width, values.height, values.channels, output_bytes).empty()) return 0;
     // Crops holding about as many points as automatic tiling's crops of an image hold pixels:
     // sides scaled by the square root of the pixels a point, in steps of kMinTileSide.
-    const uint32_t pixel_side =
-        automaticTileSide(backend, frame.width, frame.height, values.channels, kDefaultOverlap, false);
+    const uint32_t overlap = kPointTileOverlap;
+    const uint32_t pixel_side = automaticTileSide(backend, frame.width, frame.height, values.channels, overlap, false);
     const uint64_t points = state_->merged->places.empty() ? state_->merged->pixel_ids.size() : values.width;
-    const double crop_side = double(pixel_side ? pixel_side + 2 * kDefaultOverlap : largest) *
+    const double crop_side = double(pixel_side ? pixel_side + 2 * overlap : largest) *
                              std::sqrt(double(frame.width) * frame.height / double(points));
-    const double side = std::max(0.0, crop_side - 2 * kDefaultOverlap);
+    const double side = std::max(0.0, crop_side - 2 * overlap);
     // Whole frames at once where the crop would hold it: tiles still keep the output in bands.
     return uint32_t(std::clamp(std::floor(side / kMinTileSide) * kMinTileSide, double(kMinTileSide), double(largest)));
 }
@@ -359,6 +360,7 @@ void ImageJob::render(Backend& backend) {
                                               (sampled ? "every pixel's value)" : "the full mesh)"));
         if (sample_tile) {
             options.tile = sample_tile;
+            if (!state_->known) options.overlap = kPointTileOverlap;
             options.reconstruct = options.fallback = false;
             options.known = state_->known ? static_cast<const KnownSamples*>(&*state_->known) : &*state_->known_points;
             report_.stats = upscaleRows(backend, state_->input, out, options, sink, on_step);

@@ -9,7 +9,6 @@
 #include "point_mesh.h"
 #include "raster.h"
 #include "sampled_render.h"
-#include "tiled_upscale.h"
 
 namespace ddt {
 
@@ -26,8 +25,8 @@ void clearRows(const RenderWindow& window, uint32_t channels, float* rows, size_
 // but a window at a time; the pixels of its output outside the hull were filled when it was made.
 class SampledSurface final : public HostSurface {
 public:
-    // `frame`'s crop offset is the mesh's: the tile's crop may have grown past the one its
-    // windows name (cropHolding).
+    // `frame`'s crop offset is the mesh's: its samples' bounds may reach past the crop its
+    // windows name (KnownSamples::samplesAlongBorder, samplesBreaking).
     SampledSurface(Image values, const Mesh& mesh, const RenderWindow& frame)
         : values_(std::move(values)),
           renderer_(mesh, values_),
@@ -99,27 +98,32 @@ private:
 SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownSamples& known, const Tile& tile,
                              const RenderWindow& frame) {
     // The triangles the tile's output and its flips read lie near its core grown by the overlap.
-    const uint32_t w = frame.input_width, h = frame.input_height;
-    const PixelRect reach{tile.core.x0 - std::min(tile.core.x0, kDefaultOverlap),
-                          tile.core.y0 - std::min(tile.core.y0, kDefaultOverlap),
-                          std::min(w, tile.core.x1 + kDefaultOverlap), std::min(h, tile.core.y1 + kDefaultOverlap)};
-    PixelRect crop = tile.crop;
+    const uint32_t w = frame.input_width, h = frame.input_height, overlap = kPointTileOverlap;
+    const PixelRect reach{tile.core.x0 - std::min(tile.core.x0, overlap), tile.core.y0 - std::min(tile.core.y0, overlap),
+                          std::min(w, tile.core.x1 + overlap), std::min(h, tile.core.y1 + overlap)};
+    // The crop's samples, those along the frame's border beyond it, and any others that its
+    // triangulation near `reach` turns out to need, until none is missing.
+    std::vector<uint32_t> extra = known.samplesAlongBorder(tile.crop);
     SampleSet samples;
     Mesh initial;
+    PixelRect bounds;
     for (;;) {
-        samples = known.samplesIn(input, crop);
-        initial = triangulateMerged(samples, {crop.width(), crop.height()}, backend);
-        const PixelRect holding = known.cropHolding(initial, crop, reach);
-        if (holding.x0 == crop.x0 && holding.y0 == crop.y0 && holding.x1 == crop.x1 && holding.y1 == crop.y1) break;
-        crop = holding;
+        samples = known.samplesIn(input, tile.crop, extra);
+        bounds = known.boundsOf(tile.crop, extra);
+        initial = triangulateMerged(samples, {bounds.width(), bounds.height()}, backend);
+        const std::vector<uint32_t> missing = known.samplesBreaking(initial, tile.crop, extra, reach);
+        if (missing.empty()) break;
+        const size_t old_end = extra.size();
+        extra.insert(extra.end(), missing.begin(), missing.end());
+        std::inplace_merge(extra.begin(), extra.begin() + ptrdiff_t(old_end), extra.end());
     }
     backend.prepareFrom(samples.values, std::move(initial));
     SampledTile shaped;
     shaped.stats = backend.optimize();
     const Mesh mesh = backend.takeMesh();
     RenderWindow placed = frame;
-    placed.crop_x = crop.x0;
-    placed.crop_y = crop.y0;
+    placed.crop_x = bounds.x0;
+    placed.crop_y = bounds.y0;
     auto surface = std::make_unique<SampledSurface>(std::move(samples.values), mesh, placed);
     // The hull is convex: if it holds the corners of the tile's samples, it holds them all.
     const uint32_t in_w = frame.input_width, in_h = frame.input_height, out_w = frame.out.width, out_h = frame.out.height;
@@ -128,10 +132,10 @@ SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const K
     const OutputSize out = frame.out;
     if (!(surface->covers(left, top, out) && surface->covers(right, top, out) && surface->covers(left, bottom, out) &&
           surface->covers(right, bottom, out))) {
-        placed.x_begin = firstOutputOf(crop.x0, in_w, out_w);
-        placed.x_end = firstOutputOf(crop.x1, in_w, out_w);
-        placed.y_begin = firstOutputOf(crop.y0, in_h, out_h);
-        placed.y_end = firstOutputOf(crop.y1, in_h, out_h);
+        placed.x_begin = firstOutputOf(tile.crop.x0, in_w, out_w);
+        placed.x_end = firstOutputOf(tile.crop.x1, in_w, out_w);
+        placed.y_begin = firstOutputOf(tile.crop.y0, in_h, out_h);
+        placed.y_end = firstOutputOf(tile.crop.y1, in_h, out_h);
         surface->fillOutside(placed, tile.output);
     }
     shaped.surface = std::move(surface);

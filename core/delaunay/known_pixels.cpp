@@ -28,7 +28,7 @@ std::string KnownPixels::problemIn(const PixelRect& rect) const {
     return count < 3 ? "fewer than 3 points" : "all points are collinear";
 }
 
-SampleSet KnownPixels::samplesIn(const PackedImage& input, const PixelRect& rect) const {
+SampleSet KnownPixels::samplesIn(const PackedImage& input, const PixelRect& rect, const std::vector<uint32_t>&) const {
     return {input.crop(rect), idsIn(rect), {}};
 }
 

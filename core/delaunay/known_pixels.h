@@ -21,8 +21,9 @@ public:
     // The known pixels of `rect` as ids of the rect's own grid, (y − y0)·width + (x − x0), ascending.
     std::vector<uint32_t> idsIn(const PixelRect& rect) const;
     std::string problemIn(const PixelRect& rect) const override;
-    // The rect's pixels of `input` and its known pixels' ids.
-    SampleSet samplesIn(const PackedImage& input, const PixelRect& rect) const override;
+    // The rect's pixels of `input` and its known pixels' ids (`extra` is always empty).
+    SampleSet samplesIn(const PackedImage& input, const PixelRect& rect,
+                        const std::vector<uint32_t>& extra = {}) const override;
     void measureHoles() override { measureFrom(known_); }
 
 private:

@@ -26,20 +26,22 @@ uint32_t cellFor(uint32_t width, uint32_t height, size_t points) {
     return cell;
 }
 
-// The corners of the convex hull of `places` (row-major): Andrew's monotone chain, along y
-// here, without the points on its sides.
-std::vector<Position> convexHullOf(const std::vector<Position>& places) {
-    std::vector<Position> hull;
-    auto chain = [&](auto first, auto last) {
+// The corners of the convex hull of `places` (row-major), by index: Andrew's monotone chain,
+// along y here, without the points on its sides.
+std::vector<uint32_t> convexHullOf(const std::vector<Position>& places) {
+    std::vector<uint32_t> hull;
+    auto chain = [&](auto visit_in_order) {
         const size_t base = hull.size();
-        for (auto it = first; it != last; ++it) {
-            while (hull.size() >= base + 2 && orient(hull[hull.size() - 2], hull.back(), *it) <= 0) hull.pop_back();
-            hull.push_back(*it);
-        }
+        visit_in_order([&](uint32_t i) {
+            while (hull.size() >= base + 2 && orient(places[hull[hull.size() - 2]], places[hull.back()], places[i]) <= 0)
+                hull.pop_back();
+            hull.push_back(i);
+        });
         hull.pop_back();  // the other chain's first point
     };
-    chain(places.begin(), places.end());
-    chain(places.rbegin(), places.rend());
+    const uint32_t n = uint32_t(places.size());
+    chain([&](auto visit) { for (uint32_t i = 0; i < n; ++i) visit(i); });
+    chain([&](auto visit) { for (uint32_t i = n; i-- > 0;) visit(i); });
     return hull;
 }
 
@@ -60,15 +62,17 @@ KnownPoints::KnownPoints(uint32_t width, uint32_t height, const std::vector<Posi
     for (const Position& p : places) ++block_first_[blockOf(p) + 1];
     std::partial_sum(block_first_.begin(), block_first_.end(), block_first_.begin());
     std::vector<uint32_t> next(block_first_.begin(), block_first_.end() - 1);
-    hull_ = convexHullOf(places);
     const uint32_t c = values.channels;
     places_.resize(places.size());
     values_ = values;
+    std::vector<uint32_t> moved_to(places.size());
     for (size_t i = 0; i < places.size(); ++i) {
         const uint32_t to = next[blockOf(places[i])]++;
+        moved_to[i] = to;
         places_[to] = places[i];
         std::copy_n(values.pixels.data() + i * c, c, values_.pixels.data() + size_t(to) * c);
     }
+    for (uint32_t i : convexHullOf(places)) hull_.push_back(moved_to[i]);
 }
 
 uint64_t KnownPoints::bytesPerPoint(uint32_t channels) {
@@ -107,16 +111,55 @@ std::string KnownPoints::problemIn(const PixelRect& rect) const {
     return count < 3 ? "fewer than 3 points" : "all points are collinear";
 }
 
-SampleSet KnownPoints::samplesIn(const PackedImage&, const PixelRect& rect) const {
+PixelRect KnownPoints::boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const {
+    PixelRect bounds = rect;
+    for (uint32_t i : extra) {
+        const Position& p = places_[i];
+        bounds.x0 = std::min(bounds.x0, uint32_t(p.x / kPositionOne));
+        bounds.y0 = std::min(bounds.y0, uint32_t(p.y / kPositionOne));
+        bounds.x1 = std::max(bounds.x1, uint32_t((p.x + kPositionOne - 1) / kPositionOne) + 1);
+        bounds.y1 = std::max(bounds.y1, uint32_t((p.y + kPositionOne - 1) / kPositionOne) + 1);
+    }
+    return bounds;
+}
+
+std::vector<uint32_t> KnownPoints::samplesAlongBorder(const PixelRect& rect) const {
+    const uint32_t w = width(), h = height();
+    // The bands of the sides rect touches, each a block deep first, then as deep as the rule
+    // asks for that block-deep band.
+    std::vector<PixelRect> bands;
+    auto addBand = [&](auto bandOf) {
+        const PixelRect first = bandOf(std::min(std::max(w, h), 32u));
+        bands.push_back(bandOf(growthFor(first)));
+    };
+    if (rect.x0 == 0) addBand([&](uint32_t d) { return PixelRect{0, 0, std::min(w, d), h}; });
+    if (rect.y0 == 0) addBand([&](uint32_t d) { return PixelRect{0, 0, w, std::min(h, d)}; });
+    if (rect.x1 == w) addBand([&](uint32_t d) { return PixelRect{w - std::min(w, d), 0, w, h}; });
+    if (rect.y1 == h) addBand([&](uint32_t d) { return PixelRect{0, h - std::min(h, d), w, h}; });
+    const int32_t rx0 = int32_t(rect.x0) * kPositionOne, rx1 = int32_t(rect.x1 - 1) * kPositionOne;
+    const int32_t ry0 = int32_t(rect.y0) * kPositionOne, ry1 = int32_t(rect.y1 - 1) * kPositionOne;
     std::vector<uint32_t> ids;
+    for (const PixelRect& band : bands)
+        forEachIn(band, [&](uint32_t i) {
+            const Position& p = places_[i];
+            if (!(p.x >= rx0 && p.x <= rx1 && p.y >= ry0 && p.y <= ry1)) ids.push_back(i);
+        });
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+}
+
+SampleSet KnownPoints::samplesIn(const PackedImage&, const PixelRect& rect, const std::vector<uint32_t>& extra) const {
+    std::vector<uint32_t> ids = extra;  // outside rect: samplesBreaking finds only those
     forEachIn(rect, [&](uint32_t i) { ids.push_back(i); });
     // Row-major, as the triangulation takes them: the blocks' runs interleave within a block row.
     std::sort(ids.begin(), ids.end(), [&](uint32_t a, uint32_t b) {
         const Position &p = places_[a], &q = places_[b];
         return p.y != q.y ? p.y < q.y : p.x < q.x;
     });
+    const PixelRect bounds = boundsOf(rect, extra);
     SampleSet set;
-    const int32_t dx = int32_t(rect.x0) * kPositionOne, dy = int32_t(rect.y0) * kPositionOne;
+    const int32_t dx = int32_t(bounds.x0) * kPositionOne, dy = int32_t(bounds.y0) * kPositionOne;
     set.places.resize(ids.size());
     Image& values = set.values;
     values.width = uint32_t(ids.size());
@@ -156,52 +199,67 @@ void KnownPoints::forEachNear(long double cx, long double cy, long double radius
     }
 }
 
-PixelRect KnownPoints::cropHolding(const Mesh& mesh, const PixelRect& crop, const PixelRect& rect) const {
-    const int32_t dx = int32_t(crop.x0) * kPositionOne, dy = int32_t(crop.y0) * kPositionOne;
+std::vector<uint32_t> KnownPoints::samplesBreaking(const Mesh& mesh, const PixelRect& rect,
+                                                   const std::vector<uint32_t>& extra, const PixelRect& near) const {
+    const PixelRect bounds = boundsOf(rect, extra);
+    const int32_t dx = int32_t(bounds.x0) * kPositionOne, dy = int32_t(bounds.y0) * kPositionOne;
     auto at = [&](uint32_t v) { return Position{mesh.positions[v].x + dx, mesh.positions[v].y + dy}; };
-    const int32_t rx0 = int32_t(rect.x0) * kPositionOne, rx1 = int32_t(rect.x1 - 1) * kPositionOne;
-    const int32_t ry0 = int32_t(rect.y0) * kPositionOne, ry1 = int32_t(rect.y1 - 1) * kPositionOne;
-    // Whether the box of the positions meets rect's pixel centres' rectangle.
-    auto near = [&](std::initializer_list<Position> ps) {
+    const int32_t nx0 = int32_t(near.x0) * kPositionOne, nx1 = int32_t(near.x1 - 1) * kPositionOne;
+    const int32_t ny0 = int32_t(near.y0) * kPositionOne, ny1 = int32_t(near.y1 - 1) * kPositionOne;
+    // Whether the triangle or segment `ps` meets near's pixel centres' rectangle (separating
+    // axes: the rectangle's, then each side's line with all four corners strictly beyond it).
+    const Position corners[4] = {{nx0, ny0}, {nx1, ny0}, {nx0, ny1}, {nx1, ny1}};
+    auto meetsNear = [&](std::initializer_list<Position> ps) {
         int32_t x0 = INT32_MAX, x1 = INT32_MIN, y0 = INT32_MAX, y1 = INT32_MIN;
         for (const Position& p : ps) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-        return x1 >= rx0 && x0 <= rx1 && y1 >= ry0 && y0 <= ry1;
+        if (x1 < nx0 || x0 > nx1 || y1 < ny0 || y0 > ny1) return false;
+        const Position* v = ps.begin();
+        const size_t n = ps.size();
+        for (size_t k = 0; k < n; ++k) {
+            const Position &p = v[k], &q = v[(k + 1) % n];
+            // A triangle (positive) lies left of each side; a segment on either side of its line.
+            auto beyond = [&](int sign) {
+                return std::all_of(std::begin(corners), std::end(corners),
+                                   [&](const Position& c) { return orient(p, q, c) * sign > 0; });
+            };
+            if (beyond(-1) || (n == 2 && beyond(1))) return false;
+        }
+        return true;
     };
-    const int32_t cx0 = dx, cx1 = int32_t(crop.x1 - 1) * kPositionOne;
-    const int32_t cy0 = dy, cy1 = int32_t(crop.y1 - 1) * kPositionOne;
-    auto inCrop = [&](const Position& p) { return p.x >= cx0 && p.x <= cx1 && p.y >= cy0 && p.y <= cy1; };
-    PixelRect grown = crop;
-    auto hold = [&](const Position& p) {
-        grown.x0 = std::min(grown.x0, uint32_t(p.x / kPositionOne));
-        grown.y0 = std::min(grown.y0, uint32_t(p.y / kPositionOne));
-        grown.x1 = std::max(grown.x1, uint32_t((p.x + kPositionOne - 1) / kPositionOne) + 1);
-        grown.y1 = std::max(grown.y1, uint32_t((p.y + kPositionOne - 1) / kPositionOne) + 1);
+    const int32_t rx0 = int32_t(rect.x0) * kPositionOne, rx1 = int32_t(rect.x1 - 1) * kPositionOne;
+    const int32_t ry0 = int32_t(rect.y0) * kPositionOne, ry1 = int32_t(rect.y1 - 1) * kPositionOne;
+    auto taken = [&](uint32_t i) {
+        const Position& p = places_[i];
+        return (p.x >= rx0 && p.x <= rx1 && p.y >= ry0 && p.y <= ry1) || std::binary_search(extra.begin(), extra.end(), i);
     };
+    std::vector<uint32_t> breaking;
     forEachTriangle(mesh, [&](const Triangle& t) {
         Position a = at(t.v0), b = at(t.v1), c = at(t.v2);
-        if (!near({a, b, c})) return;
         if (orient(a, b, c) < 0) std::swap(b, c);
+        if (!meetsNear({a, b, c})) return;
         // The circumcircle, roughly (long double); the exact test decides for each point near it.
         const long double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
         const long double d = 2.0L * (bx * qy - by * qx);
         const long double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
         const long double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
         forEachNear(a.x + ux, a.y + uy, std::sqrt(ux * ux + uy * uy), [&](uint32_t i) {
-            const Position& p = places_[i];
-            if (!inCrop(p) && inCircle(a, b, c, p)) hold(p);
+            if (!taken(i) && inCircle(a, b, c, places_[i])) breaking.push_back(i);
         });
     });
     for (const EdgeVertices& edge : mesh.vertices) {
         if (edge.l != kNone && edge.r != kNone) continue;
         const Position a = at(edge.a), b = at(edge.b);
-        if (!near({a, b})) continue;
-        // The edge's triangle is left of a→b when it is l: the outside is right of it.
-        for (const Position& corner : hull_) {
-            const int64_t side = orient(a, b, corner);
-            if (edge.l != kNone ? side < 0 : side > 0) hold(corner);
+        if (!meetsNear({a, b})) continue;
+        // The edge's triangle is left of a→b when it is l: the outside is right of it. A corner
+        // outside is no sample of the mesh (its hull holds them all).
+        for (uint32_t corner : hull_) {
+            const int64_t side = orient(a, b, places_[corner]);
+            if (edge.l != kNone ? side < 0 : side > 0) breaking.push_back(corner);
         }
     }
-    return grown;
+    std::sort(breaking.begin(), breaking.end());
+    breaking.erase(std::unique(breaking.begin(), breaking.end()), breaking.end());
+    return breaking;
 }
 
 void KnownPoints::measureHoles() {

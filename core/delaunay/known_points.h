@@ -25,13 +25,18 @@ public:
     static uint64_t bytesPerPoint(uint32_t channels);
 
     std::string problemIn(const PixelRect& rect) const override;
-    // The points of `rect`, row-major, moved by its corner, with their values; `input` unused.
-    SampleSet samplesIn(const PackedImage& input, const PixelRect& rect) const override;
+    // The points of `rect` and `extra`, row-major, moved by their bounds' corner, with their
+    // values; `input` unused.
+    SampleSet samplesIn(const PackedImage& input, const PixelRect& rect,
+                        const std::vector<uint32_t>& extra = {}) const override;
+    PixelRect boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const override;
+    std::vector<uint32_t> samplesAlongBorder(const PixelRect& rect) const override;
     void measureHoles() override;
-    // Checks each triangle near `rect` against the points outside the crop in its circle (by
+    // Checks each triangle near `near` against the other points in its circle (found by
     // blocks, then the exact in-circle test with its tie-break), and each hull edge near it
-    // against the whole hull's vertices.
-    PixelRect cropHolding(const Mesh& mesh, const PixelRect& crop, const PixelRect& rect) const override;
+    // against the whole hull's corners.
+    std::vector<uint32_t> samplesBreaking(const Mesh& mesh, const PixelRect& rect, const std::vector<uint32_t>& extra,
+                                          const PixelRect& near) const override;
 
 private:
     // Calls visit(i) for each point i (of the block order) inside `rect`.
@@ -45,7 +50,7 @@ private:
     Image values_;                      // in the same order
     uint32_t block_columns_ = 0;
     std::vector<uint32_t> block_first_;  // each block's first point, and the end
-    std::vector<Position> hull_;         // the vertices of all the points' convex hull
+    std::vector<uint32_t> hull_;         // the corners of all the points' convex hull, by id
 };
 
 }  // namespace ddt

@@ -91,6 +91,10 @@ float KnownSamples::largestDistanceIn(const PixelRect& rect) const {
     return largest;
 }
 
+uint32_t KnownSamples::growthFor(const PixelRect& rect) const {
+    return uint32_t(std::ceil(2.0f * (largestDistanceIn(rect) + spread_))) + 1;
+}
+
 PixelRect KnownSamples::cropFor(const PixelRect& rect, uint32_t max_growth) const {
     auto grown = [&](uint32_t g) {
         return PixelRect{rect.x0 - std::min(rect.x0, g), rect.y0 - std::min(rect.y0, g),
@@ -103,13 +107,19 @@ PixelRect KnownSamples::cropFor(const PixelRect& rect, uint32_t max_growth) cons
         const PixelRect crop = grown(g);
         const bool everything = crop.x0 == 0 && crop.y0 == 0 && crop.x1 == width_ && crop.y1 == height_;
         if (everything) return whole;
-        // 2·(m + s) + 1, the rule of the header, rounded up.
-        const uint32_t needed = uint32_t(std::ceil(2.0f * (largestDistanceIn(crop) + spread_))) + 1;
+        const uint32_t needed = growthFor(crop);
         if (needed <= g || g == max_growth) return problemIn(crop).empty() ? crop : whole;
         g = std::min(needed, max_growth);
     }
 }
 
-PixelRect KnownSamples::cropHolding(const Mesh&, const PixelRect& crop, const PixelRect&) const { return crop; }
+std::vector<uint32_t> KnownSamples::samplesAlongBorder(const PixelRect&) const { return {}; }
+
+PixelRect KnownSamples::boundsOf(const PixelRect& rect, const std::vector<uint32_t>&) const { return rect; }
+
+std::vector<uint32_t> KnownSamples::samplesBreaking(const Mesh&, const PixelRect&, const std::vector<uint32_t>&,
+                                                    const PixelRect&) const {
+    return {};
+}
 
 }  // namespace ddt

@@ -18,7 +18,9 @@
 // Not covered: a circle centred outside the frame, whose centre the argument cannot follow in.
 // Along the frame's border long thin triangles (the hull's, with few points near the border)
 // have circles mostly outside the frame while the distances inside stay small, and the rule's
-// crop may cut them. cropHolding checks a crop's triangulation itself and grows it further.
+// crop may cut them. A crop on the border therefore takes the samples of a band along the
+// frame's sides it touches (samplesAlongBorder), as deep as the rule asks there, and
+// samplesBreaking checks its triangulation: any sample it finds missing joins too.
 #pragma once
 
 #include <cstdint>
@@ -50,9 +52,24 @@ public:
     // Why the samples of `rect` have no triangulation ("fewer than 3 points", "all points are
     // collinear", as delaunayInputProblem says), "" if they have one.
     virtual std::string problemIn(const PixelRect& rect) const = 0;
-    // The samples of `rect` (pixel centres x0 … x1 − 1, y0 … y1 − 1), in the rect's own
-    // coordinates; `input` holds a mask's pixel values (a point file's are its own).
-    virtual SampleSet samplesIn(const PackedImage& input, const PixelRect& rect) const = 0;
+    // The samples of `rect` (pixel centres x0 … x1 − 1, y0 … y1 − 1) and the samples `extra`
+    // (ids from samplesBreaking, ascending), in the coordinates of boundsOf(rect, extra);
+    // `input` holds a mask's pixel values (a point file's are its own).
+    virtual SampleSet samplesIn(const PackedImage& input, const PixelRect& rect,
+                                const std::vector<uint32_t>& extra = {}) const = 0;
+    // The samples (ids, ascending) in a band along each side of the frame that `rect` touches,
+    // outside `rect`: the band is as deep as the rule asks for the blocks along that side.
+    // None for a mask.
+    virtual std::vector<uint32_t> samplesAlongBorder(const PixelRect& rect) const;
+    // The pixels whose centres' rectangle holds those samples: `rect` grown to hold `extra`.
+    virtual PixelRect boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const;
+    // The samples (ids, ascending) other than those of `rect` and `extra` that make `mesh`,
+    // those samples' Delaunay triangulation (in boundsOf's coordinates), differ from the whole
+    // frame's near `near`: inside the circle of a triangle near it, or beyond a hull edge near
+    // it. None: the triangulations agree near `near`. The default trusts the rule (a mask's
+    // pixels: a lattice up to the frame's border).
+    virtual std::vector<uint32_t> samplesBreaking(const Mesh& mesh, const PixelRect& rect,
+                                                  const std::vector<uint32_t>& extra, const PixelRect& near) const;
     // Finds each block's largest distance to a sample (exact Euclidean distance transform of
     // the cells); holds 5 bytes a cell while it runs.
     virtual void measureHoles() = 0;
@@ -62,12 +79,6 @@ public:
     // border); the whole frame where that crop's samples have no triangulation (problemIn).
     // Needs measureHoles() first.
     PixelRect cropFor(const PixelRect& rect, uint32_t max_growth) const;
-    // `crop` grown to hold every sample outside it that makes `mesh`, its samples' Delaunay
-    // triangulation (in the crop's coordinates), differ from the whole frame's near `rect`:
-    // inside the circle of a triangle of `mesh` near `rect`, or beyond a hull edge near it;
-    // `crop` itself when there is none, and the triangulations then agree near `rect`. The
-    // default trusts the rule (a mask's pixels: a lattice up to the frame's border).
-    virtual PixelRect cropHolding(const Mesh& mesh, const PixelRect& crop, const PixelRect& rect) const;
 
 protected:
     // `cell`: the side of the distance grid's cells in pixels, a power of two up to 32;
@@ -84,9 +95,12 @@ protected:
     // row-major, non-zero where a sample lies in the cell.
     void measureFrom(const std::vector<uint8_t>& marked);
 
-private:
     // The largest distance to a sample over the blocks `rect` touches (an upper bound), in pixels.
     float largestDistanceIn(const PixelRect& rect) const;
+    // 2·(m + s) + 1 for the m of `rect`, rounded up: the growth the rule asks for it.
+    uint32_t growthFor(const PixelRect& rect) const;
+
+private:
 
     uint32_t width_ = 0, height_ = 0;
     uint32_t cell_ = 1;
