@@ -59,6 +59,11 @@ public:
         }
     }
 
+    size_t bytes() const override {
+        return values_.pixels.capacity() * sizeof(float) + renderer_.bytes() + edges_.capacity() * sizeof(HullEdge) +
+               filled_at_.capacity() * sizeof(filled_at_[0]) + filled_.capacity() * sizeof(float);
+    }
+
     // Whether the output sample at (x, y), in raster.h's units, lies in the hull (snapped as the
     // renderer snaps it for a mesh of points).
     bool covers(int64_t x, int64_t y, OutputSize out) const {
