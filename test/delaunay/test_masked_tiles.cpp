@@ -16,8 +16,8 @@
 #include "delaunay/sampled_upscale.h"
 #include "known_pixels.h"
 #include "test_support.h"
+#include "tiles_check.h"
 #include "tiled_upscale.h"
-#include "vulkan_backend.h"
 
 namespace {
 
@@ -59,21 +59,6 @@ std::set<std::array<uint32_t, 3>> trianglesOf(const Mesh& mesh, uint32_t x0, uin
         if (touches) triangles.insert(ids);
     });
     return triangles;
-}
-
-std::unique_ptr<Backend> makeBackendNamed(const std::string& name) {
-    if (name == "cpu") return makeCpuBackend();
-    VulkanOptions options;
-    options.validation = true;
-    return std::make_unique<VulkanBackend>(options);
-}
-
-std::vector<float> collect(const std::function<void(const std::function<void(OutputRows&&)>&)>& run, size_t row_floats) {
-    std::vector<float> pixels;
-    run([&](OutputRows&& rows) {
-        pixels.insert(pixels.end(), rows.floats.get(), rows.floats.get() + rows.rows() * row_floats);
-    });
-    return pixels;
 }
 
 }  // namespace
@@ -145,38 +130,10 @@ TEST_CASE("masked tiles: tiled outputs equal the untiled one, holes across tile 
     // two wider than the 12-pixel overlap.
     const KnownPixels mask = holedMask(w, h, 7, 40, 6,
                                        {{60, 50, 12}, {120, 100, 20}, {240, 150, 9}, {0, 0, 10}, {0, 120, 7}, {299, 199, 5}});
-    const PackedImage input(image);
-    for (const char* name : {"cpu", "vulkan"}) {
-        std::unique_ptr<Backend> backend = makeBackendNamed(name);
-        for (double scale : {1.0, 2.0}) {
-            CAPTURE(name, scale);
-            const OutputSize out = scaledOutputSize(w, h, scale);
-            const size_t row_floats = size_t(out.width) * image.channels;
-            const std::vector<float> untiled = collect(
-                [&](const auto& sink) {
-                    upscaleFromSamples(*backend, image, backend->delaunayPixels(w, h, mask.idsIn({0, 0, w, h})), out, sink);
-                },
-                row_floats);
-            for (uint32_t side : {64u, 128u}) {
-                KnownPixels measured = mask;
-                measured.measureHoles();
-                TileOptions options;
-                options.tile = side;
-                options.known = &measured;
-                const std::vector<float> tiled =
-                    collect([&](const auto& sink) { upscaleRows(*backend, input, out, options, sink); }, row_floats);
-                REQUIRE(tiled.size() == untiled.size());
-                size_t differing = 0;
-                float largest = 0.0f;
-                for (size_t i = 0; i < tiled.size(); ++i) {
-                    differing += tiled[i] != untiled[i];
-                    largest = std::max(largest, std::abs(tiled[i] - untiled[i]));
-                }
-                CAPTURE(side, differing, largest);
-                CHECK(differing == 0);
-            }
-        }
-        auto* vulkan = dynamic_cast<VulkanBackend*>(backend.get());
-        if (vulkan) CHECK(vulkan->validationMessages() == 0);
-    }
+    test::checkTilesMatchOnePiece(
+        PackedImage(image), kDefaultOverlap,
+        [&](Backend& backend, OutputSize out, const test::RowSink& sink) {
+            upscaleFromSamples(backend, image, backend.delaunayPixels(w, h, mask.idsIn({0, 0, w, h})), out, sink);
+        },
+        [&] { return std::make_unique<KnownPixels>(mask); });
 }

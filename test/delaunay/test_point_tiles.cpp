@@ -16,8 +16,8 @@
 #include "delaunay/sampled_upscale.h"
 #include "known_points.h"
 #include "test_support.h"
+#include "tiles_check.h"
 #include "tiled_upscale.h"
-#include "vulkan_backend.h"
 
 namespace {
 
@@ -83,21 +83,6 @@ bool near(const PlacedTriangle& t, const PixelRect& rect) {
     for (const auto& [x, y] : t) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     return x1 >= int32_t(rect.x0) * kPositionOne && x0 <= int32_t(rect.x1 - 1) * kPositionOne &&
            y1 >= int32_t(rect.y0) * kPositionOne && y0 <= int32_t(rect.y1 - 1) * kPositionOne;
-}
-
-std::unique_ptr<Backend> makeBackendNamed(const std::string& name) {
-    if (name == "cpu") return makeCpuBackend();
-    VulkanOptions options;
-    options.validation = true;
-    return std::make_unique<VulkanBackend>(options);
-}
-
-std::vector<float> collect(const std::function<void(const std::function<void(OutputRows&&)>&)>& run, size_t row_floats) {
-    std::vector<float> pixels;
-    run([&](OutputRows&& rows) {
-        pixels.insert(pixels.end(), rows.floats.get(), rows.floats.get() + rows.rows() * row_floats);
-    });
-    return pixels;
 }
 
 }  // namespace
@@ -204,39 +189,10 @@ TEST_CASE("point tiles: tiled outputs equal the untiled one, gaps across tile bo
     header.width = w;
     header.height = h;
     header.channels = photo.channels;
-    const PackedImage frame(header);
-    for (const char* name : {"cpu", "vulkan"}) {
-        std::unique_ptr<Backend> backend = makeBackendNamed(name);
-        for (double scale : {1.0, 2.0}) {
-            CAPTURE(name, scale);
-            const OutputSize out = scaledOutputSize(w, h, scale);
-            const size_t row_floats = size_t(out.width) * photo.channels;
-            const std::vector<float> untiled = collect(
-                [&](const auto& sink) {
-                    upscaleFromSamples(*backend, points.values, backend->delaunayPoints(w, h, points.places), out, sink);
-                },
-                row_floats);
-            for (uint32_t side : {64u, 128u}) {
-                KnownPoints known(w, h, points.places, points.values);
-                known.measureHoles();
-                TileOptions options;
-                options.tile = side;
-                options.overlap = kPointTileOverlap;
-                options.known = &known;
-                const std::vector<float> tiled =
-                    collect([&](const auto& sink) { upscaleRows(*backend, frame, out, options, sink); }, row_floats);
-                REQUIRE(tiled.size() == untiled.size());
-                size_t differing = 0;
-                float largest = 0.0f;
-                for (size_t i = 0; i < tiled.size(); ++i) {
-                    differing += tiled[i] != untiled[i];
-                    largest = std::max(largest, std::abs(tiled[i] - untiled[i]));
-                }
-                CAPTURE(side, differing, largest);
-                CHECK(differing == 0);
-            }
-        }
-        auto* vulkan = dynamic_cast<VulkanBackend*>(backend.get());
-        if (vulkan) CHECK(vulkan->validationMessages() == 0);
-    }
+    test::checkTilesMatchOnePiece(
+        PackedImage(header), kPointTileOverlap,
+        [&](Backend& backend, OutputSize out, const test::RowSink& sink) {
+            upscaleFromSamples(backend, points.values, backend.delaunayPoints(w, h, points.places), out, sink);
+        },
+        [&] { return std::make_unique<KnownPoints>(w, h, points.places, points.values); });
 }
