@@ -53,6 +53,10 @@ struct TileOptions {
     // pixels, the crop grown to hold the holes near it (app/delaunay/sampled_tile.h); the plain
     // surface, no fallback, no mesh file.
     const KnownPixels* known = nullptr;
+    // 8 or 16 where the rows' floats go to a writer that makes them codes of those bits and
+    // nothing else (ImageWriter::codeBits): a strip rendered at once is kept as codes
+    // (app/strip_rows.h). 0: as floats.
+    uint32_t code_bits = 0;
 };
 
 // The tile side automatic tiling picks for a width × height input with `channels` channels

@@ -11,6 +11,7 @@
 
 #include "backend.h"
 #include "parallel.h"
+#include "sample_quantise.h"
 #include "test_support.h"
 #include "tiled_upscale.h"
 
@@ -83,7 +84,7 @@ struct StripRun {
     int most_surfaces;
 };
 
-StripRun upscaleCounted(const Image& image, double scale, std::optional<size_t> bytes) {
+StripRun upscaleCounted(const Image& image, double scale, std::optional<size_t> bytes, uint32_t code_bits = 0) {
     SurfaceCount count;
     CountingBackend backend(count, bytes);
     const OutputSize out = scaledOutputSize(image.width, image.height, scale);
@@ -93,6 +94,7 @@ StripRun upscaleCounted(const Image& image, double scale, std::optional<size_t> 
     options.tile = 64;
     options.reconstruct = true;
     options.fallback = true;
+    options.code_bits = code_bits;
     upscaleRows(backend, PackedImage(image), out, options, [&](OutputRows&& rows) {
         std::copy_n(rows.floats.get(), rows.rows() * row_floats, run.rows.begin() + rows.y_begin * row_floats);
     });
@@ -128,6 +130,30 @@ TEST_CASE("strip rendering: the measured bytes choose: at once at x2, kept at x8
     const int threads = int(std::max(1u, threadCount()));
     CHECK(upscaleCounted(image, 2.0, std::nullopt).most_surfaces <= threads);
     CHECK(upscaleCounted(image, 8.0, std::nullopt).most_surfaces == kStripTiles);
+}
+
+// The rows as a writer of `Sample` codes makes them, row by row.
+template <typename Sample>
+std::vector<Sample> codesOf(const std::vector<float>& rows, size_t row_floats) {
+    std::vector<Sample> codes(rows.size());
+    for (size_t y = 0; y < rows.size() / row_floats; ++y)
+        quantiseRow(rows.data() + y * row_floats, codes.data() + y * row_floats, row_floats);
+    return codes;
+}
+
+// Kept as codes, the strip's rows go out as other floats, but the writer makes the same codes
+// of them as of the floats rendered.
+TEST_CASE("strip rendering: a strip kept as 8- or 16-bit codes gives the writer the same codes") {
+    const Image image = test::photoCrop();
+    const size_t row_floats = size_t(scaledOutputSize(image.width, image.height, 2.0).width) * image.channels;
+    const StripRun floats = upscaleCounted(image, 2.0, size_t(1) << 40);
+    const StripRun bytes = upscaleCounted(image, 2.0, size_t(1) << 40, 8);
+    const StripRun words = upscaleCounted(image, 2.0, size_t(1) << 40, 16);
+    CHECK(!test::samePixels(bytes.rows, floats.rows));  // they went out as codes' values
+    CHECK(codesOf<uint8_t>(bytes.rows, row_floats) == codesOf<uint8_t>(floats.rows, row_floats));
+    CHECK(codesOf<uint16_t>(words.rows, row_floats) == codesOf<uint16_t>(floats.rows, row_floats));
+    // A mixed strip: the first tile kept (its bytes are measured tiny), the others at once.
+    CHECK(upscaleCounted(image, 2.0, std::nullopt, 8).most_surfaces <= int(std::max(1u, threadCount())));
 }
 
 }  // namespace
