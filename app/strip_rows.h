@@ -1,13 +1,12 @@
 // A strip's output rows while its tiles render into them at once (app/tiled_upscale.cpp), cut
 // into the bands they go out in. Where the writer makes its floats 8- or 16-bit codes and
-// nothing else (ImageWriter::codeBits), the rows are kept as those codes, a quarter or half
-// of the floats' bytes, and each band goes out as floats that make the same codes again: the
+// nothing else (ImageWriter::codeBits), the rows are kept and go out as those codes, a quarter
+// or half of the floats' bytes, each made as the writer would make it from the whole row: the
 // file is the one floats would give, byte for byte.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <variant>
 #include <vector>
 
 #include "backend.h"
@@ -30,23 +29,16 @@ public:
     void render(const HostSurface& surface, RenderWindow window, uint32_t channels);
 
     uint32_t bandCount() const { return uint32_t(bands_.size()); }
-    // Band k as floats, taken out (a caller may render more tiles into it before it goes).
-    OutputRows takeBand(uint32_t k);
+    // Band k, taken out: floats, or codes.
+    OutputRows takeBand(uint32_t k) { return std::move(bands_[k]); }
 
 private:
-    struct Band {
-        uint32_t y_begin, y_end;
-        OutputRows floats;                                                // code_bits 0
-        std::variant<std::vector<uint8_t>, std::vector<uint16_t>> codes;  // else
-    };
     template <typename Sample>
-    void renderCodes(const HostSurface& surface, RenderWindow window, uint32_t channels, Band& band);
-    template <typename Sample>
-    OutputRows floatsOf(const Band& band) const;
+    void renderCodes(const HostSurface& surface, RenderWindow window, uint32_t channels, OutputRows& band);
 
     size_t row_floats_;
     uint32_t code_bits_;
-    std::vector<Band> bands_;
+    std::vector<OutputRows> bands_;
 };
 
 }  // namespace ddt

@@ -38,10 +38,7 @@ public:
 
     void emit(OutputRows&& rows) {
         if (rows.y_end <= next_row_) return;
-        if (rows.y_begin < next_row_) {  // rare: after a retry
-            std::copy(rows.row(next_row_, row_floats_), rows.row(rows.y_end, row_floats_), rows.floats.get());
-            rows.y_begin = next_row_;
-        }
+        if (rows.y_begin < next_row_) rows.dropBefore(next_row_, row_floats_);  // rare: after a retry
         next_row_ = rows.y_end;
         sink_(std::move(rows));
     }
@@ -230,8 +227,17 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
             job.step(first_index + i, total, TilePhase::Render);
             rendered.push_back(i);
         }
-    for (uint32_t k = 0, y = y0; y < y1; ++k, y += band_rows) {
-        OutputRows band = strip ? strip->takeBand(k) : OutputRows(y, std::min(y1, y + band_rows), row_floats);
+    if (strip) {
+        // The tiles shaped before the strip was made: into it too, then its bands go out.
+        parallelFor(rendered.size(), 1, [&](size_t begin, size_t end) {
+            for (size_t item = begin; item < end; ++item)
+                strip->render(*kept[rendered[item]], windowOf(job, tiles[rendered[item]], 0, 0), c);
+        });
+        for (uint32_t k = 0; k < strip->bandCount(); ++k) job.rows.emit(strip->takeBand(k));
+        return stats;
+    }
+    for (uint32_t y = y0; y < y1; y += band_rows) {
+        OutputRows band(y, std::min(y1, y + band_rows), row_floats);
         // Every kept tile's runs of rows at once, each written straight into its columns of the band.
         const uint32_t runs = (band.rows() + kRowsPerRenderBand - 1) / kRowsPerRenderBand;
         parallelFor(rendered.size() * runs, 1, [&](size_t begin, size_t end) {

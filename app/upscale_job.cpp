@@ -260,8 +260,8 @@ void ImageJob::render(Backend& backend) {
     const Image& header = state_->input.header();
     const size_t row_floats = size_t(out.width) * header.channels;
     auto sink = [&](OutputRows&& rows) {
-        const size_t floats = rows.rows() * row_floats;
-        state_->bands->send(std::move(rows), floats);
+        const size_t bytes = rows.bytes(row_floats);
+        state_->bands->send(std::move(rows), bytes);
     };
     // Time spent in each phase, for --stats: optimize (with building and uploading each
     // tile's mesh), reconstruct and render.
@@ -369,8 +369,15 @@ void ImageJob::writeMesh(const IndexedMesh& indexed, OutputSize frame, const std
 
 bool ImageJob::write() {
     try {
-        while (std::optional<Band> band = state_->bands->receive())
-            state_->writer->writeRows(band->rows.y_begin, band->rows.y_end, band->rows.floats.get());
+        while (std::optional<Band> band = state_->bands->receive()) {
+            const OutputRows& rows = band->rows;
+            if (!rows.codes8.empty())
+                state_->writer->writeCodes(rows.y_begin, rows.y_end, rows.codes8.data());
+            else if (!rows.codes16.empty())
+                state_->writer->writeCodes(rows.y_begin, rows.y_end, rows.codes16.data());
+            else
+                state_->writer->writeRows(rows.y_begin, rows.y_end, rows.floats.get());
+        }
     } catch (...) {
         state_->bands->refuse();
         throw;

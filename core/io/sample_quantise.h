@@ -73,11 +73,4 @@ void quantiseRow(const float* values, Sample* samples, size_t n) {
     quantiseRowPart(values, samples, 0, n, n);
 }
 
-// A float that quantiseRow makes `code` again, whichever of its two ways it takes
-// (test/io/test_sample_quantise.cpp tries every code).
-template <typename Sample>
-float codeValue(Sample code) {
-    return float(code) / float(std::numeric_limits<Sample>::max());
-}
-
 }  // namespace ddt
