@@ -85,12 +85,14 @@ std::string validateMask(const CLI::App& app, const Settings& settings) {
     if (!settings.mask.empty() && !settings.mask_folder.empty())
         return "--mask gives one image's mask, --mask-dir a batch's: give one of them";
     const std::string option = settings.mask.empty() ? "--mask-dir" : "--mask";
-    if (settings.simplifies()) return option + " and simplification (--simplify, --max-error) do not combine yet";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return option + " renders the linear surface on the known pixels' triangulation; --reconstruct consistent needs "
                "every pixel's value";
     if (settings.tile && !settings.mesh.empty())
         return option + " with --mesh writes the whole triangulation of the known pixels; --tile does not apply";
+    if (settings.tile && settings.simplifies())
+        return option + " with simplification (--simplify, --max-error) simplifies the known pixels' triangulation in one "
+               "piece; --tile does not apply";
     if (settings.mask.empty()) return "";
     if (!settings.singleForm() || settings.inputs.size() != 1)
         return "--mask pairs one mask with one input: `ddtup IN --mask MASK OUT`; a batch takes --mask-dir MASKS";
@@ -137,7 +139,6 @@ std::string validatePoints(const CLI::App& app, const Settings& settings) {
     const bool any_points = std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath);
     if (!any_points) return app.count("--frame") ? "--frame applies to point files (.csv, .ply)" : "";
     if (settings.masked()) return "--mask and --mask-dir apply to images: a point file lists only known samples";
-    if (settings.simplifies()) return "point files and simplification (--simplify, --max-error) do not combine yet";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return "a point file is rendered linearly on its triangulation; --reconstruct consistent needs a full image";
     if (settings.tile) return "a point file is triangulated in one piece; --tile does not apply";

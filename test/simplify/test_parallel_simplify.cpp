@@ -206,7 +206,7 @@ ParallelSimplifyStats simplifyByTheRule(Mesh& mesh, Image& values, uint32_t targ
     }
     stats.vertices_after = vertices;
     compactEdges(mesh);
-    setVertexColours(mesh, start.quadrics, start.points, values);
+    setVertexColours(mesh, start, values);
     return stats;
 }
 
