@@ -1,7 +1,8 @@
 // Simplifying a triangulation of samples (--mask's known pixels, a point file's points): the
 // collapses keep the samples' convex hull (core/simplify/edge_collapse.h), so every sample is
 // still rendered by the mesh; the mesh stays valid; the target is reached; and the kept
-// vertices' colours are fitted to the samples alone (core/simplify/colour_fit.h).
+// vertices' colours are fitted to the samples alone (core/simplify/colour_fit.h). On a device,
+// the parallel rule's kernels give core's parallel rule's mesh and colours, bit for bit.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,10 +11,12 @@
 #include <random>
 
 #include "colour_fit.h"
+#include "context.h"
 #include "delaunay.h"
 #include "greedy_simplify.h"
 #include "parallel_simplify.h"
 #include "sampled_render.h"
+#include "simplify/device_simplify.h"
 #include "test_support.h"
 
 using namespace ddt;
@@ -206,4 +209,29 @@ TEST_CASE("sampled simplify: the unknown pixels' values are never read") {
                                             light.pixels[size_t(v) * picture.channels + k];
         CHECK(differing == 0);
     }
+}
+
+TEST_CASE("sampled simplify: on the device a mask's and a point file's meshes simplify as by simplifyParallel",
+          "[vulkan]") {
+    std::unique_ptr<VulkanContext> context = createContext({-1, true});
+    const Image picture = test::photoPiece();
+    for (const bool points : {false, true}) {
+        const Samples start = points ? pointSamples(picture) : maskSamples(picture);
+        // To a tenth, and as far as 6 levels allow.
+        for (const double max_error : {0.0, 6.0}) {
+            INFO((points ? "points" : "mask") << ", max error " << max_error);
+            const uint32_t target = usedVertexCount(start.mesh) / 10;
+            Mesh core_mesh = start.mesh, device_mesh = start.mesh;
+            Image core_values = start.values, device_values = start.values;
+            const ParallelSimplifyStats core = simplifyParallel(core_mesh, core_values, target, max_error);
+            const ParallelSimplifyStats device = simplifyOnDevice(*context, device_mesh, device_values, target, max_error);
+            if (max_error == 0.0) CHECK(device.vertices_after == target);
+            CHECK(device.vertices_after == core.vertices_after);
+            CHECK(device.rounds == core.rounds);
+            CHECK(test::sameRecords(device_mesh, core_mesh));
+            CHECK(test::samePixels(device_values.pixels, core_values.pixels));
+            CHECK(checkMesh(device_mesh, MeshHull::convex) == "");
+        }
+    }
+    CHECK(context->validation_messages == 0);
 }
