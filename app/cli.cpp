@@ -364,7 +364,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "(to 1/1024 pixel; corners stay, border vertices slide along their side); the output is the linear surface on the simplified mesh, "
                    "and --mesh writes that mesh. The CPU backend simplifies serially; a Vulkan device by a parallel rule "
                    "(rounds of collapses whose neighbourhoods do not touch). An image whose simplification does not fit --memory whole, "
-                   "or that --tile cuts, is simplified in tiles whose shared sides keep their pixels")
+                   "or that --tile cuts, is simplified in tiles whose shared sides keep their pixels. With --mask or a point file, "
+                   "the fraction of the known samples, in one piece, their hull kept")
         ->default_str("none");
     app.add_option("--max-error", settings.max_error,
                    "Simplify the mesh (as --simplify does) as far as no collapse errs by more than this: the root-"
@@ -445,7 +446,7 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     std::string memory_text;
     app.add_option("--memory", memory_text,
                    "Host memory the run may hold (512M, 4G …): the images in flight, and on the CPU backend a point "
-                   "file's mesh, which cannot be tiled (a mask's with --mesh too), or a whole simplification's "
+                   "file's mesh, which cannot be tiled (a mask's with --mesh or --simplify too), or a whole simplification's "
                    "(beyond it, tiles); automatic tiles stay small within it for speed")
         ->default_str("half the machine's memory");
     app.add_option("--variant", settings.variant,
