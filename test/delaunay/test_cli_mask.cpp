@@ -39,19 +39,35 @@ Image maskImage(uint32_t width, uint32_t height, Known known) {
     return test::makeImage(width, height, 1, pixels);
 }
 
+// A w × h ramp (ramp.tif) and its mask (mask.png) in `work`: pixel (x, y) known where
+// known(x, y, drawn), `drawn` true for a random `share` of the pixels (seeded); and how many are.
+struct RampCase {
+    std::string input, mask;
+    uint32_t known = 0;
+};
+template <typename Known>
+RampCase writeRampCase(const TempFolder& work, uint32_t w, uint32_t h, uint32_t seed, double share, Known known) {
+    RampCase written{work / "ramp.tif", work / "mask.png"};
+    writeImage(written.input, rampImage(w, h));
+    std::mt19937 rng(seed);
+    std::bernoulli_distribution drawn(share);
+    writeImage(written.mask, maskImage(w, h, [&](uint32_t x, uint32_t y) {
+                   const bool is_known = known(x, y, drawn(rng));
+                   written.known += is_known;
+                   return is_known;
+               }));
+    return written;
+}
+
 }  // namespace
 
 TEST_CASE("cli mask: a linear field comes back from a fifth of its pixels on both backends", "[delaunay][vulkan]") {
     TempFolder work;
     const uint32_t w = 20, h = 15;
-    const std::string input = work / "ramp.tif", mask = work / "mask.png";
-    writeImage(input, rampImage(w, h));
-    std::mt19937 rng(3);
-    std::bernoulli_distribution known(0.2);
     // The corners are known, so the hull is the whole rectangle; the rest at random.
-    writeImage(mask, maskImage(w, h, [&](uint32_t x, uint32_t y) {
-                   return ((x == 0 || x == w - 1) && (y == 0 || y == h - 1)) || known(rng);
-               }));
+    const auto [input, mask, known_count] = writeRampCase(work, w, h, 3, 0.2, [&](uint32_t x, uint32_t y, bool drawn) {
+        return ((x == 0 || x == w - 1) && (y == 0 || y == h - 1)) || drawn;
+    });
     for (const std::string backend : {"cpu", "vulkan"}) {
         INFO(backend);
         const std::string output = work / (backend + ".tif");
@@ -168,19 +184,12 @@ TEST_CASE("cli mask: --simplify keeps a tenth of the known pixels, from which a 
           "[delaunay][vulkan]") {
     TempFolder work;
     const uint32_t w = 20, h = 15;
-    const std::string input = work / "ramp.tif", mask = work / "mask.png";
-    writeImage(input, rampImage(w, h));
-    std::mt19937 rng(4);
-    std::bernoulli_distribution known(0.4);
     // The top-left corner unknown (x + y < 3), so the hull is not the rectangle: it is cut
     // along x + y = 3, whose ends and the other corners are known; the rest at random.
-    uint32_t known_count = 0;
-    writeImage(mask, maskImage(w, h, [&](uint32_t x, uint32_t y) {
-                   const bool end = (x == 3 && y == 0) || (x == 0 && y == 3), corner = (x == 0 || x == w - 1) && (y == 0 || y == h - 1);
-                   const bool is_known = x + y >= 3 && (end || corner || known(rng));
-                   known_count += is_known;
-                   return is_known;
-               }));
+    const auto [input, mask, known_count] = writeRampCase(work, w, h, 4, 0.4, [&](uint32_t x, uint32_t y, bool drawn) {
+        const bool end = (x == 3 && y == 0) || (x == 0 && y == 3), corner = (x == 0 || x == w - 1) && (y == 0 || y == h - 1);
+        return x + y >= 3 && (end || corner || drawn);
+    });
     const uint32_t kept = (known_count + 9) / 10;  // ceil(0.1 × known)
     for (const std::string backend : {"cpu", "vulkan"}) {
         INFO(backend);

@@ -20,23 +20,29 @@ using namespace ddt;
 
 double ramp(double x, double y) { return 0.1 + 0.02 * x + 0.03 * y; }
 
+// plane.csv in `work`: the corners of a w × h frame and `count` points at random multiples of
+// 1/1024 pixel (so that rounding to the position grid moves none of them), grey values of the
+// plane, in [0, 1].
+std::string writePlaneCsv(const TempFolder& work, uint32_t w, uint32_t h, uint32_t seed, int count) {
+    std::ostringstream csv;
+    csv << "x,y,v\n";
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> fx(0, int(w - 1) * 1024), fy(0, int(h - 1) * 1024);
+    auto add = [&](double x, double y) { csv << x << ',' << y << ',' << ramp(x, y) << '\n'; };
+    for (double x : {0.0, double(w - 1)})
+        for (double y : {0.0, double(h - 1)}) add(x, y);
+    for (int i = 0; i < count; ++i) add(fx(rng) / 1024.0, fy(rng) / 1024.0);
+    const std::string points = work / "plane.csv";
+    writeText(points, csv.str());
+    return points;
+}
+
 }  // namespace
 
 TEST_CASE("cli points: a plane comes back from scattered points on both backends", "[delaunay][vulkan]") {
     TempFolder work;
     const uint32_t w = 20, h = 15;
-    // The frame's corners, and 60 points at random multiples of 1/1024 pixel (so that rounding
-    // to the position grid moves none of them), grey values of the plane, in [0, 1].
-    std::ostringstream csv;
-    csv << "x,y,v\n";
-    std::mt19937 rng(5);
-    std::uniform_int_distribution<int> fx(0, (w - 1) * 1024), fy(0, (h - 1) * 1024);
-    auto add = [&](double x, double y) { csv << x << ',' << y << ',' << ramp(x, y) << '\n'; };
-    for (double x : {0.0, double(w - 1)})
-        for (double y : {0.0, double(h - 1)}) add(x, y);
-    for (int i = 0; i < 60; ++i) add(fx(rng) / 1024.0, fy(rng) / 1024.0);
-    const std::string points = work / "plane.csv";
-    writeText(points, csv.str());
+    const std::string points = writePlaneCsv(work, w, h, 5, 60);
     for (const std::string backend : {"cpu", "vulkan"}) {
         INFO(backend);
         const std::string output = work / (backend + ".tif");
@@ -59,16 +65,7 @@ TEST_CASE("cli points: --simplify keeps a fifth of the points, from which a plan
           "[delaunay][vulkan]") {
     TempFolder work;
     const uint32_t w = 20, h = 15;
-    // The frame's corners and 76 points at random multiples of 1/1024 pixel, as above.
-    std::ostringstream csv;
-    std::mt19937 rng(6);
-    std::uniform_int_distribution<int> fx(0, (w - 1) * 1024), fy(0, (h - 1) * 1024);
-    auto add = [&](double x, double y) { csv << x << ',' << y << ',' << ramp(x, y) << '\n'; };
-    for (double x : {0.0, double(w - 1)})
-        for (double y : {0.0, double(h - 1)}) add(x, y);
-    for (int i = 0; i < 76; ++i) add(fx(rng) / 1024.0, fy(rng) / 1024.0);
-    const std::string points = work / "plane.csv";
-    writeText(points, csv.str());
+    const std::string points = writePlaneCsv(work, w, h, 6, 76);  // 80 points
     for (const std::string backend : {"cpu", "vulkan"}) {
         INFO(backend);
         const std::string output = work / (backend + ".tif"), mesh = work / (backend + ".ply");
