@@ -28,10 +28,12 @@ OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh init
                                  const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step,
                                  Mesh* optimized, SampleSimplification* simplification) {
     // The output is rendered whole (the fill outside the hull reaches across it) beside the mesh
-    // and, simplifying, the simplifier's arrays (counted per pixel of `image`, which holds a
-    // value per vertex id).
+    // and, simplifying, the simplifier's arrays, counted per sample as for a grid of as many
+    // pixels (measured: a 1600 × 1112 photograph's 1.42 M known pixels peaked at 1.18 GiB, the
+    // count 1.15 GiB).
     const uint64_t output_bytes = uint64_t(out.width) * out.height * image.channels * sizeof(float),
-                   simplify_bytes = simplification ? backend.simplifyMemoryNeeded(image.width, image.height, image.channels) : 0;
+                   simplify_bytes =
+                       simplification ? backend.simplifyMemoryNeeded(usedVertexCount(initial), 1, image.channels) : 0;
     if (std::string problem =
             untiledMemoryProblem(backend, image.width, image.height, image.channels, output_bytes + simplify_bytes);
         !problem.empty())
