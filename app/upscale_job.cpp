@@ -300,6 +300,7 @@ void ImageJob::render(Backend& backend) {
         if (options.reconstruct && !sampled && !settings_.simplifies()) report_.assumed = options.kernel;
         options.fallback = settings_.fallsBack();
         options.mesh = mesh ? &*mesh : nullptr;
+        options.code_bits = state_->writer->codeBits();
         // The default surface is the consistent one; where it cannot apply, say so rather than
         // change it without a word (a --reconstruct consistent given here was refused).
         if (options.reconstruct && (sampled || settings_.simplifies()))

@@ -48,6 +48,11 @@ public:
         }
     }
 
+    size_t bytes() const override {
+        return values_.pixels.capacity() * sizeof(float) + renderer_.bytes() + edges_.capacity() * sizeof(HullEdge) +
+               filled_at_.capacity() * sizeof(filled_at_[0]) + filled_.capacity() * sizeof(float);
+    }
+
     bool covers(int64_t x, int64_t y) const { return hullContains(edges_, x, y); }
     // Fills the output pixels of `tile_output` outside the hull from the nearest pixel the
     // crop's output has inside it, and keeps them for renderWindow.

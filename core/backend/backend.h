@@ -28,6 +28,9 @@ public:
     // Renders `window` on the calling thread into `rows`, `row_stride` floats from one row's
     // start to the next: a strip's tiles render side by side into one band, in parallel.
     virtual void renderWindow(const RenderWindow& window, float* rows, size_t row_stride) const = 0;
+    // The bytes it holds: a tiler keeps a strip's surfaces only while they are smaller than the
+    // strip's output (app/tiled_upscale.cpp).
+    virtual size_t bytes() const = 0;
 };
 
 class Backend {

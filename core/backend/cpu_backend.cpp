@@ -34,6 +34,10 @@ public:
         renderer_.renderWindow(window, rows, row_stride);
         if (fallback_) fallback_->blend(window, rows, row_stride);
     }
+    size_t bytes() const override {
+        return (surface_.values.pixels.capacity() + surface_.bubbles.capacity()) * sizeof(float) + renderer_.bytes() +
+               (fallback_ ? fallback_->bytes() : 0);
+    }
 
 private:
     Surface surface_;

@@ -73,6 +73,8 @@ public:
     // `rows` as MeshRenderer::renderWindow writes them for `window`; bands of one window may
     // be blended on several threads at once.
     void blend(const RenderWindow& window, float* rows, size_t row_stride = 0) const;
+    // The bytes of its copy of the input and its weights.
+    size_t bytes() const { return input_.pixels.capacity() * sizeof(float) + weights_.capacity() * sizeof(float); }
 
 private:
     struct ColumnCache;

@@ -93,6 +93,11 @@ public:
     // triangle's in row-major order; ends[t − first] = hits.size() after triangle t's.
     void locateSamples(OutputSize out, uint32_t first, uint32_t end, std::vector<SampleHit>& hits, uint32_t* ends) const;
     const std::vector<Triangle>& triangles() const { return triangles_; }
+    // The bytes of its tables (not of the values and bubbles it reads).
+    size_t bytes() const {
+        return positions_.capacity() * sizeof(Position) + triangles_.capacity() * sizeof(Triangle) +
+               first_in_row_.capacity() * sizeof(uint32_t);
+    }
 
 private:
     std::pair<uint32_t, uint32_t> trianglesAround(const RenderWindow& window) const;

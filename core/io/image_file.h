@@ -87,6 +87,11 @@ public:
     void writeRows(uint32_t y_begin, uint32_t y_end, const float* rows);
     void commit();
     const std::vector<std::string>& notes() const { return notes_; }
+    // 8 or 16 where writeRows makes its floats 8- or 16-bit codes by quantiseRow
+    // (core/io/sample_quantise.h) and nothing else (ddtup's own PNG and JPEG writers, the
+    // channels as given): a caller may keep rows as those codes and give codeValue's floats
+    // back, for the same file. 0 for every other writer.
+    uint32_t codeBits() const;
 
 private:
     struct State;

@@ -236,6 +236,13 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
 
 ImageWriter::~ImageWriter() = default;
 
+uint32_t ImageWriter::codeBits() const {
+    const State& s = *state_;
+    if (needsConversion(s.layout)) return 0;
+    if (s.png) return s.png->bitDepth();
+    return s.jpeg ? 8 : 0;
+}
+
 void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows) {
     State& s = *state_;
     if (y_begin != s.next_row || y_end > s.height || y_begin >= y_end) throw std::logic_error("rows out of order");

@@ -27,6 +27,7 @@ public:
     void finish();
     // The metadata that could not be stored, for notes ("the ICC profile (…)").
     const std::vector<std::string>& leftOut() const { return left_out_; }
+    uint32_t bitDepth() const { return uint32_t(sample_bytes_ * 8); }
 
 private:
     size_t sample_bytes_ = 0;

@@ -163,6 +163,7 @@ public:
     Report& report() { return report_; }
     size_t strayLines() const { return stray_lines_; }
     size_t slowInputs() const { return slow_inputs_; }
+    size_t tracerReruns() const { return tracer_reruns_; }
 
     // Runs the cases in batches on --jobs threads.
     void run(const std::vector<Case>& cases) {
@@ -193,9 +194,10 @@ private:
                 // Alone, for the record, and to find which inputs a failed process died of.
                 const BatchResult alone =
                     runAlone(settings_, c.path, (folder / ("alone-" + std::to_string(i))).string());
-                if (alone.given_longer) {
+                if (alone.given_longer || alone.tracer_rerun) {
                     std::lock_guard lock(mutex_);
-                    ++slow_inputs_;
+                    slow_inputs_ += alone.given_longer;
+                    tracer_reruns_ += alone.tracer_rerun;
                 }
                 if (run.process_fault) outcome = alone.outcomes.front();
                 if (isFault(outcome)) {
@@ -207,6 +209,7 @@ private:
             report_.count(c.format->name, damageKindName(c.kind), outcome);
         }
         std::lock_guard lock(mutex_);
+        tracer_reruns_ += run.tracer_rerun;
         if (run.process_fault && culprits == 0) {
             report_.countBatchFault();
             saveBatchFailure(options_.out, number, paths,
@@ -243,6 +246,7 @@ private:
     Report report_;
     size_t stray_lines_ = 0;
     size_t slow_inputs_ = 0;
+    size_t tracer_reruns_ = 0;  // runs made again after LeakSanitizer's tracer crashed (ddtup_run.h)
     size_t done_ = 0;
 };
 
@@ -324,6 +328,8 @@ int main(int argc, char** argv) {
         if (fuzzer.slowInputs())
             std::printf("inputs that ran out of time and were given %.0f s alone: %zu\n",
                         30 * options.timeout, fuzzer.slowInputs());
+        if (fuzzer.tracerReruns())
+            std::printf("runs made again after LeakSanitizer's tracer crashed at exit: %zu\n", fuzzer.tracerReruns());
         std::printf("time: %.1f s (%.0f inputs/s, %u jobs, %zu inputs per process)\n", seconds,
                     double(options.count) / seconds, options.jobs, options.batch);
         const int faults = fuzzer.report().faults() + refused_seeds;
