@@ -239,7 +239,9 @@ void ImageJob::triangulateSamples(Backend& backend) {
 }
 
 uint32_t ImageJob::maskTileSide(const Backend& backend) const {
-    if (!state_->known || !task_.mesh.empty()) return 0;  // a mesh file is of the whole triangulation
+    // A mesh file is of the whole triangulation, and so is a simplification (its collapses
+    // reach across any tile's crop).
+    if (!state_->known || !task_.mesh.empty() || settings_.simplifies()) return 0;
     const Image& header = state_->input.header();
     const uint32_t side = settings_.tile ? settings_.tile
                                          : automaticTileSide(backend, header.width, header.height, header.channels,
@@ -314,9 +316,20 @@ void ImageJob::render(Backend& backend) {
             state_->known.reset();
         } else if (state_->samples) {
             if (!task_.mesh.empty()) sample_mesh.emplace();
+            std::optional<SampleSimplification> simplification;
+            if (settings_.simplifies()) {
+                simplification.emplace();
+                simplification->fraction = settings_.simplify;
+                simplification->max_error = settings_.max_error;
+            }
             report_.stats = upscaleFromSamples(backend, inputFloats(), std::move(*state_->samples), out, sink, on_step,
-                                               sample_mesh ? &*sample_mesh : nullptr);
+                                               sample_mesh ? &*sample_mesh : nullptr,
+                                               simplification ? &*simplification : nullptr);
             state_->samples.reset();
+            if (simplification) {  // the mesh file's colours are the kept vertices'
+                report_.simplify = simplification->stats;
+                state_->input = PackedImage(std::move(simplification->values));
+            }
         } else if (settings_.simplifies()) {
             SimplifiedUpscale simplified = upscaleSimplified(backend, inputFloats(), out, settings_.simplify,
                                                              settings_.max_error, options, sink, on_step);
