@@ -31,11 +31,11 @@ class BandStream {
 public:
     explicit BandStream(MemoryBudget& budget) : budget_(budget) {}
 
-    // Renderer: sends `rows` of `floats` floats in all; waits while the budget is spent. Throws
+    // Renderer: sends `rows` of `bytes` bytes in all; waits while the budget is spent. Throws
     // OutputClosed once the encoder has given up.
-    void send(OutputRows&& rows, size_t floats) {
+    void send(OutputRows&& rows, size_t bytes) {
         if (refused()) throw OutputClosed();
-        Band band{std::move(rows), budget_.acquire(floats * sizeof(float))};
+        Band band{std::move(rows), budget_.acquire(bytes)};
         std::lock_guard lock(mutex_);
         if (refused_) throw OutputClosed();
         bands_.push_back(std::move(band));

@@ -85,12 +85,14 @@ std::string validateMask(const CLI::App& app, const Settings& settings) {
     if (!settings.mask.empty() && !settings.mask_folder.empty())
         return "--mask gives one image's mask, --mask-dir a batch's: give one of them";
     const std::string option = settings.mask.empty() ? "--mask-dir" : "--mask";
-    if (settings.simplifies()) return option + " and simplification (--simplify, --max-error) do not combine yet";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return option + " renders the linear surface on the known pixels' triangulation; --reconstruct consistent needs "
                "every pixel's value";
     if (settings.tile && !settings.mesh.empty())
         return option + " with --mesh writes the whole triangulation of the known pixels; --tile does not apply";
+    if (settings.tile && settings.simplifies())
+        return option + " with simplification (--simplify, --max-error) simplifies the known pixels' triangulation in one "
+               "piece; --tile does not apply";
     if (settings.mask.empty()) return "";
     if (!settings.singleForm() || settings.inputs.size() != 1)
         return "--mask pairs one mask with one input: `ddtup IN --mask MASK OUT`; a batch takes --mask-dir MASKS";
@@ -137,11 +139,13 @@ std::string validatePoints(const CLI::App& app, const Settings& settings) {
     const bool any_points = std::any_of(settings.inputs.begin(), settings.inputs.end(), isPointFilePath);
     if (!any_points) return app.count("--frame") ? "--frame applies to point files (.csv, .ply)" : "";
     if (settings.masked()) return "--mask and --mask-dir apply to images: a point file lists only known samples";
-    if (settings.simplifies()) return "point files and simplification (--simplify, --max-error) do not combine yet";
     if (app.count("--reconstruct") && settings.reconstruct == "consistent")
         return "a point file is rendered linearly on its triangulation; --reconstruct consistent needs a full image";
     if (settings.tile && !settings.mesh.empty())
         return "a point file with --mesh writes the whole triangulation of the points; --tile does not apply";
+    if (settings.tile && settings.simplifies())
+        return "a point file's simplification (--simplify, --max-error) takes the whole triangulation; --tile does not "
+               "apply";
     if (settings.format.empty() && (!settings.singleForm() || settings.output == kStandardStream))
         return "a point file's output needs a format: name the output file, or give -f png";
     if (app.count("--frame") && (settings.frame_width > kMaxDelaunaySide || settings.frame_height > kMaxDelaunaySide))
@@ -364,7 +368,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "(to 1/1024 pixel; corners stay, border vertices slide along their side); the output is the linear surface on the simplified mesh, "
                    "and --mesh writes that mesh. The CPU backend simplifies serially; a Vulkan device by a parallel rule "
                    "(rounds of collapses whose neighbourhoods do not touch). An image whose simplification does not fit --memory whole, "
-                   "or that --tile cuts, is simplified in tiles whose shared sides keep their pixels")
+                   "or that --tile cuts, is simplified in tiles whose shared sides keep their pixels. With --mask or a point file, "
+                   "the fraction of the known samples, in one piece, their hull kept")
         ->default_str("none");
     app.add_option("--max-error", settings.max_error,
                    "Simplify the mesh (as --simplify does) as far as no collapse errs by more than this: the root-"
@@ -445,8 +450,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
     std::string memory_text;
     app.add_option("--memory", memory_text,
                    "Host memory the run may hold (512M, 4G …): the images in flight, and on the CPU backend a point "
-                   "file's mesh and output (beyond it, tiles), a mask's with --mesh, which cannot be tiled, or a "
-                   "whole simplification's (beyond it, tiles); automatic tiles stay small within it for speed")
+                   "file's mesh and output (beyond it, tiles), a mask's with --mesh or --simplify, which cannot be "
+                   "tiled, or a whole simplification's (beyond it, tiles); automatic tiles stay small within it for speed")
         ->default_str("half the machine's memory");
     app.add_option("--variant", settings.variant,
                    "Vulkan flip rule: basic, exproi, exproi-N-maxgain, maxgain, exproi-maxgain, localmax, exproi-localmax")

@@ -13,6 +13,7 @@
 #include "delaunay/sampled_tile.h"
 #include "memory_size.h"
 #include "parallel.h"
+#include "strip_rows.h"
 #include "tiling.h"
 #include "user_error.h"
 
@@ -37,10 +38,7 @@ public:
 
     void emit(OutputRows&& rows) {
         if (rows.y_end <= next_row_) return;
-        if (rows.y_begin < next_row_) {  // rare: after a retry
-            std::copy(rows.row(next_row_, row_floats_), rows.row(rows.y_end, row_floats_), rows.floats.get());
-            rows.y_begin = next_row_;
-        }
+        if (rows.y_begin < next_row_) rows.dropBefore(next_row_, row_floats_);  // rare: after a retry
         next_row_ = rows.y_end;
         sink_(std::move(rows));
     }
@@ -90,6 +88,7 @@ struct Job {
     RowEmitter& rows;
     StitchedMesh* strip_mesh;  // the current strip's tiles' meshes, if the caller wants them
     const KnownSamples* known;  // a mask's or a point file's: the tiles are of its samples
+    uint32_t code_bits;         // TileOptions::code_bits
     std::mutex step_mutex;  // tiles in parallel report their steps one at a time
     std::mutex mesh_mutex;  // and add their meshes one at a time
 
@@ -163,27 +162,23 @@ OptimizeStats upscaleTile(Job& job, Backend& backend, const Tile& tile, uint32_t
 // A strip of several tiles on a backend that hands its surfaces over, or of a mask's tiles.
 // The tiles are shaped (in parallel with twins) and each surface is either kept, to render the
 // strip's rows band by band across the tiles once all are shaped (a band is then all the
-// output held, whatever the scale), or rendered at once into the strip's rows and dropped.
-// Whichever holds less: at ×2 a photo's surfaces are twice its output rows, at ×4 half. The
-// choice is made tile by tile from the surfaces measured so far, projected over the strip.
+// output held, whatever the scale), or rendered at once into the strip's rows
+// (app/strip_rows.h) and dropped. Whichever holds less: at ×2 a photo's surfaces are twice
+// its output rows as floats, at ×4 half. The choice is made tile by tile from the surfaces
+// measured so far, projected over the strip.
 OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint32_t first_index, uint32_t total) {
     const uint32_t c = job.image.channels;
     const size_t row_floats = size_t(job.out.width) * c;
     const uint32_t y0 = tiles[0].output.y0, y1 = tiles[0].output.y1, band_rows = bandRows(row_floats);
-    const double strip_bytes = double(y1 - y0) * double(row_floats) * sizeof(float);
+    const double strip_bytes = StripRows::bytes(y1 - y0, row_floats, job.code_bits);
     double strip_crop_pixels = 0.0;
     for (const Tile& tile : tiles) strip_crop_pixels += double(tile.crop.width()) * tile.crop.height();
 
     OptimizeStats stats;
-    std::mutex mutex;  // guards stats, the measured surfaces and the making of `bands`
+    std::mutex mutex;  // guards stats, the measured surfaces and the making of `strip`
     double measured_bytes = 0.0, measured_pixels = 0.0;
-    std::vector<OutputRows> bands;  // the strip's rows, made when a first tile renders at once
+    std::optional<StripRows> strip;  // made when a first tile renders at once
     std::vector<std::unique_ptr<HostSurface>> kept(tiles.size());
-    auto renderInto = [&](const HostSurface& surface, const Tile& tile, OutputRows& band, uint32_t y_begin,
-                          uint32_t y_end) {
-        const RenderWindow window = windowOf(job, tile, y_begin, y_end);
-        surface.renderWindow(window, band.row(y_begin, row_floats) + size_t(window.x_begin) * c, row_floats);
-    };
     auto shapeOne = [&](size_t i) {
         const Tile& tile = tiles[i];
         if (tile.output.width() == 0 || tile.output.height() == 0) return;  // a core between two samples
@@ -207,15 +202,14 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
                 measured_bytes += double(surface->bytes());
                 measured_pixels += double(tile.crop.width()) * tile.crop.height();
                 at_once = strip_bytes < measured_bytes / measured_pixels * strip_crop_pixels;
-                if (at_once && bands.empty())
-                    for (uint32_t y = y0; y < y1; y += band_rows) bands.emplace_back(y, std::min(y1, y + band_rows), row_floats);
+                if (at_once && !strip) strip.emplace(y0, y1, row_floats, band_rows, job.code_bits);
             }
             if (!at_once) {
                 kept[i] = std::move(surface);
                 return;
             }
             job.step(first_index + uint32_t(i), total, TilePhase::Render);
-            for (OutputRows& band : bands) renderInto(*surface, tile, band, band.y_begin, band.y_end);
+            strip->render(*surface, windowOf(job, tile, 0, 0), c);
         });
     };
     // At most one tile per backend at once: a device without twins (a mask's tiles on Vulkan)
@@ -233,15 +227,27 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
             job.step(first_index + i, total, TilePhase::Render);
             rendered.push_back(i);
         }
-    for (uint32_t k = 0, y = y0; y < y1; ++k, y += band_rows) {
-        OutputRows band = bands.empty() ? OutputRows(y, std::min(y1, y + band_rows), row_floats) : std::move(bands[k]);
+    if (strip) {
+        // The tiles shaped before the strip was made: into it too, then its bands go out.
+        parallelFor(rendered.size(), 1, [&](size_t begin, size_t end) {
+            for (size_t item = begin; item < end; ++item)
+                strip->render(*kept[rendered[item]], windowOf(job, tiles[rendered[item]], 0, 0), c);
+        });
+        for (uint32_t k = 0; k < strip->bandCount(); ++k) job.rows.emit(strip->takeBand(k));
+        return stats;
+    }
+    for (uint32_t y = y0; y < y1; y += band_rows) {
+        OutputRows band(y, std::min(y1, y + band_rows), row_floats);
         // Every kept tile's runs of rows at once, each written straight into its columns of the band.
         const uint32_t runs = (band.rows() + kRowsPerRenderBand - 1) / kRowsPerRenderBand;
         parallelFor(rendered.size() * runs, 1, [&](size_t begin, size_t end) {
             for (size_t item = begin; item < end; ++item) {
                 const uint32_t i = rendered[item / runs];
                 const uint32_t run_begin = band.y_begin + uint32_t(item % runs) * kRowsPerRenderBand;
-                renderInto(*kept[i], tiles[i], band, run_begin, std::min(band.y_end, run_begin + kRowsPerRenderBand));
+                const RenderWindow window =
+                    windowOf(job, tiles[i], run_begin, std::min(band.y_end, run_begin + kRowsPerRenderBand));
+                kept[i]->renderWindow(window, band.row(window.y_begin, row_floats) + size_t(window.x_begin) * c,
+                                      row_floats);
             }
         });
         job.rows.emit(std::move(band));
@@ -337,7 +343,7 @@ OptimizeStats upscaleRows(Backend& backend, const PackedImage& input, OutputSize
     RowEmitter rows(sink, size_t(out.width) * image.channels);
     BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
     Job job{backends, input, image, out, options.reconstruct, options.kernel, options.fallback, on_step, rows, nullptr,
-            options.known, {}, {}};
+            options.known, options.code_bits, {}, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

@@ -22,13 +22,13 @@ namespace ddt {
 // crop converges to differs from the untiled one only near the crop's border. Measured
 // (test/image/test_tiling.cpp: 300×200 photo, edge and noise images, ×2, 64-pixel tiles, both
 // backends): overlap 4 leaves differences up to 142/255 on 0.03 % of samples, overlap 8
-// and more gives outputs equal to the untiled ones, bit for bit. The consistent
-// reconstruction reaches further, fading by steps: on three photographs ×2 in 256-pixel
-// tiles (`--depth float`, against one piece), at most 0.53/255 with an overlap of 8, 0.15/255
-// with 10, 0.013/255 with 12 (0.044/255 under --assume lanczos3) and 0.0001/255 with 16.
-// 12 keeps 8-bit outputs all but equal for (1 + 24 / side)² work, 20 % over 256-pixel tiles'
-// cores where 16 costs 27 %.
-const uint32_t kDefaultOverlap = 12;
+// and more gives outputs equal to the untiled ones, bit for bit. 16 doubles that margin for
+// (1 + 32 / side)² more work: 3 % for 2048-pixel tiles. The consistent reconstruction and
+// flat drawings reach further: on three photographs ×2 in 256-pixel tiles (`--depth float`,
+// against one piece) tiles differ by at most 0.53/255 with an overlap of 8, 0.013/255 with 12
+// and 0.0001/255 with 16, but bench/tiling_check.sh 256 finds the bundled drawings' seams at
+// up to 20 levels with 12 (rocket_clipart, 0.08 % of its samples) against 9 with 16 (0.04 %).
+const uint32_t kDefaultOverlap = 16;
 // Smaller tiles would be mostly overlap; below this the device is hopeless.
 const uint32_t kMinTileSide = 64;
 
@@ -54,6 +54,10 @@ struct TileOptions {
     // (app/delaunay/sampled_tile.h); the plain surface, no fallback, no mesh file. A point
     // file's `input` is a header of its frame, without pixels.
     const KnownSamples* known = nullptr;
+    // 8 or 16 where the rows' floats go to a writer that makes them codes of those bits and
+    // nothing else (ImageWriter::codeBits): a strip rendered at once is kept as codes
+    // (app/strip_rows.h). 0: as floats.
+    uint32_t code_bits = 0;
 };
 
 // The tile side automatic tiling picks for a width × height input with `channels` channels

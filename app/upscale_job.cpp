@@ -245,7 +245,9 @@ void ImageJob::triangulateSamples(Backend& backend) {
 }
 
 uint32_t ImageJob::sampledTileSide(const Backend& backend) const {
-    if (!task_.mesh.empty()) return 0;  // a mesh file is of the whole triangulation
+    // A mesh file is of the whole triangulation, and so is a simplification (its collapses
+    // reach across any tile's crop).
+    if (!task_.mesh.empty() || settings_.simplifies()) return 0;
     if (state_->known) {
         const Image& header = state_->input.header();
         const uint32_t side = settings_.tile ? settings_.tile
@@ -314,8 +316,8 @@ void ImageJob::render(Backend& backend) {
     const Image& header = state_->input.header();
     const size_t row_floats = size_t(out.width) * header.channels;
     auto sink = [&](OutputRows&& rows) {
-        const size_t floats = rows.rows() * row_floats;
-        state_->bands->send(std::move(rows), floats);
+        const size_t bytes = rows.bytes(row_floats);
+        state_->bands->send(std::move(rows), bytes);
     };
     // Time spent in each phase, for --stats: optimize (with building and uploading each
     // tile's mesh), reconstruct and render.
@@ -352,6 +354,7 @@ void ImageJob::render(Backend& backend) {
         if (options.reconstruct && !sampled && !settings_.simplifies()) report_.assumed = options.kernel;
         options.fallback = settings_.fallsBack();
         options.mesh = mesh ? &*mesh : nullptr;
+        options.code_bits = state_->writer->codeBits();
         // The default surface is the consistent one; where it cannot apply, say so rather than
         // change it without a word (a --reconstruct consistent given here was refused).
         if (options.reconstruct && (sampled || settings_.simplifies()))
@@ -369,9 +372,20 @@ void ImageJob::render(Backend& backend) {
             state_->known_points.reset();
         } else if (state_->samples) {
             if (!task_.mesh.empty()) sample_mesh.emplace();
+            std::optional<SampleSimplification> simplification;
+            if (settings_.simplifies()) {
+                simplification.emplace();
+                simplification->fraction = settings_.simplify;
+                simplification->max_error = settings_.max_error;
+            }
             report_.stats = upscaleFromSamples(backend, inputFloats(), std::move(*state_->samples), out, sink, on_step,
-                                               sample_mesh ? &*sample_mesh : nullptr);
+                                               sample_mesh ? &*sample_mesh : nullptr,
+                                               simplification ? &*simplification : nullptr);
             state_->samples.reset();
+            if (simplification) {  // the mesh file's colours are the kept vertices'
+                report_.simplify = simplification->stats;
+                state_->input = PackedImage(std::move(simplification->values));
+            }
         } else if (settings_.simplifies()) {
             SimplifiedUpscale simplified = upscaleSimplified(backend, inputFloats(), out, settings_.simplify,
                                                              settings_.max_error, options, sink, on_step);
@@ -424,8 +438,15 @@ void ImageJob::writeMesh(const IndexedMesh& indexed, OutputSize frame, const std
 
 bool ImageJob::write() {
     try {
-        while (std::optional<Band> band = state_->bands->receive())
-            state_->writer->writeRows(band->rows.y_begin, band->rows.y_end, band->rows.floats.get());
+        while (std::optional<Band> band = state_->bands->receive()) {
+            const OutputRows& rows = band->rows;
+            if (!rows.codes8.empty())
+                state_->writer->writeCodes(rows.y_begin, rows.y_end, rows.codes8.data());
+            else if (!rows.codes16.empty())
+                state_->writer->writeCodes(rows.y_begin, rows.y_end, rows.codes16.data());
+            else
+                state_->writer->writeRows(rows.y_begin, rows.y_end, rows.floats.get());
+        }
     } catch (...) {
         state_->bands->refuse();
         throw;

@@ -81,7 +81,7 @@ private:
     void triangulateSamples(Backend& backend);
     // The tile side of a mask's or a point file's tiles (--tile, else automatic), 0 when it is
     // done in one piece: a mask that fits the backend's working memory, points whose mesh and
-    // output fit --memory, or --mesh wants the whole triangulation.
+    // output fit --memory, or --mesh or a simplification wants the whole triangulation.
     uint32_t sampledTileSide(const Backend& backend) const;
     // A point file's samples kept for tiles (core/delaunay/known_samples.h), the input a header
     // of the frame (or the frame's pixels for points on pixel centres, as a mask's).

@@ -6,7 +6,7 @@
 // never read.
 //
 // Here the image is processed in one piece: a point file's samples, a mask's that fits the
-// backend's working memory or whose mesh --mesh writes. Larger masks go in tiles whose crops
+// backend's working memory, whose mesh --mesh writes or that is simplified. Larger masks go in tiles whose crops
 // grow around their holes (app/delaunay/sampled_tile.h). The consistent reconstruction does not
 // apply (it corrects each pixel against its own value, which an unknown pixel does not have).
 #pragma once
@@ -21,11 +21,26 @@ namespace ddt {
 // channel is non-zero (a fully transparent mask pixel is unknown), ascending.
 std::vector<uint32_t> knownPixels(const Image& mask);
 
-// Optimizes `initial` (a triangulation of some of `image`'s pixels) on `backend` and sends the
-// output of size `out` to `sink` in bands; the optimised mesh goes to `optimized` if given (for
-// `--mesh`). Throws UserError when the image is too large for the backend in one piece.
+// `--simplify R`, `--max-error E` on the optimised triangulation of samples, by the backend
+// (Backend::simplify) as an image's is (app/simplified_upscale.h), in one piece: to a fraction R
+// of the samples (at least 3; 0: as few as the hull allows) or as far as E allows. The samples'
+// hull stays as it is (core/simplify/edge_collapse.h), so every sample is still rendered by
+// the mesh, and the kept vertices' colours are fitted to the samples (colour_fit.h).
+struct SampleSimplification {
+    double fraction = 0.0, max_error = 0.0;
+    ParallelSimplifyStats stats;  // on return
+    Image values;                 // on return: the vertices' colours, by vertex id, as `image` holds the samples'
+};
+
+// The vertices a fraction of `samples` asks for.
+uint32_t simplifiedSampleCount(uint32_t samples, double fraction);
+
+// Optimizes `initial` (a triangulation of some of `image`'s pixels) on `backend`, simplifies it
+// if `simplification` is given, and sends the output of size `out` to `sink` in bands; the
+// mesh goes to `optimized` if given (for `--mesh`). Throws UserError when the image is too
+// large for the backend in one piece.
 OptimizeStats upscaleFromSamples(Backend& backend, const Image& image, Mesh initial, OutputSize out,
                                  const std::function<void(OutputRows&& rows)>& sink, const TileStepCallback& on_step = {},
-                                 Mesh* optimized = nullptr);
+                                 Mesh* optimized = nullptr, SampleSimplification* simplification = nullptr);
 
 }  // namespace ddt

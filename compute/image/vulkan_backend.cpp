@@ -209,6 +209,7 @@ void VulkanBackend::prepareFrom(const Image& image, Mesh mesh) {
     s.edge_count = mesh.edgeCount();
     s.vertex_count = mesh.vertexCount();
     s.explicit_positions = std::move(mesh.positions);
+    s.hull = mesh.hull;
     const std::string what = s.explicit_positions.empty()
                                  ? std::to_string(mesh.width) + "×" + std::to_string(mesh.height) + " image"
                                  : "mesh of " + std::to_string(s.vertex_count) + " points";
@@ -251,6 +252,7 @@ Mesh VulkanBackend::mesh() {
     mesh.width = s.width;
     mesh.height = s.height;
     mesh.positions = s.explicit_positions;
+    mesh.hull = s.hull;
     mesh.vertices.resize(s.edge_count);
     mesh.neighbours.resize(s.edge_count);
     downloadFromBuffer(*s.context, s.edge_vertices, mesh.vertices.data(), s.edge_vertices.size);

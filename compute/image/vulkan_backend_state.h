@@ -40,6 +40,7 @@ struct VulkanBackend::State {
     uint32_t width = 0, height = 0, edge_count = 0;
     uint32_t vertex_count = 0;                    // the mesh's vertexCount()
     std::vector<Position> explicit_positions;     // the mesh's positions (empty: the grid's places)
+    MeshHull hull = MeshHull::rectangle;          // the mesh's, handed back by mesh()
     bool delaunay_on_device = false;              // where the last delaunayPixels or delaunayPoints ran
 
     Buffer edge_vertices, edge_neighbours, luma, alpha, gain, status[2], mark, active_list[2], candidate_list,

@@ -43,9 +43,10 @@ DeviceSimplifier::DeviceSimplifier(VulkanContext& context, const Mesh& mesh, con
                                    const Image& values, double max_error)
     : context_(context), kernels_(context) {
     const uint32_t edges = mesh.edgeCount(), vertices = mesh.vertexCount();
-    if (values.channels > kMaxQuadricDimensions - 2 || values.width != mesh.width || values.height != mesh.height)
+    // A value per vertex id: the grid's image, or a point file's vertexCount() × 1 values.
+    if (values.channels > kMaxQuadricDimensions - 2 || uint64_t(values.width) * values.height != vertices)
         throw std::invalid_argument("device simplification: values do not fit the mesh");
-    if (mesh.positions.size() != size_t(mesh.width) * mesh.height)
+    if (mesh.positions.size() != vertices)
         throw std::invalid_argument("device simplification: the mesh's positions are not explicit");
     if (const std::string problem = deviceSimplifierProblem(context, edges, vertices); !problem.empty())
         throw std::invalid_argument("device simplification: " + problem);
@@ -197,7 +198,7 @@ void DeviceSimplifier::collapse(const std::vector<Collapse>& collapses) {
 }
 
 void DeviceSimplifier::download(Mesh& mesh, SimplifyStart& start) const {
-    const size_t edges = push_.edge_count, vertices = size_t(push_.width) * push_.height;
+    const size_t edges = push_.edge_count, vertices = start.edges.first.size();
     if (edges) {
         downloadFromBuffer(context_, buffers_[kSimplifyBindingEdgeVertices], mesh.vertices.data(), edges * 16);
         downloadFromBuffer(context_, buffers_[kSimplifyBindingEdgeNeighbours], mesh.neighbours.data(), edges * 16);
@@ -236,7 +237,7 @@ ParallelSimplifyStats simplifyOnDevice(VulkanContext& context, Mesh& mesh, Image
     }
     device.download(mesh, start);
     compactEdges(mesh);
-    setVertexColours(mesh, start.quadrics, start.points, values);
+    setVertexColours(mesh, start, values);
     return stats;
 }
 

@@ -425,6 +425,7 @@ Mesh Triangulator::mesh(uint32_t width, uint32_t height) const {
     Mesh mesh;
     mesh.width = width;
     mesh.height = height;
+    mesh.hull = MeshHull::convex;
     mesh.vertices.resize(edge_count);
     mesh.neighbours.resize(edge_count);
     for (uint32_t u = 0; u < n; ++u) {

@@ -49,6 +49,7 @@ public:
         : points_(points), next_(points.size()), previous_(points.size()), hull_edge_(points.size()) {
         mesh_.width = width;
         mesh_.height = height;
+        mesh_.hull = MeshHull::convex;
         // A triangulation of n points with h on the hull has 3n − 3 − h edges.
         mesh_.vertices.reserve(3 * points.size());
         mesh_.neighbours.reserve(3 * points.size());

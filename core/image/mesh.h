@@ -54,6 +54,11 @@ struct EdgeNeighbours {
     uint32_t bl, la, ar, rb;
 };
 
+// What a mesh's boundary must be: the rectangle [0, w − 1] × [0, h − 1] (the grid's mesh and
+// its simplifications), or the convex hull of its vertices (a triangulation of samples,
+// core/delaunay/).
+enum class MeshHull { rectangle, convex };
+
 struct Mesh {
     uint32_t width = 0;
     uint32_t height = 0;
@@ -65,6 +70,9 @@ struct Mesh {
     // where they are: a tile's sides shared with its neighbours, so that the tiles' meshes
     // still join (app/simplified_upscale.h). 0 for a whole picture.
     uint32_t locked_sides = 0;
+    // A triangulation of samples covers their convex hull: a simplification keeps that hull and
+    // fits the kept vertices' colours to the samples rather than to every pixel (core/simplify/).
+    MeshHull hull = MeshHull::rectangle;
 
     uint32_t edgeCount() const { return uint32_t(vertices.size()); }
     // Vertex ids run below this: the grid's w·h, or one per explicit position.
@@ -150,11 +158,6 @@ template <typename F>
 void forEachTriangle(const Mesh& mesh, F f) {
     forEachTriangle(mesh, 0, mesh.edgeCount(), f);
 }
-
-// What a mesh's boundary must be: the rectangle [0, w − 1] × [0, h − 1] (the grid's mesh and
-// its simplifications), or the convex hull of its vertices (a triangulation of samples,
-// core/delaunay/).
-enum class MeshHull { rectangle, convex };
 
 // Checks the mesh: every record consistent with its neighbours, every triangle positive,
 // interior edges shared by two triangles, boundary edges with one forming a single convex

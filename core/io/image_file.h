@@ -87,6 +87,14 @@ public:
     void writeRows(uint32_t y_begin, uint32_t y_end, const float* rows);
     void commit();
     const std::vector<std::string>& notes() const { return notes_; }
+    // 8 or 16 where writeRows makes its floats 8- or 16-bit codes by quantiseRow
+    // (core/io/sample_quantise.h) and nothing else (ddtup's own PNG and JPEG writers, the
+    // channels as given): a caller may then give those codes to writeCodes instead, for the
+    // same file. 0 for every other writer.
+    uint32_t codeBits() const;
+    // Rows [y_begin, y_end) as such codes, where codeBits() is 8 or 16 respectively.
+    void writeCodes(uint32_t y_begin, uint32_t y_end, const uint8_t* codes);
+    void writeCodes(uint32_t y_begin, uint32_t y_end, const uint16_t* codes);
 
 private:
     struct State;

@@ -126,6 +126,10 @@ struct ImageWriter::State {
     uint32_t next_row = 0;
     std::vector<float> scratch;
 
+    // ImageWriter::writeCodes.
+    template <typename Sample>
+    void writeCodes(uint32_t y_begin, uint32_t y_end, const Sample* codes);
+
     // The reason a write to `file` failed.
     UserError failure() const { return UserError(name + ": " + std::strerror(file->failure())); }
 
@@ -235,6 +239,33 @@ ImageWriter::ImageWriter(const std::string& path, uint32_t width, uint32_t heigh
 }
 
 ImageWriter::~ImageWriter() = default;
+
+template <typename Sample>
+void ImageWriter::State::writeCodes(uint32_t y_begin, uint32_t y_end, const Sample* codes) {
+    if (y_begin != next_row || y_end > height || y_begin >= y_end) throw std::logic_error("rows out of order");
+    if (needsConversion(layout) || !(png || (jpeg && sizeof(Sample) == 1)))
+        throw std::logic_error("the writer does not take these codes");
+    if (png) {
+        png->writeCodes(codes, y_end - y_begin);  // throws at the first failed write
+    } else if constexpr (sizeof(Sample) == 1) {
+        jpeg->writeCodes(codes, y_end - y_begin);
+    }
+    next_row = y_end;
+}
+
+void ImageWriter::writeCodes(uint32_t y_begin, uint32_t y_end, const uint8_t* codes) {
+    state_->writeCodes(y_begin, y_end, codes);
+}
+void ImageWriter::writeCodes(uint32_t y_begin, uint32_t y_end, const uint16_t* codes) {
+    state_->writeCodes(y_begin, y_end, codes);
+}
+
+uint32_t ImageWriter::codeBits() const {
+    const State& s = *state_;
+    if (needsConversion(s.layout)) return 0;
+    if (s.png) return s.png->bitDepth();
+    return s.jpeg ? 8 : 0;
+}
 
 void ImageWriter::writeRows(uint32_t y_begin, uint32_t y_end, const float* rows) {
     State& s = *state_;

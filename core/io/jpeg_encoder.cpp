@@ -273,6 +273,15 @@ void JpegWriter::writeRows(const float* rows, uint32_t count) {
     }
 }
 
+void JpegWriter::writeCodes(const uint8_t* codes, uint32_t count) {
+    State& s = *state_;
+    if (s.info.next_scanline + count > s.info.image_height) throw std::logic_error("JpegWriter: rows past the image's height");
+    s.row_pointers.resize(count);
+    for (uint32_t y = 0; y < count; ++y)  // libjpeg only reads them
+        s.row_pointers[y] = const_cast<uint8_t*>(codes) + size_t(y) * s.row_floats;
+    s.run([&] { jpeg_write_scanlines(&s.info, s.row_pointers.data(), count); });
+}
+
 void JpegWriter::finish() {
     State& s = *state_;
     if (s.info.next_scanline != s.info.image_height) throw std::logic_error("JpegWriter: rows missing");

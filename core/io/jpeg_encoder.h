@@ -54,6 +54,8 @@ public:
 
     // The next `count` rows, format.channels floats a pixel, 0 to 1.
     void writeRows(const float* rows, uint32_t count);
+    // The same rows as the 8-bit codes writeRows makes of them (quantiseRow).
+    void writeCodes(const uint8_t* codes, uint32_t count);
     // After the last row.
     void finish();
     // The metadata that could not be stored, for notes ("the ICC profile (…)").

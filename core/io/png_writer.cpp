@@ -58,6 +58,29 @@ void PngWriter::writeRows(const float* rows, uint32_t count) {
     }
 }
 
+void PngWriter::writeCodes(const uint8_t* codes, uint32_t count) {
+    if (sample_bytes_ != 1) throw std::logic_error("PngWriter: 8-bit codes for a 16-bit file");
+    encoder_->addRows(codes, count);
+}
+
+void PngWriter::writeCodes(const uint16_t* codes, uint32_t count) {
+    if (sample_bytes_ != 2) throw std::logic_error("PngWriter: 16-bit codes for an 8-bit file");
+    const size_t row_bytes = row_floats_ * 2;
+    const uint32_t slice_rows = uint32_t(std::clamp<size_t>(kSliceBytes / row_bytes, 1, count));
+    samples_.resize(size_t(slice_rows) * row_bytes);
+    for (uint32_t first = 0; first < count; first += slice_rows) {
+        const uint32_t rows_here = std::min(slice_rows, count - first);
+        const uint16_t* from = codes + size_t(first) * row_floats_;
+        parallelFor(size_t(rows_here) * row_floats_, 1 << 16, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) {  // PNG is big-endian
+                samples_[2 * i] = uint8_t(from[i] >> 8);
+                samples_[2 * i + 1] = uint8_t(from[i]);
+            }
+        });
+        encoder_->addRows(samples_.data(), rows_here);
+    }
+}
+
 void PngWriter::finish() { encoder_->finish(); }
 
 }  // namespace ddt

@@ -23,10 +23,14 @@ public:
 
     // The next `count` rows, format.channels floats a pixel (straight alpha), 0 to 1.
     void writeRows(const float* rows, uint32_t count);
+    // The same rows as the codes writeRows makes of them (quantiseRow), at the format's depth.
+    void writeCodes(const uint8_t* codes, uint32_t count);
+    void writeCodes(const uint16_t* codes, uint32_t count);
     // After the last row.
     void finish();
     // The metadata that could not be stored, for notes ("the ICC profile (…)").
     const std::vector<std::string>& leftOut() const { return left_out_; }
+    uint32_t bitDepth() const { return uint32_t(sample_bytes_ * 8); }
 
 private:
     size_t sample_bytes_ = 0;

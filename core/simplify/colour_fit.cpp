@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <vector>
 
 #include "edge_collapse.h"
 #include "parallel.h"
 #include "reconstruct.h"
 #include "render.h"
+#include "vertex_quadrics.h"
 
 namespace ddt {
 
@@ -37,6 +39,61 @@ PixelSamples pixelSamples(const Mesh& mesh, const Image& colours) {
     locator.locateSamples({colours.width, colours.height}, 0, uint32_t(samples.triangles.size()), samples.hits,
                           samples.ends.data());
     return samples;
+}
+
+// The known samples as samples of the mesh: each lies in the first triangle (listTriangles'
+// order) that holds it, edges included, weighted by its barycentric coordinates (exact
+// orientations, divided in double). Found through a grid of cells about one sample each.
+PixelSamples knownSampleHits(const Mesh& mesh, const std::vector<KnownSample>& samples) {
+    PixelSamples located{listTriangles(mesh), {}, {}};
+    const double pixels = double(mesh.width) * mesh.height;
+    const int64_t cell = int64_t(std::max(1.0, std::ceil(std::sqrt(pixels / double(samples.size()))))) * kPositionOne;
+    const int64_t columns = int64_t(mesh.width - 1) * kPositionOne / cell + 1,
+                  rows = int64_t(mesh.height - 1) * kPositionOne / cell + 1;
+    auto cellOf = [&](Position p) { return size_t(p.y / cell * columns + p.x / cell); };
+    std::vector<uint32_t> cell_end(size_t(columns * rows) + 1, 0), in_cell(samples.size());
+    for (const KnownSample& sample : samples) ++cell_end[cellOf(sample.place) + 1];
+    for (size_t c = 1; c < cell_end.size(); ++c) cell_end[c] += cell_end[c - 1];
+    std::vector<uint32_t> fill(cell_end.begin(), cell_end.end() - 1);
+    for (uint32_t i = 0; i < samples.size(); ++i) in_cell[fill[cellOf(samples[i].place)]++] = i;
+
+    std::vector<uint32_t> triangle_of(samples.size(), kNone);
+    std::vector<SampleHit> hit_of(samples.size());
+    for (uint32_t t = 0; t < located.triangles.size(); ++t) {
+        const Triangle& tri = located.triangles[t];
+        const Position p[3] = {positionOf(mesh, tri.v0), positionOf(mesh, tri.v1), positionOf(mesh, tri.v2)};
+        const double area = double(positionOrient(p[0].x, p[0].y, p[1].x, p[1].y, p[2].x, p[2].y));
+        const int64_t x0 = std::min({p[0].x, p[1].x, p[2].x}) / cell, x1 = std::max({p[0].x, p[1].x, p[2].x}) / cell;
+        const int64_t y0 = std::min({p[0].y, p[1].y, p[2].y}) / cell, y1 = std::max({p[0].y, p[1].y, p[2].y}) / cell;
+        for (int64_t cy = y0; cy <= y1; ++cy)
+            for (int64_t cx = x0; cx <= x1; ++cx)
+                for (uint32_t k = cell_end[size_t(cy * columns + cx)]; k < cell_end[size_t(cy * columns + cx) + 1]; ++k) {
+                    const uint32_t i = in_cell[k];
+                    if (triangle_of[i] != kNone) continue;
+                    const Position q = samples[i].place;
+                    int64_t w[3];
+                    for (int j = 0; j < 3; ++j) {
+                        const Position u = p[(j + 1) % 3], v = p[(j + 2) % 3];
+                        w[j] = positionOrient(u.x, u.y, v.x, v.y, q.x, q.y);
+                    }
+                    if (w[0] < 0 || w[1] < 0 || w[2] < 0) continue;
+                    triangle_of[i] = t;
+                    hit_of[i] = {samples[i].vertex, {float(w[0] / area), float(w[1] / area), float(w[2] / area)}};
+                }
+    }
+    // Grouped by triangle, as the fit walks them.
+    located.ends.assign(located.triangles.size(), 0);
+    for (uint32_t t : triangle_of)
+        if (t != kNone) ++located.ends[t];
+    for (size_t t = 1; t < located.ends.size(); ++t) located.ends[t] += located.ends[t - 1];
+    located.hits.resize(located.ends.empty() ? 0 : located.ends.back());
+    std::vector<uint32_t> next(located.triangles.size(), 0);
+    for (size_t t = 1; t < next.size(); ++t) next[t] = located.ends[t - 1];
+    for (uint32_t i = 0; i < samples.size(); ++i) {
+        assert(triangle_of[i] != kNone);  // the simplification keeps the hull (edge_collapse.h)
+        if (triangle_of[i] != kNone) located.hits[next[triangle_of[i]]++] = hit_of[i];
+    }
+    return located;
 }
 
 // y = (LᵀL + μI) x, L the matrix of the samples' weights.
@@ -96,9 +153,17 @@ void fitChannel(const PixelSamples& samples, const std::vector<uint8_t>& free, c
 
 }  // namespace
 
-void fitColours(const Mesh& mesh, const Image& picture, Image& colours) {
+std::vector<KnownSample> knownSamplesOf(const Mesh& mesh) {
+    std::vector<KnownSample> samples;
+    const std::vector<bool> used = usedVertices(mesh);
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v)
+        if (used[v]) samples.push_back({v, positionOf(mesh, v)});
+    return samples;
+}
+
+void fitColours(const Mesh& mesh, const Image& picture, Image& colours, const std::vector<KnownSample>& known) {
     assert(picture.width == colours.width && picture.height == colours.height && picture.channels == colours.channels);
-    const PixelSamples samples = pixelSamples(mesh, colours);
+    const PixelSamples samples = known.empty() ? pixelSamples(mesh, colours) : knownSampleHits(mesh, known);
     std::vector<uint8_t> free(size_t(colours.width) * colours.height, 1);
     if (mesh.locked_sides)
         for (uint32_t v = 0; v < mesh.vertexCount(); ++v) free[v] = !lockedVertex(mesh, v);

@@ -17,14 +17,28 @@
 // (Mesh::locked_sides) keep their starting colours: the fit solves for the others only.
 #pragma once
 
+#include <vector>
+
 #include "image.h"
 #include "mesh.h"
 
 namespace ddt {
 
+// A simplified triangulation of samples (MeshHull::convex: a mask's known pixels, a point
+// file's points) is fitted to its samples instead of to every pixel centre: the unknown pixels
+// have no values, and points need not lie on centres. A sample is a vertex of the mesh the
+// simplification started from: its id (its value is the picture's entry there) and its place.
+struct KnownSample {
+    uint32_t vertex;
+    Position place;
+};
+// The vertices `mesh` uses, where they are now.
+std::vector<KnownSample> knownSamplesOf(const Mesh& mesh);
+
 // `colours` holds each vertex's starting colour (per vertex id, as the picture's pixels are
 // laid out) on entry and the fitted one on return; `picture` is the picture the mesh was made
-// from (the same size).
-void fitColours(const Mesh& mesh, const Image& picture, Image& colours);
+// from (the same size). `samples`: where the picture is known (knownSamplesOf the mesh before
+// simplification, every one inside `mesh`'s hull), or empty: at every pixel centre.
+void fitColours(const Mesh& mesh, const Image& picture, Image& colours, const std::vector<KnownSample>& samples = {});
 
 }  // namespace ddt

@@ -32,16 +32,33 @@ VertexEdges::VertexEdges(const Mesh& mesh) : first(mesh.vertexCount(), kNone) {
     }
 }
 
+HullPlace hullPlaceOf(const Mesh& mesh, const VertexEdges& edges, uint32_t v) {
+    uint32_t ends[2], count = 0;
+    forEachEdgeAt(mesh, edges, v, [&](uint32_t f) {
+        const EdgeVertices& fv = mesh.vertices[f];
+        if ((fv.l == kNone || fv.r == kNone) && count < 2) ends[count++] = otherEnd(fv, v);
+    });
+    if (count < 2) return HullPlace::inside;
+    return orientationSign(mesh, ends[0], v, ends[1]) == 0 ? HullPlace::straight : HullPlace::corner;
+}
+
 bool canCollapse(const Mesh& mesh, const VertexEdges& edges, Collapse collapse) {
     const EdgeVertices& ev = mesh.vertices[collapse.edge];
     const uint32_t from = collapse.from(mesh), to = collapse.to(mesh);
     const uint32_t from_sides = collapseSides(mesh, from);
     if (std::popcount(from_sides) >= 2) return false;  // a corner, or on a locked side
-    if (from_sides && ev.l != kNone && ev.r != kNone) return false;  // a border vertex leaves its side
+    const HullPlace from_hull = hullPlaceOf(mesh, edges, from);
+    if (from_hull == HullPlace::corner) return false;  // the hull would lose it
+    if (from_hull != HullPlace::inside && ev.l != kNone && ev.r != kNone) return false;  // a hull vertex leaves the hull
     const Position target = collapse.moves ? collapse.target : positionOf(mesh, to);
     if (collapse.moves) {
         const uint32_t kept = from_sides | collapseSides(mesh, to);
         if ((collapseSides(mesh, target) & kept) != kept) return false;
+        // On the hull, only along a side of the rectangle, where the hull is straight.
+        auto staysOnHull = [&](uint32_t v, HullPlace place) {
+            return place == HullPlace::inside || (place == HullPlace::straight && rectangleSides(mesh, v) != 0);
+        };
+        if (!staysOnHull(from, from_hull) || !staysOnHull(to, hullPlaceOf(mesh, edges, to))) return false;
     }
     // Valence: `to` ends with the edges of both but e and the removed ones.
     uint32_t valence = 0;

@@ -11,6 +11,12 @@
 // - the rectangle is kept: corners never go; a border vertex goes only along its side, into
 //   its neighbour on that side, over a boundary edge; a vertex on a locked side
 //   (Mesh::locked_sides) counts as a corner: it neither goes nor moves;
+// - the hull is kept (a triangulation of samples covers their convex hull, not the rectangle;
+//   on the grid's mesh these are the rectangle's rules again): a vertex on the hull goes only
+//   over a hull edge, into its neighbour there, and only where it lies on one line with its
+//   two hull neighbours (hullPlaceOf: straight); a corner of the hull never goes. A merged
+//   vertex on the hull moves only along the rectangle's side it lies on (the hull is that
+//   side there); elsewhere on the hull, or at a hull corner, it stays at `to`'s place;
 // - no fold-over: every triangle around `from` that stays is still positive with `to` in its
 //   place (exact integer orientation).
 // - valence: `to` ends with at most kMaxCollapseValence edges (see there).
@@ -75,6 +81,12 @@ void forEachEdgeAt(const Mesh& mesh, const VertexEdges& edges, uint32_t v, Visit
     if (f == kNone)
         for (f = turnAround(mesh, v, start, false); f != kNone; f = turnAround(mesh, v, f, false)) visit(f);
 }
+
+// Where vertex v lies on the mesh's hull: not on it; on a straight stretch (on one line with
+// its two hull neighbours, as a side's vertex of the rectangle); or at a corner of it. A
+// collapse may remove a straight one without changing the hull, never a corner.
+enum class HullPlace { inside, straight, corner };
+HullPlace hullPlaceOf(const Mesh& mesh, const VertexEdges& edges, uint32_t v);
 
 // A collapse of edge e: `from` is its endpoint b (b into a), or a (a into b). The merged
 // vertex stays at `to`'s place, or, if `moves`, goes to `target`.

@@ -38,7 +38,7 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
     makePositionsExplicit(mesh);
     SimplifyStart start(mesh, image);
     const double error_limit = errorLimitOf(max_error);
-    auto& [points, quadrics, edges] = start;
+    auto& [points, quadrics, edges, samples] = start;
     std::vector<uint32_t> version(mesh.edgeCount(), 0);
     std::vector<bool> blocked(mesh.edgeCount(), false);  // its best candidate was illegal when it came up
     std::priority_queue<Candidate> queue;
@@ -83,7 +83,7 @@ SimplifyStats simplifySerial(Mesh& mesh, Image& image, uint32_t target, double m
         });
     }
     compactEdges(mesh);
-    setVertexColours(mesh, quadrics, points, image);
+    setVertexColours(mesh, start, image);
     return stats;
 }
 

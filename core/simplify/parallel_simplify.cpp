@@ -154,7 +154,7 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
     stats.vertices_before = stats.vertices_after = usedVertexCount(mesh);
     makePositionsExplicit(mesh);
     SimplifyStart start(mesh, values);
-    auto& [points, quadrics, edges] = start;
+    auto& [points, quadrics, edges, samples] = start;
     const uint32_t edge_count = mesh.edgeCount();
     const double error_limit = errorLimitOf(max_error);
     std::vector<uint64_t> key(edge_count);
@@ -199,7 +199,7 @@ ParallelSimplifyStats simplifyParallel(Mesh& mesh, Image& values, uint32_t targe
         ++stats.rounds;
     }
     compactEdges(mesh);
-    setVertexColours(mesh, quadrics, points, values);
+    setVertexColours(mesh, start, values);
     return stats;
 }
 

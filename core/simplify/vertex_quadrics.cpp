@@ -30,7 +30,8 @@ std::vector<bool> usedVertices(const Mesh& mesh) {
     return used;
 }
 
-void setVertexColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image) {
+void setVertexColours(const Mesh& mesh, const SimplifyStart& start, Image& image) {
+    const auto& [points, quadrics, edges, samples] = start;
     const std::vector<bool> used = usedVertices(mesh);
     const uint32_t c = image.channels;
     const bool bounded = boundedToUnit(image.sample_type);
@@ -47,7 +48,7 @@ void setVertexColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, co
     }
     Image colours = image;
     colours.pixels = std::move(best);
-    fitColours(mesh, image, colours);
+    fitColours(mesh, image, colours, samples);
     image.pixels = std::move(colours.pixels);
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "colour_fit.h"
 #include "edge_collapse.h"
 #include "image.h"
 #include "mesh.h"
@@ -40,14 +41,19 @@ std::vector<Quadric> vertexQuadrics(const Mesh& mesh, const QuadricPoints& point
 // exceedsErrorLimit's limit for an error of `max_error` 8-bit levels (0: none).
 inline double errorLimitOf(double max_error) { return max_error > 0.0 ? (max_error / 255.0) * (max_error / 255.0) : 0.0; }
 
-// What both simplifiers start from: the points, each vertex's quadric, each vertex's edges.
+// What both simplifiers start from: the points, each vertex's quadric, each vertex's edges
+// and, for a triangulation of samples, the samples the colours are fitted to (colour_fit.h).
 struct SimplifyStart {
     QuadricPoints points;
     std::vector<Quadric> quadrics;
     VertexEdges edges;
+    std::vector<KnownSample> samples;
 
     SimplifyStart(const Mesh& mesh, const Image& values)
-        : points{mesh, values, 2 + values.channels}, quadrics(vertexQuadrics(mesh, points)), edges(mesh) {}
+        : points{mesh, values, 2 + values.channels},
+          quadrics(vertexQuadrics(mesh, points)),
+          edges(mesh),
+          samples(mesh.hull == MeshHull::convex ? knownSamplesOf(mesh) : std::vector<KnownSample>{}) {}
 };
 
 // Which vertex ids the mesh's edges use.
@@ -57,6 +63,6 @@ std::vector<bool> usedVertices(const Mesh& mesh);
 // together to the picture's pixels (colour_fit.h), within [0, 1] for integer sample types and,
 // premultiplied, within its alpha. `image` holds the picture on entry. A vertex on a locked
 // side keeps its pixel's colour, which the neighbouring tile's mesh gives it too.
-void setVertexColours(const Mesh& mesh, const std::vector<Quadric>& quadrics, const QuadricPoints& points, Image& image);
+void setVertexColours(const Mesh& mesh, const SimplifyStart& start, Image& image);
 
 }  // namespace ddt

@@ -81,6 +81,27 @@ uint sidesAt(ivec2 p) {
 }
 uint sidesOf(uint v) { return sidesAt(positionOf(v)); }
 
+// core's hullPlaceOf: where v lies on the mesh's hull.
+const uint kHullInside = 0u;
+const uint kHullStraight = 1u;
+const uint kHullCorner = 2u;
+uint hullPlaceOf(uint v) {
+    uint ends[2];
+    uint count = 0u;
+    for (Walk w = beginWalk(v); w.f != kNone; advance(w)) {
+        const uvec4 fv = verticesOf(w.f);
+        if ((fv.z == kNone || fv.w == kNone) && count < 2u) ends[count++] = otherEnd(fv, v);
+    }
+    if (count < 2u) return kHullInside;
+    const ivec2 p = positionOf(ends[0]), q = positionOf(v), r = positionOf(ends[1]);
+    return positionOrient(p.x, p.y, q.x, q.y, r.x, r.y) == 0l ? kHullStraight : kHullCorner;
+}
+// A merged vertex at v may move: v is inside, or on a straight stretch of the hull along a
+// side of the rectangle.
+bool movesOnHull(uint v, uint place) {
+    return place == kHullInside || (place == kHullStraight && (sidesOf(v) & 15u) != 0u);
+}
+
 // Whether every triangle around `centre` but e's own (those holding `other`) stays positive
 // with `from` and `to` at `target`.
 bool staysPositive(uint e, uint centre, uint other, uint from, uint to, ivec2 target) {
@@ -134,11 +155,14 @@ bool directionLegal(uint e, bool b_into_a, bool moves, ivec2 target) {
     const uvec4 ev = verticesOf(e);
     const uint from = b_into_a ? ev.y : ev.x, to = b_into_a ? ev.x : ev.y;
     const uint from_sides = sidesOf(from);
-    if (bitCount(from_sides) >= 2) return false;                           // a corner
-    if (from_sides != 0u && ev.z != kNone && ev.w != kNone) return false;  // a border vertex leaves its side
+    if (bitCount(from_sides) >= 2) return false;  // a corner
+    const uint from_hull = hullPlaceOf(from);
+    if (from_hull == kHullCorner) return false;                                     // the hull would lose it
+    if (from_hull != kHullInside && ev.z != kNone && ev.w != kNone) return false;  // a hull vertex leaves the hull
     if (moves) {
         const uint kept = from_sides | sidesOf(to);
         if ((sidesAt(target) & kept) != kept) return false;
+        if (!movesOnHull(from, from_hull) || !movesOnHull(to, hullPlaceOf(to))) return false;
     } else {
         target = positionOf(to);
     }

@@ -56,7 +56,7 @@ std::vector<Option> matrixOptions(const std::string& mesh_file) {
     return {
         {{"--tile", "64"}, {"", "", "", ""}, "`--tile N`"},
         {{"--mesh", mesh_file}, {"", "", "", volumes}, "`--mesh F`"},
-        {{"--simplify", "0.5"}, {"", "do not combine yet", "do not combine yet", volumes}, "`--simplify R`, `--max-error E`"},
+        {{"--simplify", "0.5"}, {"", "", "", volumes}, "`--simplify R`, `--max-error E`"},
         {{"--cost", "variance"}, {"", "", "", ""}, cost_and_backend},
         {{"--reconstruct", "plain"}, {"", "", "", volumes}, "`--reconstruct plain`"},
         {{"--reconstruct", "consistent"}, {"", "needs every pixel's value", "needs a full image", volumes},

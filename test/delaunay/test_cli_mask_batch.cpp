@@ -100,8 +100,8 @@ TEST_CASE("cli mask-dir: combinations that cannot work are refused in one line",
     const std::string dir = masks.string();
     requireOneLineError(runDdtup({input, "--mask", (masks / "a.png").string(), "--mask-dir", dir, "-o", out}), 2,
                         "--mask", "one of them");
-    requireOneLineError(runDdtup({input, "--mask-dir", dir, "-o", out, "--simplify", "0.5"}), 2, "--mask-dir",
-                        "simplification");
+    requireOneLineError(runDdtup({input, "--mask-dir", dir, "-o", out, "--simplify", "0.5", "--tile", "64"}), 2,
+                        "--mask-dir", "--tile");
     requireOneLineError(runDdtup({input, "--mask-dir", dir, "-o", out, "--tile", "64", "--mesh", "ply"}), 2, "--mask-dir",
                         "--tile");
     requireOneLineError(runDdtup({input, "--mask-dir", work / "none", "-o", out}), 1, work / "none",

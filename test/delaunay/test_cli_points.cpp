@@ -20,23 +20,29 @@ using namespace ddt;
 
 double ramp(double x, double y) { return 0.1 + 0.02 * x + 0.03 * y; }
 
+// plane.csv in `work`: the corners of a w × h frame and `count` points at random multiples of
+// 1/1024 pixel (so that rounding to the position grid moves none of them), grey values of the
+// plane, in [0, 1].
+std::string writePlaneCsv(const TempFolder& work, uint32_t w, uint32_t h, uint32_t seed, int count) {
+    std::ostringstream csv;
+    csv << "x,y,v\n";
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> fx(0, int(w - 1) * 1024), fy(0, int(h - 1) * 1024);
+    auto add = [&](double x, double y) { csv << x << ',' << y << ',' << ramp(x, y) << '\n'; };
+    for (double x : {0.0, double(w - 1)})
+        for (double y : {0.0, double(h - 1)}) add(x, y);
+    for (int i = 0; i < count; ++i) add(fx(rng) / 1024.0, fy(rng) / 1024.0);
+    const std::string points = work / "plane.csv";
+    writeText(points, csv.str());
+    return points;
+}
+
 }  // namespace
 
 TEST_CASE("cli points: a plane comes back from scattered points on both backends", "[delaunay][vulkan]") {
     TempFolder work;
     const uint32_t w = 20, h = 15;
-    // The frame's corners, and 60 points at random multiples of 1/1024 pixel (so that rounding
-    // to the position grid moves none of them), grey values of the plane, in [0, 1].
-    std::ostringstream csv;
-    csv << "x,y,v\n";
-    std::mt19937 rng(5);
-    std::uniform_int_distribution<int> fx(0, (w - 1) * 1024), fy(0, (h - 1) * 1024);
-    auto add = [&](double x, double y) { csv << x << ',' << y << ',' << ramp(x, y) << '\n'; };
-    for (double x : {0.0, double(w - 1)})
-        for (double y : {0.0, double(h - 1)}) add(x, y);
-    for (int i = 0; i < 60; ++i) add(fx(rng) / 1024.0, fy(rng) / 1024.0);
-    const std::string points = work / "plane.csv";
-    writeText(points, csv.str());
+    const std::string points = writePlaneCsv(work, w, h, 5, 60);
     for (const std::string backend : {"cpu", "vulkan"}) {
         INFO(backend);
         const std::string output = work / (backend + ".tif");
@@ -51,6 +57,29 @@ TEST_CASE("cli points: a plane comes back from scattered points on both backends
         // (core/image/render.h), up to 1/2048 pixel off on each axis: at most (0.02 + 0.03) / 2048
         // = 2.4e-5 of the plane; 3e-5 leaves room for the float printing of the CSV's values
         // (6 significant digits, 5e-7 here) and float interpolation.
+        CHECK(test::worstPlaneError(out, w, h, ramp) < 3e-5);
+    }
+}
+
+TEST_CASE("cli points: --simplify keeps a fifth of the points, from which a plane comes back, on both backends",
+          "[delaunay][vulkan]") {
+    TempFolder work;
+    const uint32_t w = 20, h = 15;
+    const std::string points = writePlaneCsv(work, w, h, 6, 76);  // 80 points
+    for (const std::string backend : {"cpu", "vulkan"}) {
+        INFO(backend);
+        const std::string output = work / (backend + ".tif"), mesh = work / (backend + ".ply");
+        const Run run = runDdtup({points, "--frame", "20x15", "-s", "2", output, "--backend", backend, "--simplify", "0.2",
+                                  "--mesh", mesh, "--stats"});
+        REQUIRE(run.exit_code == 0);
+        CHECK_THAT(run.out, Catch::Contains("80 -> 16  ("));
+        // The mesh file has the kept vertices.
+        CHECK_THAT(readFile(mesh), Catch::Contains("element vertex 16\n"));
+        const Image out = readImage(output);
+        REQUIRE(out.width == 2 * w);
+        REQUIRE(out.height == 2 * h);
+        // A plane's collapses cost nothing and keep each vertex on it, wherever it moves; the
+        // tolerance is the one above (positions sampled at the nearest 1/1024 pixel).
         CHECK(test::worstPlaneError(out, w, h, ramp) < 3e-5);
     }
 }
@@ -131,7 +160,11 @@ TEST_CASE("cli points: bad point files and options are refused in one line", "[d
                         "point files");
     requireOneLineError(runDdtup({good, "--mask", work / "mask.png", out}), 2, "--mask", "point file");
     requireOneLineError(runDdtup({good, "-o", work / "dir"}), 2, "point file", "-f png");
-    // Tiles take the points near each tile; a mesh file is of the whole triangulation.
+    // Tiles take the points near each tile; a mesh file and a simplification take the whole
+    // triangulation.
     requireOneLineError(runDdtup({good, out, "--tile", "64", "--mesh", work / "mesh.ply"}), 2, "point file", "--tile");
     CHECK_FALSE(std::filesystem::exists(work / "mesh.ply"));
+    requireOneLineError(runDdtup({good, out, "--tile", "64", "--simplify", "0.5"}), 2, "point file", "--tile");
+    requireOneLineError(runDdtup({good, out, "--simplify", "0.5", "--reconstruct", "consistent"}), 2, "--reconstruct",
+                        "linear surface");
 }

@@ -127,7 +127,7 @@ TEST_CASE("masked tiles: tiled outputs equal the untiled one, holes across tile 
     const uint32_t w = image.width, h = image.height;
     // Holes centred on the 64-pixel tiles' borders (cores of 60 × 50: x = 60, 120, 180, 240,
     // y = 50, 100, 150), on the image's corners and its left edge (the fill outside the hull),
-    // two wider than the 12-pixel overlap.
+    // two wider than the 16-pixel overlap.
     const KnownPixels mask = holedMask(w, h, 7, 40, 6,
                                        {{60, 50, 12}, {120, 100, 20}, {240, 150, 9}, {0, 0, 10}, {0, 120, 7}, {299, 199, 5}});
     test::checkTilesMatchOnePiece(

@@ -30,11 +30,10 @@ using namespace ddt;
 // below a 16-bit level (1.5e-5): a wrong tap, a missed triangle or a wrong half-edge moves
 // samples by 1e-3 and more.
 const float kCoreTolerance = 1e-5f;
-// Tiled vs untiled (photo ×2, 64-pixel tiles, overlap 12): each crop is reconstructed on its
+// Tiled vs untiled (photo ×2, 64-pixel tiles, overlap 16): each crop is reconstructed on its
 // own, its star walks start from other edge ids and SART's reach from the crop's border
-// (about a pixel per step) fades inside the overlap. Measured: at most 2.2e-5 (3.0e-6 with
-// an overlap of 16); 1e-4 is a fortieth of an 8-bit level, a seam moves samples by 1e-2.
-const float kTileTolerance = 1e-4f;
+// (about a pixel per step) fades inside the overlap. Measured: at most 3.0e-6.
+const float kTileTolerance = 3e-5f;
 
 VulkanBackend makeBackend() {
     VulkanOptions options;

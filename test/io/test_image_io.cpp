@@ -469,6 +469,24 @@ TEST_CASE("image: an abandoned or failed write leaves no file") {
     CHECK(folder.names().empty());
 }
 
+// Only where the floats go straight to quantiseRow may a caller keep rows as codes
+// (app/strip_rows.h): not where alpha is made straight, flattened, or OpenImageIO converts.
+TEST_CASE("image: the writer names the codes its rows become only where nothing else happens to them") {
+    TempFolder folder;
+    const Image rgb = makeImage(4, 4, 3, SampleType::UInt8), rgba = makeImage(4, 4, 4, SampleType::UInt8);
+    const Image grey = makeImage(4, 4, 1, SampleType::UInt16);
+    ddt::WriteOptions sixteen;
+    sixteen.depth = SampleType::UInt16;
+    CHECK(ddt::ImageWriter(folder / "a.png", 4, 4, rgb).codeBits() == 8);
+    CHECK(ddt::ImageWriter(folder / "b.png", 4, 4, rgb, sixteen).codeBits() == 16);
+    CHECK(ddt::ImageWriter(folder / "c.png", 4, 4, grey).codeBits() == 16);
+    CHECK(ddt::ImageWriter(folder / "d.jpg", 4, 4, rgb, sixteen).codeBits() == 8);
+    CHECK(ddt::ImageWriter(folder / "e.png", 4, 4, rgba).codeBits() == 0);  // straight alpha
+    CHECK(ddt::ImageWriter(folder / "f.jpg", 4, 4, rgba).codeBits() == 0);  // flattened onto white
+    CHECK(ddt::ImageWriter(folder / "g.tif", 4, 4, rgb).codeBits() == 0);   // OpenImageIO's
+    CHECK(folder.names().empty());  // nothing committed
+}
+
 TEST_CASE("image: sizes a format cannot hold are refused before opening") {
     CHECK(ddt::checkOutputFormat("x.jpg", 65500, 65500) == "");
     CHECK_THAT(ddt::checkOutputFormat("x.jpg", 65501, 10), Catch::Contains("65500"));
