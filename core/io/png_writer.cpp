@@ -14,6 +14,14 @@ namespace {
 // Rows converted at a time: a few MiB of samples, whatever the size of the caller's band.
 constexpr size_t kSliceBytes = size_t(4) << 20;
 
+// 16-bit samples as PNG stores them: big-endian.
+void storeBigEndian(const uint16_t* samples, uint8_t* to, size_t n) {
+    for (size_t i = 0; i < n; ++i) {
+        to[2 * i] = uint8_t(samples[i] >> 8);
+        to[2 * i + 1] = uint8_t(samples[i]);
+    }
+}
+
 }  // namespace
 
 PngWriter::PngWriter(const PngFormat& format, const PngMetadataSource& metadata, PngEncoder::Sink sink) {
@@ -47,10 +55,7 @@ void PngWriter::writeRows(const float* rows, uint32_t count) {
                 } else {
                     std::vector<uint16_t> samples(row_floats_);
                     quantiseRow(values, samples.data(), row_floats_);
-                    for (size_t i = 0; i < row_floats_; ++i) {  // PNG is big-endian
-                        to[2 * i] = uint8_t(samples[i] >> 8);
-                        to[2 * i + 1] = uint8_t(samples[i]);
-                    }
+                    storeBigEndian(samples.data(), to, row_floats_);
                 }
             }
         });
@@ -71,11 +76,8 @@ void PngWriter::writeCodes(const uint16_t* codes, uint32_t count) {
     for (uint32_t first = 0; first < count; first += slice_rows) {
         const uint32_t rows_here = std::min(slice_rows, count - first);
         const uint16_t* from = codes + size_t(first) * row_floats_;
-        parallelFor(size_t(rows_here) * row_floats_, 1 << 16, [&](size_t begin, size_t end) {
-            for (size_t i = begin; i < end; ++i) {  // PNG is big-endian
-                samples_[2 * i] = uint8_t(from[i] >> 8);
-                samples_[2 * i + 1] = uint8_t(from[i]);
-            }
+        parallelFor(rows_here, 16, [&](size_t begin, size_t end) {
+            storeBigEndian(from + begin * row_floats_, samples_.data() + begin * row_bytes, (end - begin) * row_floats_);
         });
         encoder_->addRows(samples_.data(), rows_here);
     }
