@@ -105,7 +105,8 @@ const uint kBindingPositions = 33;          // rg32i per vertex: its Position (g
 // The convolution fallback (glsl/image/fallback/), r32f per input pixel.
 const uint kBindingFallbackWeights = 34;    // the surface's weight w(p); first the gradient energy
 const uint kBindingFallbackAcross = 35;     // the energy smoothed along x, while the weights are made
-const uint kBindingCount = 36;
+const uint kBindingAcceptedList = 36;       // r32ui: the current iteration's accepted candidates, as select decides them
+const uint kBindingCount = 37;
 
 // Counters and state of the optimisation, written by the kernels, read by the host after
 // each submit. Counters that kernels append to are updated with atomics.
@@ -117,7 +118,7 @@ struct Control {
     uint active_count[2];      // entries of active list [iteration & 1]
     uint round_count[2];       // entries of round list [round & 1] (copy entries included)
     uint undecided_count[2];   // undecided entries among them
-    uint flips_in_iteration;   // flips of the current iteration
+    uint flips_in_iteration;   // flips of the current iteration (= entries of the accepted list)
     uint capped;               // 1: a safety cap stopped the optimisation
     uint total_rounds;
     uint max_rounds_in_iteration;

@@ -43,8 +43,8 @@ uint32_t VulkanBackend::validationMessages() const { return state_->context->val
 
 // Device memory of a width × height job, and "" or the per-buffer limit it breaks. What
 // bites on lavapipe (2 GiB heap, 2 GiB allocations, 2^27 texel-buffer elements; no
-// VK_EXT_memory_budget): a 4096² input needs 3.8 GB in all (3 edges and 224 bytes per pixel
-// with the default rule, 248 with the round-based ones), beyond the heap, though each array
+// VK_EXT_memory_budget): a 4096² input needs 4.4 GB in all (3 edges and 260 bytes per pixel
+// with the default rule, 284 with the round-based ones), beyond the heap, though each array
 // fits; an 8192² input has 201 M edges, beyond the texel-buffer elements (and its 3.2 GB
 // edge arrays beyond the largest allocation). maxStorageBufferRange (128 MiB) does not
 // bite: the big arrays are texel buffers. The consistent reconstruction adds about 708 bytes
@@ -59,7 +59,9 @@ VulkanBackend::State::MemoryNeed VulkanBackend::State::memoryNeed(const JobSize&
     vkGetPhysicalDeviceProperties2(context->physical, &properties);
 
     const uint64_t edges = job.edges, vertices = job.vertices;
-    const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 4 + (options.active_set ? 2 * 4 : 0) +
+    // Per edge: the records, the gain, the statuses, the mark, the candidate and accepted
+    // lists, and the lists the active set and the round-based rules need.
+    const uint64_t per_edge = 16 + 16 + 8 + 2 * 4 + 4 + 2 * 4 + (options.active_set ? 2 * 4 : 0) +
                               (rule.single_round ? 0 : 2 * 4);
     // The reconstruction's largest arrays are its 3 × 3 supersamples per pixel.
     const uint64_t elements = reconstruction ? std::max(edges, surfaceBufferLargestElements(vertices, edges)) : edges;
@@ -118,6 +120,7 @@ void VulkanBackend::State::createBuffers(const Image& img) {
     mark = createBuffer(c, edges * 4, device, VK_FORMAT_R32_UINT);
     for (Buffer& b : active_list) b = createBuffer(c, options.active_set ? edges * 4 : 4, device, VK_FORMAT_R32_UINT);
     candidate_list = createBuffer(c, edges * 4, device, VK_FORMAT_R32_UINT);
+    accepted_list = createBuffer(c, edges * 4, device, VK_FORMAT_R32_UINT);
     for (Buffer& b : round_list) b = createBuffer(c, rule.single_round ? 4 : edges * 4, device, VK_FORMAT_R32_UINT);
     control = createBuffer(c, sizeof(Control));
     control_readback = createBuffer(c, sizeof(Control), Placement::Readback);
@@ -162,6 +165,7 @@ void VulkanBackend::State::writeDescriptors() {
     by_binding[kBindingActiveList0] = &active_list[0];
     by_binding[kBindingActiveList1] = &active_list[1];
     by_binding[kBindingCandidateList] = &candidate_list;
+    by_binding[kBindingAcceptedList] = &accepted_list;
     by_binding[kBindingRoundList0] = &round_list[0];
     by_binding[kBindingRoundList1] = &round_list[1];
     by_binding[kBindingPixels] = &pixels;

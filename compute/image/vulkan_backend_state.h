@@ -44,7 +44,7 @@ struct VulkanBackend::State {
     bool delaunay_on_device = false;              // where the last delaunayPixels or delaunayPoints ran
 
     Buffer edge_vertices, edge_neighbours, luma, alpha, gain, status[2], mark, active_list[2], candidate_list,
-        round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans, positions,
+        accepted_list, round_list[2], control, control_readback, args, partial_sums, pixels, band, row_spans, positions,
         fallback_weights, fallback_across;  // the fallback's: placeholders until addFallback
     SurfaceBuffers surface;  // the consistent reconstruction's arrays (placeholders until it runs)
     bool quadratic = false;  // render the reconstructed surface, not the input values
@@ -56,7 +56,8 @@ struct VulkanBackend::State {
 
     std::vector<Buffer*> buffers() {
         return {&edge_vertices, &edge_neighbours, &luma,          &alpha,        &gain,          &status[0],
-                &status[1],     &mark,            &active_list[0], &active_list[1], &candidate_list, &round_list[0],
+                &status[1],     &mark,            &active_list[0], &active_list[1], &candidate_list, &accepted_list,
+                &round_list[0],
                 &round_list[1], &control,         &control_readback, &args,      &partial_sums,  &pixels,
                 &band,          &row_spans,       &positions,    &fallback_weights, &fallback_across};
     }

@@ -31,6 +31,7 @@ layout(binding = kBindingMark, r32ui) uniform uimageBuffer marks;
 layout(binding = kBindingActiveList0, r32ui) uniform uimageBuffer active_list0;
 layout(binding = kBindingActiveList1, r32ui) uniform uimageBuffer active_list1;
 layout(binding = kBindingCandidateList, r32ui) uniform uimageBuffer candidate_list;
+layout(binding = kBindingAcceptedList, r32ui) uniform uimageBuffer accepted_list;
 layout(binding = kBindingRoundList0, r32ui) uniform uimageBuffer round_list0;
 layout(binding = kBindingRoundList1, r32ui) uniform uimageBuffer round_list1;
 layout(binding = kBindingPixels, rgba32f) uniform readonly imageBuffer pixels;

@@ -77,8 +77,13 @@ void activateClosedRoi(uint e, uint iteration) {
     }
 }
 
+// Invocation i resets candidate i and flips accepted edge i (select.comp lists them): the
+// flips, a fraction of the candidates, run on adjacent invocations, not scattered among
+// them. lavapipe runs a branch for a whole SIMD row when one of its lanes takes it, so
+// scattered flips cost nearly as much as flipping every candidate.
 void main() {
     const uint count = control.candidate_count;
+    const uint flips = control.flips_in_iteration;
     const uint final_status = control.round & 1;
     const uint next_iteration = control.iteration;  // the plan step advanced it already
 
@@ -87,12 +92,11 @@ void main() {
         const uint status = statusOf(final_status, e);
         setStatus(0, e, kStatusNone);
         setStatus(1, e, kStatusNone);
-        if (status == kStatusAccepted) {
-            flipEdge(e);
-            atomicAdd(control.flips_in_iteration, 1);
-            if (push.active_set != 0) activateClosedRoi(e, next_iteration);
-        } else if (push.active_set != 0) {
-            activate(e, next_iteration, keptMark(next_iteration));
+        if (status != kStatusAccepted && push.active_set != 0) activate(e, next_iteration, keptMark(next_iteration));
+        if (i < flips) {
+            const uint flipped = imageLoad(accepted_list, int(i)).x;
+            flipEdge(flipped);
+            if (push.active_set != 0) activateClosedRoi(flipped, next_iteration);
         }
     }
 }

@@ -94,6 +94,8 @@ void main() {
         }
         const uint decision = decide(e, parity_in, degree);
         setStatus(parity_out, e, decision);
+        // An edge is accepted once (later rounds only copy the decision): listed once for flip.comp.
+        if (decision == kStatusAccepted) imageStore(accepted_list, int(atomicAdd(control.flips_in_iteration, 1)), uvec4(e));
         if (kSingleRound != 0) continue;
         appendToRoundList(parity_out, decision == kStatusUndecided ? e : (e | kCopyEntry));
         if (decision == kStatusUndecided) atomicAdd(control.undecided_count[parity_out], 1);

@@ -118,8 +118,10 @@ TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains
             const CostField field = costFieldOf(test.image);
             Mesh expected_next;  // the previous iteration's mesh with its flips applied on the host
             uint32_t iterations = 0;
-            backend.optimizeStepwise([&](const IterationSnapshot& snapshot) {
+            uint64_t accepted_edges = 0;
+            const OptimizeStats stats = backend.optimizeStepwise([&](const IterationSnapshot& snapshot) {
                 ++iterations;
+                accepted_edges += snapshot.accepted.size();
                 if (snapshot.iteration > 0) CHECK(test::sameRecords(snapshot.mesh, expected_next));
                 const int degree = snapshot.iteration < flip_rule.exproi_iterations ? 3 : 2;
                 const std::vector<uint32_t>& accepted = snapshot.accepted;
@@ -148,6 +150,8 @@ TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains
             });
             CHECK(iterations > 0);
             CHECK(test::sameRecords(backend.mesh(), expected_next));
+            // The flips counted as select lists them for flip.comp: each accepted edge once.
+            CHECK(stats.flips == accepted_edges);
         }
         CHECK(backend.validationMessages() == 0);
     }
