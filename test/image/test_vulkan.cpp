@@ -157,6 +157,37 @@ TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains
     }
 }
 
+TEST_CASE("vulkan: local-max accepts exactly the candidates that beat every candidate in their ROI", "[vulkan]") {
+    // Its one round (glsl/image/select.comp's first round, which stops at the first candidate
+    // that beats e) must give the full rule, checked on the host over the whole 2-region.
+    VulkanBackend backend = makeBackend("localmax");
+    for (const TestImage& test : testImages()) {
+        INFO(test.label);
+        backend.prepare(test.image);
+        uint32_t iterations = 0;
+        backend.optimizeStepwise([&](const IterationSnapshot& snapshot) {
+            ++iterations;
+            const std::vector<uint32_t>& candidates = snapshot.candidates;  // sorted, gains alongside
+            auto gainOf = [&](uint32_t f) {
+                return snapshot.candidate_gains[std::lower_bound(candidates.begin(), candidates.end(), f) -
+                                                candidates.begin()];
+            };
+            std::vector<uint32_t> expected;
+            for (uint32_t e : candidates) {
+                bool best = true;
+                for (uint32_t f : regionOf(snapshot.mesh, e, 2))
+                    if (f != e && std::binary_search(candidates.begin(), candidates.end(), f))
+                        best = best && (gainOf(e) > gainOf(f) || (gainOf(e) == gainOf(f) && e < f));
+                if (best) expected.push_back(e);
+            }
+            CHECK(snapshot.accepted == expected);
+            CHECK(snapshot.accepted.size() + snapshot.undecided.size() == candidates.size());
+        });
+        CHECK(iterations > 1);
+    }
+    CHECK(backend.validationMessages() == 0);
+}
+
 TEST_CASE("vulkan: the active set changes nothing but the work", "[vulkan]") {
     const std::vector<TestImage> images = testImages();
     for (const std::string& rule : tableFlipRules()) {
