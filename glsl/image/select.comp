@@ -37,10 +37,8 @@ bool beats(uint e, double gain_e, uint f) {
 // Visits the ROI of e level by level (neighbours, their neighbours, and for degree 3 theirs);
 // an edge may be visited twice, which changes neither test. A neighbour's neighbours include e
 // and the neighbour of e that shares its triangle: those, already visited, are skipped, which
-// saves 4 of the 2-region's 20 visits (each a status and a gain load). In the first round no
-// edge is accepted yet, so a candidate beaten once stays undecided whatever the rest of its
-// ROI holds: it stops there (local-max has only that round).
-uint decide(uint e, uint parity_in, uint degree, bool first_round) {
+// saves 4 of the 2-region's 20 visits (each a status and a gain load).
+uint decide(uint e, uint parity_in, uint degree) {
     const double gain_e = kKeyByGain != 0 ? gainOf(e) : 0.0lf;
     bool best = true;
     const uvec4 level1 = neighboursOf(e);
@@ -49,20 +47,14 @@ uint decide(uint e, uint parity_in, uint degree, bool first_round) {
         if (f1 == kNone) continue;
         uint status = statusOf(parity_in, f1);
         if (status == kStatusAccepted) return kStatusRejected;
-        if (status == kStatusUndecided && !beats(e, gain_e, f1)) {
-            if (first_round) return kStatusUndecided;
-            best = false;
-        }
+        if (status == kStatusUndecided && !beats(e, gain_e, f1)) best = false;
         const uvec4 level2 = neighboursOf(f1);
         for (int j = 0; j < 4; ++j) {
             const uint f2 = level2[j];
             if (f2 == kNone || f2 == e || any(equal(level1, uvec4(f2)))) continue;
             status = statusOf(parity_in, f2);
             if (status == kStatusAccepted) return kStatusRejected;
-            if (status == kStatusUndecided && !beats(e, gain_e, f2)) {
-                if (first_round) return kStatusUndecided;
-                best = false;
-            }
+            if (status == kStatusUndecided && !beats(e, gain_e, f2)) best = false;
             if (degree < 3) continue;
             const uvec4 level3 = neighboursOf(f2);
             for (int k = 0; k < 4; ++k) {
@@ -70,10 +62,7 @@ uint decide(uint e, uint parity_in, uint degree, bool first_round) {
                 if (f3 == kNone || f3 == e) continue;
                 status = statusOf(parity_in, f3);
                 if (status == kStatusAccepted) return kStatusRejected;
-                if (status == kStatusUndecided && !beats(e, gain_e, f3)) {
-                    if (first_round) return kStatusUndecided;
-                    best = false;
-                }
+                if (status == kStatusUndecided && !beats(e, gain_e, f3)) best = false;
             }
         }
     }
@@ -103,7 +92,7 @@ void main() {
             setStatus(parity_out, e, statusOf(parity_in, e));
             continue;
         }
-        const uint decision = decide(e, parity_in, degree, round == 0);
+        const uint decision = decide(e, parity_in, degree);
         setStatus(parity_out, e, decision);
         // An edge is accepted once (later rounds only copy the decision): listed once for flip.comp.
         if (decision == kStatusAccepted) imageStore(accepted_list, int(atomicAdd(control.flips_in_iteration, 1)), uvec4(e));

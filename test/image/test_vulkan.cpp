@@ -158,8 +158,8 @@ TEST_CASE("vulkan: accepted edges are never in each other's ROI, and their gains
 }
 
 TEST_CASE("vulkan: local-max accepts exactly the candidates that beat every candidate in their ROI", "[vulkan]") {
-    // Its one round (glsl/image/select.comp's first round, which stops at the first candidate
-    // that beats e) must give the full rule, checked on the host over the whole 2-region.
+    // Its one round (glsl/image/select.comp) against the rule checked on the host over the
+    // whole 2-region: the larger gain wins, equal gains by the lower id.
     VulkanBackend backend = makeBackend("localmax");
     for (const TestImage& test : testImages()) {
         INFO(test.label);
