@@ -37,6 +37,19 @@ std::vector<uint32_t> columnDistances(const std::vector<uint8_t>& marked, uint32
     return distance;
 }
 
+// Whether the circumcircle of the positive triangle (a, b, c) lies a pixel or more inside
+// [x0, x1] × [y0, y1], fixed point. The pixel covers the rounding of doubles: the centre's
+// terms are at most |b| / |b − c| < 2^27 times the radius (differences below 2^27,
+// predicates.h), so its error stays below 2^-24 of a radius, itself below 2^26 inside.
+bool circleInside(Position a, Position b, Position c, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    const double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
+    const double d = 2.0 * (bx * qy - by * qx);
+    const double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
+    const double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
+    const double cx = a.x + ux, cy = a.y + uy, r = std::sqrt(ux * ux + uy * uy) + kPositionOne;
+    return cx - r >= x0 && cx + r <= x1 && cy - r >= y0 && cy + r <= y1;
+}
+
 }  // namespace
 
 void KnownSamples::measureFrom(const std::vector<uint8_t>& marked) {
@@ -163,6 +176,7 @@ std::vector<uint32_t> KnownSamples::samplesBreaking(const Mesh& mesh, const Pixe
         int32_t x0 = INT32_MAX, x1 = INT32_MIN, y0 = INT32_MAX, y1 = INT32_MIN;
         for (const Position& p : ps) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
         if (x1 < nx0 || x0 > nx1 || y1 < ny0 || y0 > ny1) return false;
+        if (x0 >= nx0 && x1 <= nx1 && y0 >= ny0 && y1 <= ny1) return true;  // inside: most triangles
         const Position* v = ps.begin();
         const size_t n = ps.size();
         for (size_t k = 0; k < n; ++k) {
@@ -187,6 +201,7 @@ std::vector<uint32_t> KnownSamples::samplesBreaking(const Mesh& mesh, const Pixe
         Position a = at(t.v0), b = at(t.v1), c = at(t.v2);
         if (orient(a, b, c) < 0) std::swap(b, c);
         if (!meetsNear({a, b, c})) return;
+        if (circleInside(a, b, c, rx0, ry0, rx1, ry1)) return;  // its samples are all taken
         // The circumcircle, roughly (long double); the exact test decides for each sample near it.
         const long double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
         const long double d = 2.0L * (bx * qy - by * qx);

@@ -18,9 +18,11 @@
 // Not covered: a circle centred outside the frame, whose centre the argument cannot follow in.
 // Along the frame's border long thin triangles (the hull's, with few points near the border)
 // have circles mostly outside the frame while the distances inside stay small, and the rule's
-// crop may cut them. A crop on the border therefore takes the samples of a band along the
-// frame's sides it touches (samplesAlongBorder), as deep as the rule asks there, and
-// samplesBreaking checks its triangulation: any sample it finds missing joins too.
+// crop may cut them (a point file's sparse hull; a mask's border mostly unknown). A crop's
+// triangulation is therefore checked near its tile (samplesBreaking): any sample found
+// missing joins, and the crop is triangulated again. A point file's crop on the border first
+// takes the samples of a band along the frame's sides it touches (samplesAlongBorder), as
+// deep as the rule asks there; a mask's does not (known_pixels.h).
 #pragma once
 
 #include <cstdint>
