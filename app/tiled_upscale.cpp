@@ -330,7 +330,7 @@ uint32_t automaticTileSide(const Backend& backend, uint32_t width, uint32_t heig
     return kMinTileSide;  // the retry below reports that nothing fits
 }
 
-OptimizeStats upscaleRows(Backend& backend, const PackedImage& input, OutputSize out, const TileOptions& options,
+OptimizeStats upscaleRows(Backend& backend, PackedImage& input, OutputSize out, const TileOptions& options,
                           const Sink& sink, const TileStepCallback& on_step) {
     const Image& image = input.header();
     // A core's last samples must lie inside its crop's hull, or they would stay unwritten.
@@ -354,6 +354,13 @@ OptimizeStats upscaleRows(Backend& backend, const PackedImage& input, OutputSize
         // Holes wider than a tile may grow a crop by at most the tile side a side.
         if (options.known)
             for (Tile& tile : tiles) tile.crop = options.known->cropFor(tile.crop, side);
+        // The input rows the strip's crops reach; a retry's smaller tiles reach no further.
+        uint32_t first_row = image.height, end_row = 0;
+        for (const Tile& tile : tiles) {
+            first_row = std::min(first_row, tile.crop.y0);
+            end_row = std::max(end_row, tile.crop.y1);
+        }
+        input.holdRows(first_row, end_row);
         std::string out_of_memory;
         // A strip's meshes count once it succeeds: a retry gives them again.
         std::optional<StitchedMesh> strip_mesh;

@@ -75,12 +75,13 @@ std::string untiledMemoryProblem(const Backend& backend, uint32_t width, uint32_
 
 // Upscales `input` to `out` and hands the output rows to `sink` in order, each row exactly
 // once, out.width × channels floats per row; the tiles' crops are made floats as they go
-// (core/image/packed_image.h). `on_step` is
+// (core/image/packed_image.h), and an input decoded as its rows are needed holds only a
+// strip's crops' rows. `on_step` is
 // called before each tile is optimised and before it is rendered (the tile count may grow
 // after a retry with smaller tiles); with tiles in parallel, from their threads in turn.
 // Returns the optimisation statistics summed over the tiles (overlaps counted in each tile).
 // Throws UserError when even kMinTileSide tiles do not fit the device.
-OptimizeStats upscaleRows(Backend& backend, const PackedImage& input, OutputSize out, const TileOptions& options,
+OptimizeStats upscaleRows(Backend& backend, PackedImage& input, OutputSize out, const TileOptions& options,
                           const std::function<void(OutputRows&& rows)>& sink,
                           const TileStepCallback& on_step = {});
 

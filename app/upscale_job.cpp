@@ -198,7 +198,10 @@ void ImageJob::decode() {
         report_.times.init_s += secondsSince(start);
         return;
     }
-    state_->input = state_->reader->readPacked();
+    // Only the plain tiled path takes the input a strip at a time; a mask, a simplification and
+    // a mesh file read it whole.
+    const bool rows_as_needed = task_.mask.empty() && task_.mesh.empty() && !settings_.simplifies();
+    state_->input = state_->reader->readPacked(rows_as_needed);
     for (const std::string& note : state_->reader->notes()) reporter_.notice(task_.input, note);
     state_->reader.reset();
     if (!task_.mask.empty()) state_->known = knownPixelsOf(task_.mask, state_->input.header());
@@ -395,6 +398,8 @@ void ImageJob::render(Backend& backend) {
                 state_->input = PackedImage(std::move(simplified.values));
         } else
             report_.stats = upscaleRows(backend, state_->input, out, options, sink, on_step);
+    } catch (const InputError&) {
+        throw;  // it names the input
     } catch (const UserError& error) {
         throw UserError(inputName(task_.input) + ": " + error.what());
     }

@@ -24,7 +24,7 @@ namespace ddt {
 // What --stats prints. Building the mesh and uploading it count as optimizing here, not as
 // init: tiled images build one mesh per tile, between the optimizations.
 struct StageTimes {
-    double init_s = 0.0;   // read the header and decode
+    double init_s = 0.0;   // read the header and decode (an input decoded as its tiles need it: in comp_s)
     double comp_s = 0.0;   // build the mesh, upload, optimize (per tile when tiled)
     double reconstruct_s = 0.0;  // the consistent reconstruction (per tile when tiled)
     double final_s = 0.0;  // render + write (the paper's time-final saved the mesh instead)
@@ -48,7 +48,8 @@ public:
     ~ImageJob();
 
     // Each throws UserError ("PATH: reason") when the image fails. open() reads the header
-    // and opens the output, decode() the pixels.
+    // and opens the output, decode() the pixels, or on the plain path readies a JPEG's or
+    // PNG's rows to be decoded as the tiles reach them (core/image/row_decoder.h).
     void open();
     void decode();
     // Before process(): the stream its rendered bands go through, within `budget`.

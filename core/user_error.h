@@ -20,4 +20,11 @@ public:
     using UserError::UserError;
 };
 
+// A UserError met while decoding an input's rows as its tiles need them, after the job began:
+// its message names the input already, so callers that prefix the name pass it on as it is.
+class InputError : public UserError {
+public:
+    using UserError::UserError;
+};
+
 }  // namespace ddt

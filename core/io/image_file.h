@@ -34,7 +34,10 @@ public:
     // or corrupt file, or NaN or infinite samples. Call one of the two, once.
     Image read();
     // The same pixels, kept in the file's sample type where it is 8 or 16 bits (packed_image.h).
-    PackedImage readPacked();
+    // With `rows_as_needed`, a JPEG or a PNG that is not interlaced, stored upright, is decoded
+    // as PackedImage::holdRows asks, its rows freed as the tiles pass (the file stays open
+    // until then); any other file is decoded whole here, as without.
+    PackedImage readPacked(bool rows_as_needed = false);
     // Bytes per sample readPacked keeps: 1 or 2 for codes, 4 for floats.
     uint32_t keptSampleBytes() const;
     // One-line remarks for the user ("PATH: has more than one image (pages or frames); using the first").

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <new>
 #include <optional>
 #include <system_error>
@@ -28,6 +29,7 @@
 #include "png_header.h"
 #include "temp_files.h"
 #include "upright.h"
+#include "user_error.h"
 
 namespace ddt {
 
@@ -127,6 +129,31 @@ std::optional<StoredImage> openWithoutOiio(const ImageFormat& format, const std:
     stored.format_name = format.oiio_name;
     return stored;
 }
+
+// A JPEG's or PNG's rows for a PackedImage that takes them as its tiles need them. It keeps
+// the decoder, and the copy of standard input that the decoder reads. A progressive JPEG is
+// stored again sequentially before its first row: decoded as it is, libjpeg would hold all of
+// its coefficients until the last row (53 MB for a 13 MP photograph, more than its codes).
+class FileRows : public RowDecoder {
+public:
+    FileRows(std::unique_ptr<JpegDecoder> jpeg, std::unique_ptr<PngDecoder> png, std::unique_ptr<TempFile> stdin_copy)
+        : jpeg_(std::move(jpeg)), png_(std::move(png)), stdin_copy_(std::move(stdin_copy)) {}
+
+    void decodeRows(uint32_t count, void* codes) override {
+        try {
+            if (jpeg_ && jpeg_->progressive()) jpeg_ = jpeg_->sequential();
+            if (jpeg_) jpeg_->decodeRows(count, static_cast<uint8_t*>(codes));
+            else png_->decodeRows(count, codes);
+        } catch (const UserError& error) {
+            throw InputError(error.what());  // it names the file
+        }
+    }
+
+private:
+    std::unique_ptr<JpegDecoder> jpeg_;
+    std::unique_ptr<PngDecoder> png_;
+    std::unique_ptr<TempFile> stdin_copy_;
+};
 
 bool allFinite(const std::vector<float>& pixels) {
     for (float value : pixels)
@@ -269,14 +296,22 @@ std::vector<Sample> ImageReader::decode() {
     return samples;
 }
 
-PackedImage ImageReader::readPacked() {
-    const bool straight = header_.hasAlpha() && state_->alpha_storage == AlphaStorage::Straight;
+PackedImage ImageReader::readPacked(bool rows_as_needed) {
+    State& s = *state_;
+    const bool straight = header_.hasAlpha() && s.alpha_storage == AlphaStorage::Straight;
+    if (rows_as_needed && s.codes && s.orientation == 1 && (s.jpeg || (s.png && !s.png->interlaced()))) {
+        if (s.decoded) throw std::logic_error("ImageReader::read called twice");
+        s.decoded = true;
+        s.input.reset();
+        auto rows = std::make_unique<FileRows>(std::move(s.jpeg), std::move(s.png), std::move(s.stdin_copy));
+        return PackedImage(header_, std::move(rows), valuesOfCodes(*s.codes == SampleType::UInt8 ? 8 : 16), straight);
+    }
     // 8- and 16-bit files are kept as their codes (packed_image.h); anything else as floats.
-    if (state_->codes == SampleType::UInt8) {
+    if (s.codes == SampleType::UInt8) {
         std::vector<uint8_t> codes = decode<uint8_t>();
         return PackedImage(header_, std::move(codes), valuesOfCodes(8), straight);
     }
-    if (state_->codes == SampleType::UInt16) {
+    if (s.codes == SampleType::UInt16) {
         std::vector<uint16_t> codes = decode<uint16_t>();
         return PackedImage(header_, std::move(codes), valuesOfCodes(16), straight);
     }
@@ -284,7 +319,7 @@ PackedImage ImageReader::readPacked() {
     image.pixels = decode<float>();
     // Interpolating across a NaN or an infinity spreads it over the whole neighbourhood.
     if ((image.sample_type == SampleType::Half || image.sample_type == SampleType::Float) && !allFinite(image.pixels))
-        throw UserError(state_->name + ": contains NaN or infinite values");
+        throw UserError(s.name + ": contains NaN or infinite values");
     if (straight) premultiply(image.pixels.data(), image.pixels.size(), image.channels);
     return PackedImage(std::move(image));
 }

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <csetjmp>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -72,10 +73,12 @@ bool named(const jpeg_saved_marker_ptr marker, const char* name, size_t name_siz
 struct JpegDecoder::State {
     std::string name;
     std::FILE* file = nullptr;
+    std::vector<uint8_t> bytes;  // read instead of a file
     ErrorManager errors{};
     jpeg_decompress_struct info{};
     bool created = false;
-    bool decoded = false;
+    bool started = false;   // jpeg_start_decompress was called
+    bool finished = false;  // and jpeg_finish_decompress
 
     ~State() {
         if (created) jpeg_destroy_decompress(&info);
@@ -88,13 +91,26 @@ JpegDecoder::JpegDecoder(const std::string& path, const std::string& name) : sta
     s.name = name;
     s.file = std::fopen(path.c_str(), "rb");
     if (!s.file) throw UserError(name + ": cannot open (" + std::strerror(errno) + ")");
+    readHeader();
+}
+
+JpegDecoder::JpegDecoder(std::vector<uint8_t> bytes, const std::string& name) : state_(std::make_unique<State>()) {
+    state_->name = name;
+    state_->bytes = std::move(bytes);
+    readHeader();
+}
+
+void JpegDecoder::readHeader() {
+    State& s = *state_;
+    const std::string& name = s.name;
     s.info.err = jpeg_std_error(&s.errors.base);
     s.errors.base.error_exit = failHere;
     s.errors.base.emit_message = onMessage;
     const bool ok = guarded(s.errors, [&] {
         jpeg_create_decompress(&s.info);
         s.created = true;
-        jpeg_stdio_src(&s.info, s.file);
+        if (s.file) jpeg_stdio_src(&s.info, s.file);
+        else jpeg_mem_src(&s.info, s.bytes.data(), s.bytes.size());
         keepMetadataMarkers(&s.info);
         jpeg_read_header(&s.info, TRUE);
     });
@@ -125,19 +141,67 @@ std::optional<ImageAttributes> JpegDecoder::attributes(const DecodeExif& decode_
     return jpegAttributes(state_->info, decode_exif);
 }
 
+bool JpegDecoder::progressive() const { return jpeg_has_multiple_scans(&state_->info); }
+
+std::unique_ptr<JpegDecoder> JpegDecoder::sequential() {
+    State& s = *state_;
+    if (s.started) throw std::logic_error("JpegDecoder::sequential after decoding began");
+    s.started = true;
+    jvirt_barray_ptr* coefficients = nullptr;
+    if (!guarded(s.errors, [&] { coefficients = jpeg_read_coefficients(&s.info); }))
+        throw UserError(s.name + ": truncated or corrupt image (" + s.errors.message + ")");
+
+    ErrorManager errors{};
+    jpeg_compress_struct out{};
+    out.err = jpeg_std_error(&errors.base);
+    errors.base.error_exit = failHere;
+    errors.base.emit_message = onMessage;
+    unsigned char* buffer = nullptr;  // libjpeg's, from malloc
+    unsigned long size = 0;
+    bool created = false;
+    const bool written = guarded(errors, [&] {
+        jpeg_create_compress(&out);
+        created = true;
+        jpeg_mem_dest(&out, &buffer, &size);
+        jpeg_copy_critical_parameters(&s.info, &out);
+        out.optimize_coding = TRUE;
+        jpeg_write_coefficients(&out, coefficients);
+        jpeg_finish_compress(&out);
+    });
+    std::vector<uint8_t> bytes;
+    if (written) bytes.assign(buffer, buffer + size);
+    if (created) jpeg_destroy_compress(&out);
+    std::free(buffer);
+    if (!written) throw std::runtime_error(s.name + ": libjpeg could not store the coefficients again (" + errors.message + ")");
+    const bool finished = guarded(s.errors, [&] { jpeg_finish_decompress(&s.info); });
+    s.finished = true;
+    if (!finished) throw UserError(s.name + ": truncated or corrupt image (" + s.errors.message + ")");
+    return std::make_unique<JpegDecoder>(std::move(bytes), s.name);
+}
+
 void JpegDecoder::decode(uint8_t* codes) {
+    if (state_->started) throw std::logic_error("JpegDecoder::decode called after other rows");
+    decodeRows(height(), codes);
+}
+
+void JpegDecoder::decodeRows(uint32_t count, uint8_t* codes) {
     State& s = *state_;
     if (!decodable()) throw std::logic_error("JpegDecoder::decode: not a grey, YCbCr or RGB file");
-    if (s.decoded) throw std::logic_error("JpegDecoder::decode called twice");
-    s.decoded = true;
+    if (s.finished || count > height() - s.info.output_scanline)
+        throw std::logic_error("JpegDecoder: rows asked beyond the image");
     const size_t row_bytes = size_t(width()) * channels();
+    const uint32_t end = s.info.output_scanline + count;
     const bool ok = guarded(s.errors, [&] {
-        jpeg_start_decompress(&s.info);
-        while (s.info.output_scanline < s.info.output_height) {
-            JSAMPROW row = codes + size_t(s.info.output_scanline) * row_bytes;
+        if (!s.started) jpeg_start_decompress(&s.info);
+        s.started = true;
+        while (s.info.output_scanline < end) {
+            JSAMPROW row = codes + size_t(count - (end - s.info.output_scanline)) * row_bytes;
             jpeg_read_scanlines(&s.info, &row, 1);
         }
-        jpeg_finish_decompress(&s.info);
+        if (s.info.output_scanline == s.info.output_height) {
+            jpeg_finish_decompress(&s.info);
+            s.finished = true;
+        }
     });
     if (!ok) throw UserError(s.name + ": truncated or corrupt image (" + s.errors.message + ")");
 }

@@ -23,6 +23,8 @@ public:
     // Reads the file's header and the markers kept for metadata. Throws UserError("NAME: …")
     // for a file that is not a readable JPEG; `name` is how messages call the file.
     JpegDecoder(const std::string& path, const std::string& name);
+    // The same for a JPEG file's bytes in memory.
+    JpegDecoder(std::vector<uint8_t> bytes, const std::string& name);
     ~JpegDecoder();
     JpegDecoder(const JpegDecoder&) = delete;
     JpegDecoder& operator=(const JpegDecoder&) = delete;
@@ -37,6 +39,20 @@ public:
     // stored (not turned by any EXIF orientation). Throws UserError for a truncated or corrupt
     // file: libjpeg's warnings (it fills what is missing with grey) count as errors. Once.
     void decode(uint8_t* codes);
+    // The next `count` rows the same way, for a caller that takes them as it needs them: the
+    // first call starts decoding, the one that reaches the last row ends it (and checks the
+    // rest of the file). The rows decoded so far and `count` stay within height().
+    void decodeRows(uint32_t count, uint8_t* codes);
+
+    // Whether the file is progressive (several scans): libjpeg then holds every coefficient
+    // of the image while it decodes, 2 bytes each, more than the codes themselves.
+    bool progressive() const;
+    // A decoder of the same coefficients stored sequentially (one scan, its Huffman tables
+    // fitted), in memory: it decodes to the same codes (the IDCT, upsampling and colour
+    // conversion see the same input), a row at a time without the whole image's coefficients.
+    // Reads the whole file once, holding its coefficients meanwhile. Throws UserError as
+    // decode() does. Instead of decoding this one.
+    std::unique_ptr<JpegDecoder> sequential();
 
     // The attributes OpenImageIO's reader gives (jpeg_header.h); nullopt where it alone can.
     std::optional<ImageAttributes> attributes(const DecodeExif& decode_exif) const;
@@ -47,6 +63,9 @@ public:
     const std::vector<uint8_t>& iccProfile() const { return icc_; }
 
 private:
+    // Reads the header and the metadata markers from the file or the bytes that State holds.
+    void readHeader();
+
     struct State;
     std::unique_ptr<State> state_;
     std::vector<uint8_t> exif_, icc_;

@@ -48,6 +48,7 @@ struct PngDecoder::State {
     spng_ihdr header{};
     Output output{};
     bool decoded = false;
+    uint32_t rows_decoded = 0;  // by decodeRows
 
     ~State() {
         spng_ctx_free(context);
@@ -78,7 +79,7 @@ uint32_t PngDecoder::sampleBits() const { return state_->output.bits; }
 
 void PngDecoder::decode(void* samples) {
     State& s = *state_;
-    if (s.decoded) throw std::logic_error("PngDecoder::decode called twice");
+    if (s.decoded || s.rows_decoded) throw std::logic_error("PngDecoder::decode called twice");
     s.decoded = true;
     size_t size = 0;
     int error = spng_decoded_image_size(s.context, s.output.format, &size);
@@ -88,6 +89,30 @@ void PngDecoder::decode(void* samples) {
     // libspng stops reading the image data once it has every row: the rest of the stream, its
     // Adler-32 and the chunks' CRCs are checked only by reading on to the end, as libpng does.
     if (!error) error = spng_decode_chunks(s.context);
+    if (error) throw UserError(s.name + ": truncated or corrupt image (" + spng_strerror(error) + ")");
+}
+
+bool PngDecoder::interlaced() const { return state_->header.interlace_method != SPNG_INTERLACE_NONE; }
+
+void PngDecoder::decodeRows(uint32_t count, void* samples) {
+    State& s = *state_;
+    if (s.decoded || interlaced() || count > height() - s.rows_decoded)
+        throw std::logic_error("PngDecoder: rows asked beyond the image or out of order");
+    const size_t row_bytes = size_t(width()) * channels() * (sampleBits() / 8);
+    int error = 0;
+    if (s.rows_decoded == 0 && count > 0)
+        error = spng_decode_image(s.context, nullptr, 0, s.output.format, s.output.flags | SPNG_DECODE_PROGRESSIVE);
+    auto* rows = static_cast<uint8_t*>(samples);
+    for (uint32_t i = 0; i < count && !error; ++i) {
+        error = spng_decode_row(s.context, rows + i * row_bytes, row_bytes);
+        ++s.rows_decoded;
+        if (error == SPNG_EOI && s.rows_decoded == height()) error = 0;  // the last row
+    }
+    // As decode(): the rest of the stream and the CRCs are checked by reading on to the end.
+    if (!error && count > 0 && s.rows_decoded == height()) {
+        s.decoded = true;
+        error = spng_decode_chunks(s.context);
+    }
     if (error) throw UserError(s.name + ": truncated or corrupt image (" + spng_strerror(error) + ")");
 }
 

@@ -29,6 +29,13 @@ public:
     // sampleBits() (uint8_t or uint16_t in host order). Throws UserError for a truncated or
     // corrupt file. Once.
     void decode(void* samples);
+    // Whether the rows are stored in passes (Adam7): decodeRows cannot give them in order.
+    bool interlaced() const;
+    // The next `count` rows the same way, for a caller that takes them as it needs them (not
+    // for an interlaced file): the first call starts decoding, the one that reaches the last
+    // row reads on to the file's end and checks it. The rows decoded so far and `count` stay
+    // within height().
+    void decodeRows(uint32_t count, void* samples);
 
     // The eXIf chunk (a TIFF header first) and the iCCP profile (uncompressed), or empty.
     std::vector<uint8_t> exif() const;

@@ -61,6 +61,32 @@ TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the
     }
 }
 
+// A JPEG or a PNG is decoded as the tiles reach its rows (core/image/row_decoder.h), while
+// --mesh reads it whole: the image must be the same bytes either way. A file cut short then
+// fails in the middle of the run, with one line naming it once and nothing left behind.
+TEST_CASE("tiling cli: an input decoded as the tiles reach its rows gives the image of one read whole") {
+    TempFolder folder;
+    const ddt::Image photo = ddt::test::photoCrop();
+    for (const char* name : {"photo.jpg", "photo.png"}) {
+        INFO(name);
+        const std::string input = folder / name, rows = folder / "rows.png", whole = folder / "whole.png";
+        ddt::writeImage(input, photo);
+        REQUIRE(runDdtup({input, rows, "-s", "2", "--tile", "64", "-q", "--backend", "cpu"}).exit_code == 0);
+        REQUIRE(runDdtup({input, whole, "-s", "2", "--tile", "64", "-q", "--backend", "cpu", "--mesh", folder / "mesh.ply"})
+                    .exit_code == 0);
+        CHECK(readFile(rows) == readFile(whole));
+    }
+    // Three quarters of the file: the first strips' rows are there, a later strip's are not.
+    const std::string cut = folder / "cut.jpg";
+    ddt::writeImage(cut, photo);
+    fs::resize_file(cut, fs::file_size(cut) * 3 / 4);
+    const auto before = folder.names();
+    const Run run = runDdtup({cut, folder / "out.png", "-s", "2", "--tile", "64", "--backend", "cpu"});
+    requireOneLineError(run, 1, "cut.jpg", ": truncated or corrupt image (");
+    CHECK(run.err.find("cut.jpg") == run.err.rfind("cut.jpg"));
+    CHECK(folder.names() == before);
+}
+
 TEST_CASE("tiling cli: a device out of memory leads to smaller tiles, never a partial image", "[vulkan]") {
     TempFolder folder;
     const std::string input = writePhotoCrop(folder);

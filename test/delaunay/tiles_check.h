@@ -34,7 +34,7 @@ inline std::vector<float> collectRows(const std::function<void(const RowSink&)>&
 // On the CPU backend and on Vulkan (validation on), at ×1 and ×2: the output of
 // `one_piece(backend, out, sink)` against upscaleRows of `input` in tiles of 64 and 128 with
 // `overlap`, the tiles' samples from `known()` (measured here). Every sample must be equal.
-inline void checkTilesMatchOnePiece(const PackedImage& input, uint32_t overlap,
+inline void checkTilesMatchOnePiece(PackedImage input, uint32_t overlap,
                                     const std::function<void(Backend&, OutputSize, const RowSink&)>& one_piece,
                                     const std::function<std::unique_ptr<KnownSamples>()>& known) {
     const Image& header = input.header();

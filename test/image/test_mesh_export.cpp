@@ -311,7 +311,8 @@ TEST_CASE("stitched mesh: tiles' meshes join into the untiled mesh") {
         TileOptions options;
         options.tile = tile;
         options.mesh = &stitched;
-        upscaleRows(*backend, PackedImage(photo), out, options, [](OutputRows&&) {});
+        PackedImage packed(photo);
+        upscaleRows(*backend, packed, out, options, [](OutputRows&&) {});
         return stitched.take();
     };
     const std::vector<uint32_t> untiled = trianglesWith(0), tiled = trianglesWith(64);

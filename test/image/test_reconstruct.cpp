@@ -389,7 +389,8 @@ TEST_CASE("reconstruct: tiled and untiled consistent upscales agree (CPU)") {
             options.tile = tile;
             options.reconstruct = true;
             options.kernel = kernel;
-            upscaleRows(*backend, PackedImage(input), out, options, [&](OutputRows&& rows) {
+            PackedImage packed(input);
+            upscaleRows(*backend, packed, out, options, [&](OutputRows&& rows) {
                 std::copy_n(rows.floats.get(), size_t(rows.rows()) * out.width * input.channels,
                             result.begin() + size_t(rows.y_begin) * out.width * input.channels);
             });

@@ -102,7 +102,8 @@ StripRun upscaleWith(const Image& image, double scale, BytesOf bytes_of, uint32_
     options.reconstruct = true;
     options.fallback = true;
     options.code_bits = code_bits;
-    upscaleRows(backend, PackedImage(image), out, options, [&](OutputRows&& rows) {
+    PackedImage packed(image);
+    upscaleRows(backend, packed, out, options, [&](OutputRows&& rows) {
         const size_t first = rows.y_begin * row_floats;
         if (!rows.codes8.empty())
             std::copy(rows.codes8.begin(), rows.codes8.end(), run.bytes.begin() + first);

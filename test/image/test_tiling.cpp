@@ -80,8 +80,9 @@ std::vector<float> upscale(Backend& backend, const Image& image, OutputSize out,
     const size_t row_floats = size_t(out.width) * image.channels;
     std::vector<float> result(row_floats * out.height, -1.0f);
     uint32_t next_row = 0;
+    PackedImage packed(image);
     upscaleRows(
-        backend, PackedImage(image), out, options,
+        backend, packed, out, options,
         [&](OutputRows&& rows) {
             // Every row once, in order.
             REQUIRE(rows.y_begin == next_row);
@@ -290,8 +291,9 @@ void checkLargeUpscale(uint32_t side_px) {
     double sum = 0.0;
     float low = 1.0f, high = 0.0f;
     const auto start = std::chrono::steady_clock::now();
+    PackedImage packed(image);
     const OptimizeStats stats = upscaleRows(
-        backend, PackedImage(image), out, {},
+        backend, packed, out, {},
         [&](OutputRows&& rows) {
             REQUIRE(rows.y_begin == next_row);
             next_row = rows.y_end;

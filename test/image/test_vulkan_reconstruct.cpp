@@ -173,7 +173,8 @@ TEST_CASE("vulkan reconstruct: tiles agree with the untiled upscale", "[vulkan]"
         options.reconstruct = true;
         const size_t row_floats = size_t(out.width) * photo.channels;
         std::vector<float> result(row_floats * out.height);
-        upscaleRows(backend, PackedImage(photo), out, options, [&](OutputRows&& rows) {
+        PackedImage packed(photo);
+        upscaleRows(backend, packed, out, options, [&](OutputRows&& rows) {
             std::copy_n(rows.floats.get(), rows.rows() * row_floats, result.begin() + rows.y_begin * row_floats);
         });
         return result;

@@ -7,7 +7,9 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -722,6 +724,73 @@ TEST_CASE("image: inputs kept as 8- or 16-bit codes give crops equal to the file
                     REQUIRE(crop.row(y)[i] == expected[at]);
                 }
         }
+    }
+}
+
+// An input decoded as its rows are needed (ImageReader::readPacked(true)) holds only the rows
+// holdRows asks for, and its crops equal those of the input read whole; a file that cannot go
+// row by row upright (an EXIF turn, a TIFF; an interlaced PNG: test_png_decoder.cpp) is read
+// whole as before.
+TEST_CASE("image: JPEG and PNG inputs decoded row by row give the crops of the whole read") {
+    TempFolder folder;
+    struct Case {
+        const char* name;
+        uint32_t channels;
+        OIIO::TypeDesc type;
+        const char* attribute;  // set to 1 on the written spec, or null
+        int orientation;
+        bool row_by_row;
+    };
+    const Case cases[] = {
+        {"baseline.jpg", 3, OIIO::TypeDesc::UINT8, nullptr, 1, true},
+        {"progressive.jpg", 3, OIIO::TypeDesc::UINT8, "jpeg:progressive", 1, true},
+        {"grey.jpg", 1, OIIO::TypeDesc::UINT8, nullptr, 1, true},
+        {"rgba8.png", 4, OIIO::TypeDesc::UINT8, nullptr, 1, true},
+        {"grey-alpha16.png", 2, OIIO::TypeDesc::UINT16, nullptr, 1, true},
+        {"turned.jpg", 3, OIIO::TypeDesc::UINT8, nullptr, 6, false},
+        {"rgb16.tif", 3, OIIO::TypeDesc::UINT16, nullptr, 1, false},
+    };
+    std::mt19937 random(11);
+    for (const Case& test : cases) {
+        INFO(test.name);
+        const std::string path = folder / test.name;
+        const uint32_t width = 41, height = 67;
+        std::vector<float> stored(size_t(width) * height * test.channels);
+        for (float& value : stored) value = float(random() % 1000) / 999.0f;
+        auto output = OIIO::ImageOutput::create(path);
+        REQUIRE(output);
+        OIIO::ImageSpec spec(int(width), int(height), int(test.channels), test.type);
+        if (test.channels % 2 == 0) {
+            spec.alpha_channel = int(test.channels) - 1;
+            spec.attribute("oiio:UnassociatedAlpha", 1);
+        }
+        if (test.attribute) spec.attribute(test.attribute, 1);
+        if (test.orientation != 1) spec.attribute("Orientation", test.orientation);
+        REQUIRE(output->open(path, spec));
+        REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, stored.data()));
+        REQUIRE(output->close());
+
+        const ddt::PackedImage whole = ddt::ImageReader(path).readPacked();
+        ddt::PackedImage rows = ddt::ImageReader(path).readPacked(true);
+        const Image& header = rows.header();
+        const size_t row_bytes = size_t(header.width) * header.channels * (test.type == OIIO::TypeDesc::UINT16 ? 2 : 1);
+        CHECK(header.width == whole.header().width);
+        CHECK(header.height == whole.header().height);
+        CHECK(rows.bytes() == (test.row_by_row ? 0 : whole.bytes()));
+        // Strips of 10 rows with crops reaching 4 rows beyond, as tiles do.
+        for (uint32_t y = 0; y < header.height; y += 10) {
+            const uint32_t y0 = y < 4 ? 0 : y - 4, y1 = std::min(header.height, y + 14);
+            rows.holdRows(y0, y1);
+            INFO("rows " << y0 << " to " << y1);
+            if (test.row_by_row) CHECK(rows.bytes() == (y1 - y0) * row_bytes);
+            for (const ddt::PixelRect rect : {ddt::PixelRect{0, y0, header.width, y1}, ddt::PixelRect{5, y0 + 1, 19, y1}}) {
+                const Image ours = rows.crop(rect), theirs = whole.crop(rect);
+                REQUIRE(ours.pixels.size() == theirs.pixels.size());
+                CHECK(ours.pixels == theirs.pixels);
+            }
+        }
+        // Rows once freed do not come back.
+        if (test.row_by_row) CHECK_THROWS_AS(rows.holdRows(0, 10), std::logic_error);
     }
 }
 

@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <jpeglib.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <memory>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -69,6 +71,23 @@ std::vector<uint8_t> codesByDecoder(const std::string& path) {
     return codes;
 }
 
+// The codes by decodeRows in runs of 1, 2, 3 … rows; `sequential`: from the decoder's
+// sequential() copy, which must be a single scan.
+std::vector<uint8_t> codesInRuns(const std::string& path, bool sequential) {
+    std::unique_ptr<JpegDecoder> decoder = std::make_unique<JpegDecoder>(path, path);
+    if (sequential) {
+        decoder = decoder->sequential();
+        CHECK_FALSE(decoder->progressive());
+    }
+    const size_t row_bytes = size_t(decoder->width()) * decoder->channels();
+    std::vector<uint8_t> codes(row_bytes * decoder->height());
+    for (uint32_t y = 0, run = 1; y < decoder->height(); y += run, ++run) {
+        run = std::min(run, decoder->height() - y);
+        decoder->decodeRows(run, codes.data() + y * row_bytes);
+    }
+    return codes;
+}
+
 // A flat JPEG written by libjpeg itself, with nothing but an ICC profile if one is given:
 // OpenImageIO writes no CMYK files, always an EXIF block, and no profile longer than one marker.
 void writeByLibjpeg(const std::string& path, uint32_t width, uint32_t height, J_COLOR_SPACE space,
@@ -117,6 +136,12 @@ TEST_CASE("jpeg decoder: every code equals OpenImageIO's for grey, chroma subsam
              s.attribute("Compression", "jpeg:30");
          }},
         {"progressive", 3, 255, 129, [](OIIO::ImageSpec& s) { s.attribute("jpeg:progressive", 1); }},
+        {"progressive grey", 1, 300, 200, [](OIIO::ImageSpec& s) { s.attribute("jpeg:progressive", 1); }},
+        {"progressive 420 odd", 3, 97, 61,
+         [](OIIO::ImageSpec& s) {
+             s.attribute("jpeg:progressive", 1);
+             s.attribute("jpeg:subsampling", "4:2:0");
+         }},
         {"one pixel", 3, 1, 1, {}},
     };
     for (const Case& c : cases) {
@@ -130,6 +155,11 @@ TEST_CASE("jpeg decoder: every code equals OpenImageIO's for grey, chroma subsam
         const std::vector<uint8_t> ours = codesByDecoder(path), theirs = codesByOpenImageIO(path);
         REQUIRE(ours.size() == theirs.size());
         CHECK(ours == theirs);
+        CHECK(header.progressive() == (std::string(c.name).find("progressive") == 0));
+        // A row at a time, and in uneven runs, as a PackedImage asks for them: the same codes.
+        CHECK(codesInRuns(path, false) == theirs);
+        // Stored again sequentially first: one scan, and still the same codes.
+        CHECK(codesInRuns(path, true) == theirs);
     }
 }
 
@@ -184,6 +214,19 @@ TEST_CASE("jpeg decoder: a file that is not a JPEG, a truncated one and a CMYK o
     std::vector<uint8_t> codes(300 * 200 * 3);
     CHECK_THAT(ddt::test::userErrorOf([&] { truncated.decode(codes.data()); }),
                Catch::StartsWith("cut.jpg: truncated or corrupt image ("));
+    // Row by row the first rows come, then the same refusal.
+    JpegDecoder rows(cut, "cut.jpg");
+    rows.decodeRows(8, codes.data());
+    CHECK_THAT(ddt::test::userErrorOf([&] { rows.decodeRows(192, codes.data()); }),
+               Catch::StartsWith("cut.jpg: truncated or corrupt image ("));
+    // A progressive file is read whole when stored again: refused there.
+    const std::string progressive = folder / "progressive.jpg", cut_progressive = folder / "cut-progressive.jpg";
+    writeJpeg(progressive, 300, 200, 3, photoCodes(3, 300, 200), [](OIIO::ImageSpec& s) { s.attribute("jpeg:progressive", 1); });
+    fs::copy_file(progressive, cut_progressive);
+    fs::resize_file(cut_progressive, fs::file_size(progressive) / 2);
+    JpegDecoder scans(cut_progressive, "cut-progressive.jpg");
+    CHECK_THAT(ddt::test::userErrorOf([&] { scans.sequential(); }),
+               Catch::StartsWith("cut-progressive.jpg: truncated or corrupt image ("));
 
     const std::string cmyk = folder / "cmyk.jpg";
     writeByLibjpeg(cmyk, 16, 8, JCS_CMYK);

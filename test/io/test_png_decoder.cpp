@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 #include <spng.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <random>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "header_checks.h"
+#include "image_file.h"
 #include "png_decoder.h"
 #include "png_header.h"
 #include "temp_folder.h"
@@ -125,6 +127,18 @@ Read readByDecoder(const std::string& path) {
     return read;
 }
 
+// The samples by decodeRows in runs of 1, 2, 3 … rows, as a PackedImage asks for them.
+Read readInRuns(const std::string& path) {
+    PngDecoder decoder(path, path);
+    const size_t row_bytes = size_t(decoder.width()) * decoder.channels() * decoder.sampleBits() / 8;
+    Read read{std::vector<uint8_t>(row_bytes * decoder.height()), decoder.channels(), decoder.sampleBits()};
+    for (uint32_t y = 0, run = 1; y < decoder.height(); y += run, ++run) {
+        run = std::min(run, decoder.height() - y);
+        decoder.decodeRows(run, read.bytes.data() + y * row_bytes);
+    }
+    return read;
+}
+
 }  // namespace
 
 TEST_CASE("png decoder: every sample equals OpenImageIO's for each colour type, depth, transparency and interlacing",
@@ -158,6 +172,10 @@ TEST_CASE("png decoder: every sample equals OpenImageIO's for each colour type, 
                     CHECK(ours.channels == theirs.channels);
                     CHECK(ours.bits == theirs.bits);
                     CHECK(ours.bytes == theirs.bytes);
+                    CHECK(PngDecoder(path, path).interlaced() == interlaced);
+                    if (!interlaced) CHECK(readInRuns(path).bytes == theirs.bytes);
+                    // Read for tiles a row at a time only where the rows come in order.
+                    CHECK(ddt::ImageReader(path).readPacked(true).bytes() == (interlaced ? ours.bytes.size() : 0));
                     // The header the reader takes instead of OpenImageIO's: its layout and attributes.
                     const std::optional<ddt::PngHeader> header = ddt::readPngHeader(path, path, ddt::test::decodeExifByOpenImageIO);
                     REQUIRE(header);
@@ -208,5 +226,10 @@ TEST_CASE("png decoder: a file that is not a PNG and a truncated one", "[io]") {
     PngDecoder truncated(cut, "cut.png");
     std::vector<uint8_t> samples(200 * 100 * 3);
     CHECK_THAT(ddt::test::userErrorOf([&] { truncated.decode(samples.data()); }),
+               Catch::StartsWith("cut.png: truncated or corrupt image ("));
+    // Row by row the first rows come, then the same refusal.
+    PngDecoder rows(cut, "cut.png");
+    rows.decodeRows(4, samples.data());
+    CHECK_THAT(ddt::test::userErrorOf([&] { rows.decodeRows(96, samples.data()); }),
                Catch::StartsWith("cut.png: truncated or corrupt image ("));
 }
