@@ -69,8 +69,9 @@ public:
     // those samples' Delaunay triangulation (in boundsOf's coordinates), differ from the whole
     // frame's near `near`: inside the circle of a triangle near it, or beyond a hull edge near
     // it. None: the triangulations agree near `near`. Each triangle near `near` is checked
-    // against the other samples in its circle (samplesNear, then the exact in-circle test with
-    // its tie-break), each hull edge near it against the whole hull's corners.
+    // against the other samples in its circle (addSamplesNear, then the exact in-circle test
+    // with its tie-break; none if the circle lies inside `rect`), each hull edge near it
+    // against the whole hull's corners.
     std::vector<uint32_t> samplesBreaking(const Mesh& mesh, const PixelRect& rect, const std::vector<uint32_t>& extra,
                                           const PixelRect& near) const;
     // Finds each block's largest distance to a sample (exact Euclidean distance transform of
