@@ -34,9 +34,10 @@ public:
     // or corrupt file, or NaN or infinite samples. Call one of the two, once.
     Image read();
     // The same pixels, kept in the file's sample type where it is 8 or 16 bits (packed_image.h).
-    // With `rows_as_needed`, a JPEG or a PNG that is not interlaced, stored upright, is decoded
-    // as PackedImage::holdRows asks, its rows freed as the tiles pass (the file stays open
-    // until then); any other file is decoded whole here, as without.
+    // With `rows_as_needed`, a JPEG or a PNG that is not interlaced, stored upright, is read
+    // through here (a damaged file fails here, as without), then decoded again as
+    // PackedImage::holdRows asks, its rows freed as the tiles pass (the file stays open until
+    // then); any other file is decoded whole here, as without.
     PackedImage readPacked(bool rows_as_needed = false);
     // Bytes per sample readPacked keeps: 1 or 2 for codes, 4 for floats.
     uint32_t keptSampleBytes() const;

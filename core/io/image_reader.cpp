@@ -131,9 +131,7 @@ std::optional<StoredImage> openWithoutOiio(const ImageFormat& format, const std:
 }
 
 // A JPEG's or PNG's rows for a PackedImage that takes them as its tiles need them. It keeps
-// the decoder, and the copy of standard input that the decoder reads. A progressive JPEG is
-// stored again sequentially before its first row: decoded as it is, libjpeg would hold all of
-// its coefficients until the last row (53 MB for a 13 MP photograph, more than its codes).
+// the decoder, and the copy of standard input that the decoder reads.
 class FileRows : public RowDecoder {
 public:
     FileRows(std::unique_ptr<JpegDecoder> jpeg, std::unique_ptr<PngDecoder> png, std::unique_ptr<TempFile> stdin_copy)
@@ -141,7 +139,6 @@ public:
 
     void decodeRows(uint32_t count, void* codes) override {
         try {
-            if (jpeg_ && jpeg_->progressive()) jpeg_ = jpeg_->sequential();
             if (jpeg_) jpeg_->decodeRows(count, static_cast<uint8_t*>(codes));
             else png_->decodeRows(count, codes);
         } catch (const UserError& error) {
@@ -303,6 +300,12 @@ PackedImage ImageReader::readPacked(bool rows_as_needed) {
         if (s.decoded) throw std::logic_error("ImageReader::read called twice");
         s.decoded = true;
         s.input.reset();
+        // A damaged file fails here, before the run, as a whole read would: read through once.
+        // Decoded as it is, a progressive JPEG would hold all of its coefficients until its last
+        // row (53 MB for a 13 MP photograph, more than its codes): stored again in one scan.
+        if (s.jpeg && s.jpeg->progressive()) s.jpeg = s.jpeg->sequential();
+        else if (s.jpeg) JpegDecoder(s.file, s.name).check();
+        else PngDecoder(s.file, s.name).check();
         auto rows = std::make_unique<FileRows>(std::move(s.jpeg), std::move(s.png), std::move(s.stdin_copy));
         return PackedImage(header_, std::move(rows), valuesOfCodes(*s.codes == SampleType::UInt8 ? 8 : 16), straight);
     }

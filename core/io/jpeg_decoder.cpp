@@ -141,6 +141,11 @@ std::optional<ImageAttributes> JpegDecoder::attributes(const DecodeExif& decode_
     return jpegAttributes(state_->info, decode_exif);
 }
 
+void JpegDecoder::check() {
+    std::vector<uint8_t> row(size_t(width()) * channels());
+    for (uint32_t y = 0; y < height(); ++y) decodeRows(1, row.data());
+}
+
 bool JpegDecoder::progressive() const { return jpeg_has_multiple_scans(&state_->info); }
 
 std::unique_ptr<JpegDecoder> JpegDecoder::sequential() {

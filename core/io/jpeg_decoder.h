@@ -44,6 +44,11 @@ public:
     // rest of the file). The rows decoded so far and `count` stay within height().
     void decodeRows(uint32_t count, uint8_t* codes);
 
+    // Decodes the whole file a row at a time, keeping nothing: throws the UserError decode()
+    // would. For a caller that decodes the rows later, as it needs them, and must fail before
+    // it begins. (jpeg_skip_scanlines, which would save the inverse DCT, does not see a file
+    // cut short.) Instead of decoding this one.
+    void check();
     // Whether the file is progressive (several scans): libjpeg then holds every coefficient
     // of the image while it decodes, 2 bytes each, more than the codes themselves.
     bool progressive() const;

@@ -116,6 +116,11 @@ void PngDecoder::decodeRows(uint32_t count, void* samples) {
     if (error) throw UserError(s.name + ": truncated or corrupt image (" + spng_strerror(error) + ")");
 }
 
+void PngDecoder::check() {
+    std::vector<uint8_t> row(size_t(width()) * channels() * (sampleBits() / 8));
+    for (uint32_t y = 0; y < height(); ++y) decodeRows(1, row.data());
+}
+
 std::vector<uint8_t> PngDecoder::exif() const {
     spng_exif exif{};
     if (spng_get_exif(state_->context, &exif) != 0) return {};

@@ -29,6 +29,10 @@ public:
     // sampleBits() (uint8_t or uint16_t in host order). Throws UserError for a truncated or
     // corrupt file. Once.
     void decode(void* samples);
+    // Decodes the whole file a row at a time, keeping nothing: throws the UserError decode()
+    // would. For a caller that decodes the rows later, as it needs them, and must fail before
+    // it begins. Instead of decoding this one; not for an interlaced file.
+    void check();
     // Whether the rows are stored in passes (Adam7): decodeRows cannot give them in order.
     bool interlaced() const;
     // The next `count` rows the same way, for a caller that takes them as it needs them (not

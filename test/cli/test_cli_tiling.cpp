@@ -62,8 +62,9 @@ TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the
 }
 
 // A JPEG or a PNG is decoded as the tiles reach its rows (core/image/row_decoder.h), while
-// --mesh reads it whole: the image must be the same bytes either way. A file cut short then
-// fails in the middle of the run, with one line naming it once and nothing left behind.
+// --mesh reads it whole: the image must be the same bytes either way. A file cut short after
+// the rows of the first strips is still refused before the run (the reader reads it through
+// first), with one line naming it once and nothing left behind.
 TEST_CASE("tiling cli: an input decoded as the tiles reach its rows gives the image of one read whole") {
     TempFolder folder;
     const ddt::Image photo = ddt::test::photoCrop();
@@ -77,6 +78,7 @@ TEST_CASE("tiling cli: an input decoded as the tiles reach its rows gives the im
         CHECK(readFile(rows) == readFile(whole));
     }
     // Three quarters of the file: the first strips' rows are there, a later strip's are not.
+    // (No note of the backend either: it is chosen only once an image is read.)
     const std::string cut = folder / "cut.jpg";
     ddt::writeImage(cut, photo);
     fs::resize_file(cut, fs::file_size(cut) * 3 / 4);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -23,6 +24,7 @@
 #include "run_ddtup.h"
 #include "temp_folder.h"
 #include "temp_files.h"
+#include "user_error.h"
 
 using ddt::Image;
 using ddt::SampleType;
@@ -791,6 +793,23 @@ TEST_CASE("image: JPEG and PNG inputs decoded row by row give the crops of the w
         }
         // Rows once freed do not come back.
         if (test.row_by_row) CHECK_THROWS_AS(rows.holdRows(0, 10), std::logic_error);
+    }
+    // A file cut short after it was read through (by another program, in the middle of a run)
+    // fails when its rows are reached, with an InputError that names it, for the job to pass on.
+    const std::string cut = folder / "cut.jpg";
+    Image noise = makeImage(300, 300, 3, SampleType::UInt8);
+    for (float& value : noise.pixels) value = float(random() % 256) / 255.0f;
+    ddt::writeImage(cut, noise);
+    // Noise keeps it far larger than what stdio and libjpeg read ahead (4 KiB each): the cut is met.
+    REQUIRE(std::filesystem::file_size(cut) > 16 * 4096);
+    ddt::PackedImage rows = ddt::ImageReader(cut).readPacked(true);
+    rows.holdRows(0, 10);
+    std::filesystem::resize_file(cut, std::filesystem::file_size(cut) / 2);
+    try {
+        rows.holdRows(0, rows.header().height);
+        FAIL("the rows of a file cut short were decoded");
+    } catch (const ddt::InputError& error) {
+        CHECK_THAT(error.what(), Catch::StartsWith(cut + ": truncated or corrupt image ("));
     }
 }
 

@@ -12,9 +12,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <iterator>
 #include <memory>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -163,6 +165,37 @@ TEST_CASE("jpeg decoder: every code equals OpenImageIO's for grey, chroma subsam
     }
 }
 
+// check() reads a file without decoding its pixels, so that a file whose rows are decoded
+// later fails before the run begins: it must refuse exactly the files decode() refuses.
+TEST_CASE("jpeg decoder: check() refuses exactly the damaged files decode() refuses", "[io]") {
+    TempFolder folder;
+    const std::string whole = folder / "whole.jpg", damaged = folder / "damaged.jpg";
+    writeJpeg(whole, 300, 200, 3, photoCodes(3, 300, 200));
+    std::ifstream in(whole, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t scan = bytes.rfind("\xff\xda");  // the entropy-coded data follows the last SOS marker
+    REQUIRE(scan != std::string::npos);
+    std::mt19937 random(17);
+    int refused = 0;
+    for (int i = 0; i < 60; ++i) {
+        std::string copy = bytes;
+        const size_t at = scan + 20 + random() % (bytes.size() - scan - 22);
+        copy[at] = char(copy[at] ^ (1 << (random() % 8)));
+        if (i % 10 == 9) copy.resize(scan + 20 + random() % (bytes.size() - scan - 20));  // cut short too
+        std::ofstream(damaged, std::ios::binary | std::ios::trunc) << copy;
+        INFO("damage " << i << " at byte " << at);
+        std::vector<uint8_t> codes(300 * 200 * 3);
+        const std::string by_decode = ddt::test::userErrorOf([&] { JpegDecoder(damaged, "d.jpg").decode(codes.data()); });
+        const std::string by_check = ddt::test::userErrorOf([&] { JpegDecoder(damaged, "d.jpg").check(); });
+        CHECK(by_check.empty() == by_decode.empty());
+        refused += !by_decode.empty();
+    }
+    // Most single flipped bits break a Huffman code or a marker; some only change a coefficient.
+    CHECK(refused >= 10);
+    JpegDecoder intact(whole, "whole.jpg");
+    CHECK_NOTHROW(intact.check());
+}
+
 TEST_CASE("jpeg decoder: the EXIF block and the ICC profile come out as written", "[io]") {
     TempFolder folder;
     const std::string path = folder / "tagged.jpg";
@@ -214,6 +247,8 @@ TEST_CASE("jpeg decoder: a file that is not a JPEG, a truncated one and a CMYK o
     std::vector<uint8_t> codes(300 * 200 * 3);
     CHECK_THAT(ddt::test::userErrorOf([&] { truncated.decode(codes.data()); }),
                Catch::StartsWith("cut.jpg: truncated or corrupt image ("));
+    JpegDecoder checked(cut, "cut.jpg");
+    CHECK_THAT(ddt::test::userErrorOf([&] { checked.check(); }), Catch::StartsWith("cut.jpg: truncated or corrupt image ("));
     // Row by row the first rows come, then the same refusal.
     JpegDecoder rows(cut, "cut.jpg");
     rows.decodeRows(8, codes.data());
