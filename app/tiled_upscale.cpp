@@ -89,6 +89,7 @@ struct Job {
     StitchedMesh* strip_mesh;  // the current strip's tiles' meshes, if the caller wants them
     const KnownSamples* known;  // a mask's or a point file's: the tiles are of its samples
     uint32_t code_bits;         // TileOptions::code_bits
+    uint32_t overlap;           // TileOptions::overlap, at least 1
     std::mutex step_mutex;  // tiles in parallel report their steps one at a time
     std::mutex mesh_mutex;  // and add their meshes one at a time
 
@@ -187,7 +188,7 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
             std::unique_ptr<HostSurface> surface;
             if (job.known) {
                 job.step(first_index + uint32_t(i), total, TilePhase::Optimize);
-                SampledTile shaped = shapeSampledTile(backend, job.input, *job.known, tile, windowOf(job, tile, 0, 0));
+                SampledTile shaped = shapeSampledTile(backend, job.input, *job.known, tile, windowOf(job, tile, 0, 0), job.overlap);
                 surface = std::move(shaped.surface);
                 tile_stats = shaped.stats;
             } else {
@@ -343,7 +344,7 @@ OptimizeStats upscaleRows(Backend& backend, PackedImage& input, OutputSize out, 
     RowEmitter rows(sink, size_t(out.width) * image.channels);
     BackendPool backends(backend, side < largest_side ? tilesAtOnce(backend) : 1);
     Job job{backends, input, image, out, options.reconstruct, options.kernel, options.fallback, on_step, rows, nullptr,
-            options.known, options.code_bits, {}, {}};
+            options.known, options.code_bits, overlap, {}, {}};
     OptimizeStats stats;
     uint32_t tiles_done = 0;
     for (uint32_t y0 = 0; y0 < image.height;) {

@@ -101,9 +101,10 @@ private:
 }  // namespace
 
 SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownSamples& known, const Tile& tile,
-                             const RenderWindow& frame) {
-    // The triangles the tile's output and its flips read lie near its core grown by the overlap.
-    const uint32_t w = frame.input_width, h = frame.input_height, overlap = kPointTileOverlap;
+                             const RenderWindow& frame, uint32_t overlap) {
+    // The triangles the tile's output and its flips read lie near its core grown by the
+    // overlap: the rect its crop was grown from (KnownSamples::cropFor).
+    const uint32_t w = frame.input_width, h = frame.input_height;
     const PixelRect reach{tile.core.x0 - std::min(tile.core.x0, overlap), tile.core.y0 - std::min(tile.core.y0, overlap),
                           std::min(w, tile.core.x1 + overlap), std::min(h, tile.core.y1 + overlap)};
     // The crop's samples, those along the frame's border beyond it, and any others that its

@@ -15,8 +15,7 @@
 
 namespace ddt {
 
-// The overlap of a point file's tiles (TileOptions::overlap), and how far around its core a
-// tile's triangulation is checked (KnownSamples::samplesBreaking). The flips on scattered points
+// The overlap of a point file's tiles (TileOptions::overlap). The flips on scattered points
 // reach further than on the grid: 2048² with 10 % of its pixels as random points, ×1 and ×2,
 // tiles of 128 and 256 against one piece: overlap 16 leaves 2 to 39 differing pixels, 24 and
 // 32 none.
@@ -30,8 +29,9 @@ struct SampledTile {
 // Triangulates the samples of `tile.crop` (on `backend`, which --delaunay may place on its
 // device), optimizes that mesh there and hands over its surface. `input`: a mask's image (a
 // point file's header only); `frame`: the whole input's size and the output's (its crop offset
-// and rows unused).
+// and rows unused); `overlap`: the tiles' (TileOptions::overlap), how far around its core the
+// tile's triangulation is checked (KnownSamples::samplesBreaking).
 SampledTile shapeSampledTile(Backend& backend, const PackedImage& input, const KnownSamples& known, const Tile& tile,
-                             const RenderWindow& frame);
+                             const RenderWindow& frame, uint32_t overlap);
 
 }  // namespace ddt

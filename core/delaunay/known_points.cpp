@@ -26,25 +26,6 @@ uint32_t cellFor(uint32_t width, uint32_t height, size_t points) {
     return cell;
 }
 
-// The corners of the convex hull of `places` (row-major), by index: Andrew's monotone chain,
-// along y here, without the points on its sides.
-std::vector<uint32_t> convexHullOf(const std::vector<Position>& places) {
-    std::vector<uint32_t> hull;
-    auto chain = [&](auto visit_in_order) {
-        const size_t base = hull.size();
-        visit_in_order([&](uint32_t i) {
-            while (hull.size() >= base + 2 && orient(places[hull[hull.size() - 2]], places[hull.back()], places[i]) <= 0)
-                hull.pop_back();
-            hull.push_back(i);
-        });
-        hull.pop_back();  // the other chain's first point
-    };
-    const uint32_t n = uint32_t(places.size());
-    chain([&](auto visit) { for (uint32_t i = 0; i < n; ++i) visit(i); });
-    chain([&](auto visit) { for (uint32_t i = n; i-- > 0;) visit(i); });
-    return hull;
-}
-
 }  // namespace
 
 KnownPoints::KnownPoints(uint32_t width, uint32_t height, const std::vector<Position>& places, const Image& values)
@@ -72,7 +53,9 @@ KnownPoints::KnownPoints(uint32_t width, uint32_t height, const std::vector<Posi
         places_[to] = places[i];
         std::copy_n(values.pixels.data() + i * c, c, values_.pixels.data() + size_t(to) * c);
     }
-    for (uint32_t i : convexHullOf(places)) hull_.push_back(moved_to[i]);
+    std::vector<uint32_t> hull = convexHullOf(places);
+    for (uint32_t& i : hull) i = moved_to[i];
+    keepHullCorners(std::move(hull));
 }
 
 uint64_t KnownPoints::bytesPerPoint(uint32_t channels) {
@@ -109,18 +92,6 @@ std::string KnownPoints::problemIn(const PixelRect& rect) const {
     });
     if (triangle) return "";
     return count < 3 ? "fewer than 3 points" : "all points are collinear";
-}
-
-PixelRect KnownPoints::boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const {
-    PixelRect bounds = rect;
-    for (uint32_t i : extra) {
-        const Position& p = places_[i];
-        bounds.x0 = std::min(bounds.x0, uint32_t(p.x / kPositionOne));
-        bounds.y0 = std::min(bounds.y0, uint32_t(p.y / kPositionOne));
-        bounds.x1 = std::max(bounds.x1, uint32_t((p.x + kPositionOne - 1) / kPositionOne) + 1);
-        bounds.y1 = std::max(bounds.y1, uint32_t((p.y + kPositionOne - 1) / kPositionOne) + 1);
-    }
-    return bounds;
 }
 
 std::vector<uint32_t> KnownPoints::samplesAlongBorder(const PixelRect& rect) const {
@@ -176,8 +147,8 @@ SampleSet KnownPoints::samplesIn(const PackedImage&, const PixelRect& rect, cons
     return set;
 }
 
-template <typename Visit>
-void KnownPoints::forEachNear(long double cx, long double cy, long double radius, Visit visit) const {
+void KnownPoints::addSamplesNear(long double cx, long double cy, long double radius, const PixelRect&,
+                                 std::vector<uint32_t>& ids) const {
     const long double one = kPositionOne, band = kPointBlock * one;
     const uint32_t block_rows = uint32_t(block_first_.size() - 1) / block_columns_;
     // A point's block is its nearest pixel's: it lies up to half a pixel outside the block's
@@ -195,71 +166,8 @@ void KnownPoints::forEachNear(long double cx, long double cy, long double radius
         const size_t row = size_t(by) * block_columns_;
         const uint32_t first = block_first_[row + uint32_t(std::max(0.0L, left))];
         const uint32_t end = block_first_[row + uint32_t(std::min<long double>(right, block_columns_ - 1)) + 1];
-        for (uint32_t i = first; i < end; ++i) visit(i);
+        for (uint32_t i = first; i < end; ++i) ids.push_back(i);
     }
-}
-
-std::vector<uint32_t> KnownPoints::samplesBreaking(const Mesh& mesh, const PixelRect& rect,
-                                                   const std::vector<uint32_t>& extra, const PixelRect& near) const {
-    const PixelRect bounds = boundsOf(rect, extra);
-    const int32_t dx = int32_t(bounds.x0) * kPositionOne, dy = int32_t(bounds.y0) * kPositionOne;
-    auto at = [&](uint32_t v) { return Position{mesh.positions[v].x + dx, mesh.positions[v].y + dy}; };
-    const int32_t nx0 = int32_t(near.x0) * kPositionOne, nx1 = int32_t(near.x1 - 1) * kPositionOne;
-    const int32_t ny0 = int32_t(near.y0) * kPositionOne, ny1 = int32_t(near.y1 - 1) * kPositionOne;
-    // Whether the triangle or segment `ps` meets near's pixel centres' rectangle (separating
-    // axes: the rectangle's, then each side's line with all four corners strictly beyond it).
-    const Position corners[4] = {{nx0, ny0}, {nx1, ny0}, {nx0, ny1}, {nx1, ny1}};
-    auto meetsNear = [&](std::initializer_list<Position> ps) {
-        int32_t x0 = INT32_MAX, x1 = INT32_MIN, y0 = INT32_MAX, y1 = INT32_MIN;
-        for (const Position& p : ps) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-        if (x1 < nx0 || x0 > nx1 || y1 < ny0 || y0 > ny1) return false;
-        const Position* v = ps.begin();
-        const size_t n = ps.size();
-        for (size_t k = 0; k < n; ++k) {
-            const Position &p = v[k], &q = v[(k + 1) % n];
-            // A triangle (positive) lies left of each side; a segment on either side of its line.
-            auto beyond = [&](int sign) {
-                return std::all_of(std::begin(corners), std::end(corners),
-                                   [&](const Position& c) { return orient(p, q, c) * sign > 0; });
-            };
-            if (beyond(-1) || (n == 2 && beyond(1))) return false;
-        }
-        return true;
-    };
-    const int32_t rx0 = int32_t(rect.x0) * kPositionOne, rx1 = int32_t(rect.x1 - 1) * kPositionOne;
-    const int32_t ry0 = int32_t(rect.y0) * kPositionOne, ry1 = int32_t(rect.y1 - 1) * kPositionOne;
-    auto taken = [&](uint32_t i) {
-        const Position& p = places_[i];
-        return (p.x >= rx0 && p.x <= rx1 && p.y >= ry0 && p.y <= ry1) || std::binary_search(extra.begin(), extra.end(), i);
-    };
-    std::vector<uint32_t> breaking;
-    forEachTriangle(mesh, [&](const Triangle& t) {
-        Position a = at(t.v0), b = at(t.v1), c = at(t.v2);
-        if (orient(a, b, c) < 0) std::swap(b, c);
-        if (!meetsNear({a, b, c})) return;
-        // The circumcircle, roughly (long double); the exact test decides for each point near it.
-        const long double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
-        const long double d = 2.0L * (bx * qy - by * qx);
-        const long double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
-        const long double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
-        forEachNear(a.x + ux, a.y + uy, std::sqrt(ux * ux + uy * uy), [&](uint32_t i) {
-            if (!taken(i) && inCircle(a, b, c, places_[i])) breaking.push_back(i);
-        });
-    });
-    for (const EdgeVertices& edge : mesh.vertices) {
-        if (edge.l != kNone && edge.r != kNone) continue;
-        const Position a = at(edge.a), b = at(edge.b);
-        if (!meetsNear({a, b})) continue;
-        // The edge's triangle is left of a→b when it is l: the outside is right of it. A corner
-        // outside is no sample of the mesh (its hull holds them all).
-        for (uint32_t corner : hull_) {
-            const int64_t side = orient(a, b, places_[corner]);
-            if (edge.l != kNone ? side < 0 : side > 0) breaking.push_back(corner);
-        }
-    }
-    std::sort(breaking.begin(), breaking.end());
-    breaking.erase(std::unique(breaking.begin(), breaking.end()), breaking.end());
-    return breaking;
 }
 
 void KnownPoints::measureHoles() {

@@ -29,28 +29,24 @@ public:
     // values; `input` unused.
     SampleSet samplesIn(const PackedImage& input, const PixelRect& rect,
                         const std::vector<uint32_t>& extra = {}) const override;
-    PixelRect boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const override;
     std::vector<uint32_t> samplesAlongBorder(const PixelRect& rect) const override;
     void measureHoles() override;
-    // Checks each triangle near `near` against the other points in its circle (found by
-    // blocks, then the exact in-circle test with its tie-break), and each hull edge near it
-    // against the whole hull's corners.
-    std::vector<uint32_t> samplesBreaking(const Mesh& mesh, const PixelRect& rect, const std::vector<uint32_t>& extra,
-                                          const PixelRect& near) const override;
+
+protected:
+    Position placeOf(uint32_t id) const override { return places_[id]; }
+    // The points of the blocks the disk meets, `rect`'s among them.
+    void addSamplesNear(long double cx, long double cy, long double radius, const PixelRect& rect,
+                        std::vector<uint32_t>& ids) const override;
 
 private:
     // Calls visit(i) for each point i (of the block order) inside `rect`.
     template <typename Visit>
     void forEachIn(const PixelRect& rect, Visit visit) const;
-    // Calls visit(i) for each point i (of the block order) that may lie in the disk (a superset).
-    template <typename Visit>
-    void forEachNear(long double cx, long double cy, long double radius, Visit visit) const;
 
     std::vector<Position> places_;      // block by block, row-major blocks; row-major within each
     Image values_;                      // in the same order
     uint32_t block_columns_ = 0;
     std::vector<uint32_t> block_first_;  // each block's first point, and the end
-    std::vector<uint32_t> hull_;         // the corners of all the points' convex hull, by id
 };
 
 }  // namespace ddt

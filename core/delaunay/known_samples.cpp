@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "parallel.h"
+#include "predicates.h"
 
 namespace ddt {
 
@@ -34,6 +35,19 @@ std::vector<uint32_t> columnDistances(const std::vector<uint8_t>& marked, uint32
         }
     });
     return distance;
+}
+
+// Whether the circumcircle of the positive triangle (a, b, c) lies a pixel or more inside
+// [x0, x1] × [y0, y1], fixed point. The pixel covers the rounding of doubles: the centre's
+// terms are at most |b| / |b − c| < 2^27 times the radius (differences below 2^27,
+// predicates.h), so its error stays below 2^-24 of a radius, itself below 2^26 inside.
+bool circleInside(Position a, Position b, Position c, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    const double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
+    const double d = 2.0 * (bx * qy - by * qx);
+    const double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
+    const double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
+    const double cx = a.x + ux, cy = a.y + uy, r = std::sqrt(ux * ux + uy * uy) + kPositionOne;
+    return cx - r >= x0 && cx + r <= x1 && cy - r >= y0 && cy + r <= y1;
 }
 
 }  // namespace
@@ -115,11 +129,103 @@ PixelRect KnownSamples::cropFor(const PixelRect& rect, uint32_t max_growth) cons
 
 std::vector<uint32_t> KnownSamples::samplesAlongBorder(const PixelRect&) const { return {}; }
 
-PixelRect KnownSamples::boundsOf(const PixelRect& rect, const std::vector<uint32_t>&) const { return rect; }
+PixelRect KnownSamples::boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const {
+    PixelRect bounds = rect;
+    for (uint32_t i : extra) {
+        const Position p = placeOf(i);
+        bounds.x0 = std::min(bounds.x0, uint32_t(p.x / kPositionOne));
+        bounds.y0 = std::min(bounds.y0, uint32_t(p.y / kPositionOne));
+        bounds.x1 = std::max(bounds.x1, uint32_t((p.x + kPositionOne - 1) / kPositionOne) + 1);
+        bounds.y1 = std::max(bounds.y1, uint32_t((p.y + kPositionOne - 1) / kPositionOne) + 1);
+    }
+    return bounds;
+}
 
-std::vector<uint32_t> KnownSamples::samplesBreaking(const Mesh&, const PixelRect&, const std::vector<uint32_t>&,
-                                                    const PixelRect&) const {
-    return {};
+std::vector<uint32_t> KnownSamples::convexHullOf(const std::vector<Position>& places) {
+    std::vector<uint32_t> hull;
+    if (places.empty()) return hull;
+    auto chain = [&](auto visit_in_order) {
+        const size_t base = hull.size();
+        visit_in_order([&](uint32_t i) {
+            while (hull.size() >= base + 2 && orient(places[hull[hull.size() - 2]], places[hull.back()], places[i]) <= 0)
+                hull.pop_back();
+            hull.push_back(i);
+        });
+        hull.pop_back();  // the other chain's first point
+    };
+    const uint32_t n = uint32_t(places.size());
+    chain([&](auto visit) { for (uint32_t i = 0; i < n; ++i) visit(i); });
+    chain([&](auto visit) { for (uint32_t i = n; i-- > 0;) visit(i); });
+    return hull;
+}
+
+std::vector<uint32_t> KnownSamples::samplesBreaking(const Mesh& mesh, const PixelRect& rect,
+                                                    const std::vector<uint32_t>& extra, const PixelRect& near) const {
+    const PixelRect bounds = boundsOf(rect, extra);
+    const int32_t dx = int32_t(bounds.x0) * kPositionOne, dy = int32_t(bounds.y0) * kPositionOne;
+    auto at = [&](uint32_t v) {
+        const Position p = positionOf(mesh, v);
+        return Position{p.x + dx, p.y + dy};
+    };
+    const int32_t nx0 = int32_t(near.x0) * kPositionOne, nx1 = int32_t(near.x1 - 1) * kPositionOne;
+    const int32_t ny0 = int32_t(near.y0) * kPositionOne, ny1 = int32_t(near.y1 - 1) * kPositionOne;
+    // Whether the triangle or segment `ps` meets near's pixel centres' rectangle (separating
+    // axes: the rectangle's, then each side's line with all four corners strictly beyond it).
+    const Position corners[4] = {{nx0, ny0}, {nx1, ny0}, {nx0, ny1}, {nx1, ny1}};
+    auto meetsNear = [&](std::initializer_list<Position> ps) {
+        int32_t x0 = INT32_MAX, x1 = INT32_MIN, y0 = INT32_MAX, y1 = INT32_MIN;
+        for (const Position& p : ps) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+        if (x1 < nx0 || x0 > nx1 || y1 < ny0 || y0 > ny1) return false;
+        if (x0 >= nx0 && x1 <= nx1 && y0 >= ny0 && y1 <= ny1) return true;  // inside: most triangles
+        const Position* v = ps.begin();
+        const size_t n = ps.size();
+        for (size_t k = 0; k < n; ++k) {
+            const Position &p = v[k], &q = v[(k + 1) % n];
+            // A triangle (positive) lies left of each side; a segment on either side of its line.
+            auto beyond = [&](int sign) {
+                return std::all_of(std::begin(corners), std::end(corners),
+                                   [&](const Position& c) { return orient(p, q, c) * sign > 0; });
+            };
+            if (beyond(-1) || (n == 2 && beyond(1))) return false;
+        }
+        return true;
+    };
+    const int32_t rx0 = int32_t(rect.x0) * kPositionOne, rx1 = int32_t(rect.x1 - 1) * kPositionOne;
+    const int32_t ry0 = int32_t(rect.y0) * kPositionOne, ry1 = int32_t(rect.y1 - 1) * kPositionOne;
+    auto taken = [&](uint32_t i) {
+        const Position p = placeOf(i);
+        return (p.x >= rx0 && p.x <= rx1 && p.y >= ry0 && p.y <= ry1) || std::binary_search(extra.begin(), extra.end(), i);
+    };
+    std::vector<uint32_t> breaking, candidates;
+    forEachTriangle(mesh, [&](const Triangle& t) {
+        Position a = at(t.v0), b = at(t.v1), c = at(t.v2);
+        if (orient(a, b, c) < 0) std::swap(b, c);
+        if (!meetsNear({a, b, c})) return;
+        if (circleInside(a, b, c, rx0, ry0, rx1, ry1)) return;  // its samples are all taken
+        // The circumcircle, roughly (long double); the exact test decides for each sample near it.
+        const long double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
+        const long double d = 2.0L * (bx * qy - by * qx);
+        const long double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
+        const long double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
+        candidates.clear();
+        addSamplesNear(a.x + ux, a.y + uy, std::sqrt(ux * ux + uy * uy), rect, candidates);
+        for (uint32_t i : candidates)
+            if (!taken(i) && inCircle(a, b, c, placeOf(i))) breaking.push_back(i);
+    });
+    for (const EdgeVertices& edge : mesh.vertices) {
+        if (edge.l != kNone && edge.r != kNone) continue;
+        const Position a = at(edge.a), b = at(edge.b);
+        if (!meetsNear({a, b})) continue;
+        // The edge's triangle is left of a→b when it is l: the outside is right of it. A corner
+        // outside is no sample of the mesh (its hull holds them all).
+        for (uint32_t corner : hull_) {
+            const int64_t side = orient(a, b, placeOf(corner));
+            if (edge.l != kNone ? side < 0 : side > 0) breaking.push_back(corner);
+        }
+    }
+    std::sort(breaking.begin(), breaking.end());
+    breaking.erase(std::unique(breaking.begin(), breaking.end()), breaking.end());
+    return breaking;
 }
 
 }  // namespace ddt

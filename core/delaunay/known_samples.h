@@ -18,9 +18,11 @@
 // Not covered: a circle centred outside the frame, whose centre the argument cannot follow in.
 // Along the frame's border long thin triangles (the hull's, with few points near the border)
 // have circles mostly outside the frame while the distances inside stay small, and the rule's
-// crop may cut them. A crop on the border therefore takes the samples of a band along the
-// frame's sides it touches (samplesAlongBorder), as deep as the rule asks there, and
-// samplesBreaking checks its triangulation: any sample it finds missing joins too.
+// crop may cut them (a point file's sparse hull; a mask's border mostly unknown). A crop's
+// triangulation is therefore checked near its tile (samplesBreaking): any sample found
+// missing joins, and the crop is triangulated again. A point file's crop on the border first
+// takes the samples of a band along the frame's sides it touches (samplesAlongBorder), as
+// deep as the rule asks there; a mask's does not (known_pixels.h).
 #pragma once
 
 #include <cstdint>
@@ -59,17 +61,19 @@ public:
                                 const std::vector<uint32_t>& extra = {}) const = 0;
     // The samples (ids, ascending) in a band along each side of the frame that `rect` touches,
     // outside `rect`: the band is as deep as the rule asks for the blocks along that side.
-    // None for a mask.
+    // None by default (a mask's pixels: known_pixels.h says why).
     virtual std::vector<uint32_t> samplesAlongBorder(const PixelRect& rect) const;
     // The pixels whose centres' rectangle holds those samples: `rect` grown to hold `extra`.
-    virtual PixelRect boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const;
+    PixelRect boundsOf(const PixelRect& rect, const std::vector<uint32_t>& extra) const;
     // The samples (ids, ascending) other than those of `rect` and `extra` that make `mesh`,
     // those samples' Delaunay triangulation (in boundsOf's coordinates), differ from the whole
     // frame's near `near`: inside the circle of a triangle near it, or beyond a hull edge near
-    // it. None: the triangulations agree near `near`. The default trusts the rule (a mask's
-    // pixels: a lattice up to the frame's border).
-    virtual std::vector<uint32_t> samplesBreaking(const Mesh& mesh, const PixelRect& rect,
-                                                  const std::vector<uint32_t>& extra, const PixelRect& near) const;
+    // it. None: the triangulations agree near `near`. Each triangle near `near` is checked
+    // against the other samples in its circle (addSamplesNear, then the exact in-circle test
+    // with its tie-break; none if the circle lies inside `rect`), each hull edge near it
+    // against the whole hull's corners.
+    std::vector<uint32_t> samplesBreaking(const Mesh& mesh, const PixelRect& rect, const std::vector<uint32_t>& extra,
+                                          const PixelRect& near) const;
     // Finds each block's largest distance to a sample (exact Euclidean distance transform of
     // the cells); holds 5 bytes a cell while it runs.
     virtual void measureHoles() = 0;
@@ -91,6 +95,17 @@ protected:
     KnownSamples& operator=(KnownSamples&&) = default;
 
     uint32_t cell() const { return cell_; }
+    // Sample `id`'s place in the frame, fixed point (glsl/fixed_position.h).
+    virtual Position placeOf(uint32_t id) const = 0;
+    // Appends to `ids` every sample that may lie in the disk of `radius` around (cx, cy), fixed
+    // point (a superset), except perhaps those of `rect`.
+    virtual void addSamplesNear(long double cx, long double cy, long double radius, const PixelRect& rect,
+                                std::vector<uint32_t>& ids) const = 0;
+    // The corners of `places`' convex hull (row-major, distinct), by index: Andrew's monotone
+    // chain, along y here, without the places on its sides.
+    static std::vector<uint32_t> convexHullOf(const std::vector<Position>& places);
+    // The ids of the corners of all the samples' convex hull, for samplesBreaking.
+    void keepHullCorners(std::vector<uint32_t> ids) { hull_ = std::move(ids); }
     // The distance transform of `marked`: ceil(width / cell) × ceil(height / cell) bytes,
     // row-major, non-zero where a sample lies in the cell.
     void measureFrom(const std::vector<uint8_t>& marked);
@@ -107,6 +122,7 @@ private:
     float spread_ = 1.0f;
     uint32_t block_columns_ = 0;
     std::vector<float> block_distance_;  // per kBlock × kBlock pixels, row-major
+    std::vector<uint32_t> hull_;         // the corners of all the samples' convex hull, by id
 };
 
 }  // namespace ddt
