@@ -669,6 +669,26 @@ std::vector<float> expectedPixels(const RawFile& raw, int orientation, bool stra
     return pixels;
 }
 
+// Writes random samples of `type` through OpenImageIO: straight alpha last where the channel
+// count is even, the EXIF `orientation`, and `attribute` set to 1 where one is given.
+void writeRandomImage(const std::string& path, uint32_t width, uint32_t height, uint32_t channels, OIIO::TypeDesc type,
+                      int orientation, std::mt19937& random, const char* attribute = nullptr) {
+    std::vector<float> stored(size_t(width) * height * channels);
+    for (float& value : stored) value = float(random() % 1000) / 999.0f;
+    auto output = OIIO::ImageOutput::create(path);
+    REQUIRE(output);
+    OIIO::ImageSpec spec(int(width), int(height), int(channels), type);
+    if (channels % 2 == 0) {
+        spec.alpha_channel = int(channels) - 1;
+        spec.attribute("oiio:UnassociatedAlpha", 1);
+    }
+    if (attribute) spec.attribute(attribute, 1);
+    if (orientation != 1) spec.attribute("Orientation", orientation);
+    REQUIRE(output->open(path, spec));
+    REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, stored.data()));
+    REQUIRE(output->close());
+}
+
 // 8- and 16-bit inputs are kept as their codes and made floats a crop at a time
 // (core/image/packed_image.h): every crop must hold exactly the floats OIIO reads, upright and
 // premultiplied, and the codes must take a quarter or a half of the floats' bytes.
@@ -691,19 +711,7 @@ TEST_CASE("image: inputs kept as 8- or 16-bit codes give crops equal to the file
         INFO(test.name);
         const std::string path = folder / test.name;
         const uint32_t width = 37, height = 23;
-        std::vector<float> stored(size_t(width) * height * test.channels);
-        for (float& value : stored) value = float(random() % 1000) / 999.0f;
-        auto output = OIIO::ImageOutput::create(path);
-        REQUIRE(output);
-        OIIO::ImageSpec spec(int(width), int(height), int(test.channels), test.type);
-        if (test.channels % 2 == 0) {
-            spec.alpha_channel = int(test.channels) - 1;
-            spec.attribute("oiio:UnassociatedAlpha", 1);
-        }
-        if (test.orientation != 1) spec.attribute("Orientation", test.orientation);
-        REQUIRE(output->open(path, spec));
-        REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, stored.data()));
-        REQUIRE(output->close());
+        writeRandomImage(path, width, height, test.channels, test.type, test.orientation, random);
 
         const RawFile raw = readRaw(path);
         const bool straight = raw.spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
@@ -756,21 +764,7 @@ TEST_CASE("image: JPEG and PNG inputs decoded row by row give the crops of the w
     for (const Case& test : cases) {
         INFO(test.name);
         const std::string path = folder / test.name;
-        const uint32_t width = 41, height = 67;
-        std::vector<float> stored(size_t(width) * height * test.channels);
-        for (float& value : stored) value = float(random() % 1000) / 999.0f;
-        auto output = OIIO::ImageOutput::create(path);
-        REQUIRE(output);
-        OIIO::ImageSpec spec(int(width), int(height), int(test.channels), test.type);
-        if (test.channels % 2 == 0) {
-            spec.alpha_channel = int(test.channels) - 1;
-            spec.attribute("oiio:UnassociatedAlpha", 1);
-        }
-        if (test.attribute) spec.attribute(test.attribute, 1);
-        if (test.orientation != 1) spec.attribute("Orientation", test.orientation);
-        REQUIRE(output->open(path, spec));
-        REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, stored.data()));
-        REQUIRE(output->close());
+        writeRandomImage(path, 41, 67, test.channels, test.type, test.orientation, random, test.attribute);
 
         const ddt::PackedImage whole = ddt::ImageReader(path).readPacked();
         ddt::PackedImage rows = ddt::ImageReader(path).readPacked(true);
