@@ -55,11 +55,11 @@ struct VulkanBackend::State {
     std::vector<float> band_texels;  // a rendered band as read back, four floats per pixel
 
     std::vector<Buffer*> buffers() {
-        return {&edge_vertices, &edge_neighbours, &luma,          &alpha,        &gain,          &status[0],
-                &status[1],     &mark,            &active_list[0], &active_list[1], &candidate_list, &accepted_list,
-                &round_list[0],
-                &round_list[1], &control,         &control_readback, &args,      &partial_sums,  &pixels,
-                &band,          &row_spans,       &positions,    &fallback_weights, &fallback_across};
+        return {&edge_vertices,  &edge_neighbours, &luma,          &alpha,          &gain,
+                &status[0],      &status[1],       &mark,          &active_list[0], &active_list[1],
+                &candidate_list, &accepted_list,   &round_list[0], &round_list[1],  &control,
+                &control_readback, &args,          &partial_sums,  &pixels,         &band,
+                &row_spans,      &positions,       &fallback_weights, &fallback_across};
     }
 
     void releaseBuffers() {

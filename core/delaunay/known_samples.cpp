@@ -37,17 +37,25 @@ std::vector<uint32_t> columnDistances(const std::vector<uint8_t>& marked, uint32
     return distance;
 }
 
-// Whether the circumcircle of the positive triangle (a, b, c) lies a pixel or more inside
-// [x0, x1] × [y0, y1], fixed point. The pixel covers the rounding of doubles: the centre's
-// terms are at most |b| / |b − c| < 2^27 times the radius (differences below 2^27,
-// predicates.h), so its error stays below 2^-24 of a radius, itself below 2^26 inside.
-bool circleInside(Position a, Position b, Position c, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
-    const double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
-    const double d = 2.0 * (bx * qy - by * qx);
-    const double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
-    const double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
-    const double cx = a.x + ux, cy = a.y + uy, r = std::sqrt(ux * ux + uy * uy) + kPositionOne;
-    return cx - r >= x0 && cx + r <= x1 && cy - r >= y0 && cy + r <= y1;
+// A triangle's circumcircle, fixed point, roughly: the exact in-circle test decides for each
+// sample near it. Long doubles: the centre's terms are at most |b| / |b − c| < 2^27 times the
+// radius (differences below 2^27, predicates.h), so its error stays far below a pixel.
+struct Circle {
+    long double x, y, radius;
+
+    // Whether it lies a pixel (the rounding's margin) or more inside [x0, x1] × [y0, y1].
+    bool inside(int32_t x0, int32_t y0, int32_t x1, int32_t y1) const {
+        const long double r = radius + kPositionOne;
+        return x - r >= x0 && x + r <= x1 && y - r >= y0 && y + r <= y1;
+    }
+};
+
+Circle circumcircleOf(Position a, Position b, Position c) {
+    const long double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
+    const long double d = 2.0L * (bx * qy - by * qx);
+    const long double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
+    const long double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
+    return {a.x + ux, a.y + uy, std::sqrt(ux * ux + uy * uy)};
 }
 
 }  // namespace
@@ -201,14 +209,10 @@ std::vector<uint32_t> KnownSamples::samplesBreaking(const Mesh& mesh, const Pixe
         Position a = at(t.v0), b = at(t.v1), c = at(t.v2);
         if (orient(a, b, c) < 0) std::swap(b, c);
         if (!meetsNear({a, b, c})) return;
-        if (circleInside(a, b, c, rx0, ry0, rx1, ry1)) return;  // its samples are all taken
-        // The circumcircle, roughly (long double); the exact test decides for each sample near it.
-        const long double bx = b.x - a.x, by = b.y - a.y, qx = c.x - a.x, qy = c.y - a.y;
-        const long double d = 2.0L * (bx * qy - by * qx);
-        const long double b2 = bx * bx + by * by, q2 = qx * qx + qy * qy;
-        const long double ux = (qy * b2 - by * q2) / d, uy = (bx * q2 - qx * b2) / d;
+        const Circle circle = circumcircleOf(a, b, c);
+        if (circle.inside(rx0, ry0, rx1, ry1)) return;  // its samples are all taken
         candidates.clear();
-        addSamplesNear(a.x + ux, a.y + uy, std::sqrt(ux * ux + uy * uy), rect, candidates);
+        addSamplesNear(circle.x, circle.y, circle.radius, rect, candidates);
         for (uint32_t i : candidates)
             if (!taken(i) && inCircle(a, b, c, placeOf(i))) breaking.push_back(i);
     });

@@ -34,20 +34,15 @@ PackedImage::PackedImage(Image header, std::unique_ptr<RowDecoder> rows, std::ve
 template <class Code>
 void PackedImage::decodeHeldRows(std::vector<Code>& codes, uint32_t y0, uint32_t y1) {
     const size_t row_samples = size_t(header_.width) * header_.channels;
-    // Rows before y0 not yet decoded are decoded and dropped, a row at a time.
-    std::vector<Code> skipped;
-    for (; decoded_rows_ < y0; ++decoded_rows_) {
-        skipped.resize(row_samples);
-        rows_->decodeRows(1, skipped.data());
-    }
-    const uint32_t end = std::max(y1, decoded_rows_);
+    // Rows are decoded in order: asked to skip ahead, the window starts at the first row not
+    // yet decoded (the tiles' strips overlap, so they never skip).
+    const uint32_t first = std::min(y0, decoded_rows_), end = std::max(y1, decoded_rows_);
     // A new vector of the window's exact size: the rows kept move to its front.
-    std::vector<Code> held((end - y0) * row_samples);
-    std::copy(codes.begin() + (y0 - first_row_) * row_samples, codes.end(), held.begin());
-    const uint32_t kept_end = decoded_rows_;
-    if (end > kept_end) rows_->decodeRows(end - kept_end, held.data() + (kept_end - y0) * row_samples);
+    std::vector<Code> held((end - first) * row_samples);
+    std::copy(codes.begin() + (first - first_row_) * row_samples, codes.end(), held.begin());
+    if (end > decoded_rows_) rows_->decodeRows(end - decoded_rows_, held.data() + (decoded_rows_ - first) * row_samples);
     codes = std::move(held);
-    first_row_ = y0;
+    first_row_ = first;
     decoded_rows_ = end;
 }
 

@@ -45,6 +45,14 @@ void onMessage(j_common_ptr info, int level) {
     if (level < 0) keepProblem(info);
 }
 
+// `errors` set up to report to us, for a decompressor's or compressor's `err`.
+jpeg_error_mgr* reportingTo(ErrorManager& errors) {
+    jpeg_std_error(&errors.base);
+    errors.base.error_exit = failHere;
+    errors.base.emit_message = onMessage;
+    return &errors.base;
+}
+
 // Runs `step`, which calls into libjpeg, and says whether libjpeg reported nothing. A fatal
 // error comes back here by longjmp past `step`'s frames, which own nothing to destroy.
 template <class Step>
@@ -103,9 +111,7 @@ JpegDecoder::JpegDecoder(std::vector<uint8_t> bytes, const std::string& name) : 
 void JpegDecoder::readHeader() {
     State& s = *state_;
     const std::string& name = s.name;
-    s.info.err = jpeg_std_error(&s.errors.base);
-    s.errors.base.error_exit = failHere;
-    s.errors.base.emit_message = onMessage;
+    s.info.err = reportingTo(s.errors);
     const bool ok = guarded(s.errors, [&] {
         jpeg_create_decompress(&s.info);
         s.created = true;
@@ -158,9 +164,7 @@ std::unique_ptr<JpegDecoder> JpegDecoder::sequential() {
 
     ErrorManager errors{};
     jpeg_compress_struct out{};
-    out.err = jpeg_std_error(&errors.base);
-    errors.base.error_exit = failHere;
-    errors.base.emit_message = onMessage;
+    out.err = reportingTo(errors);
     unsigned char* buffer = nullptr;  // libjpeg's, from malloc
     unsigned long size = 0;
     bool created = false;
