@@ -5,6 +5,8 @@
 #include <cmath>
 #include <mutex>
 
+#include "channel_count.h"
+
 namespace ddt {
 
 constexpr int kLanczosTaps = 6;  // Lanczos3 under magnification: 3 input pixels each side
@@ -196,7 +198,15 @@ std::shared_ptr<const std::vector<LanczosTaps>> ConvolutionFallback::columnsOf(c
 }
 
 void ConvolutionFallback::blend(const RenderWindow& window, float* rows, size_t row_stride) const {
-    const uint32_t c = input_.channels, crop_w = input_.width, crop_h = input_.height, width = window.width();
+    withChannelCount(input_.channels, [&](auto channels) {
+        blendWith<decltype(channels)::value>(window, rows, row_stride);
+    });
+}
+
+// blend with the channel count a constant, so that the loops over a pixel's channels unroll.
+template <uint32_t c>
+void ConvolutionFallback::blendWith(const RenderWindow& window, float* rows, size_t row_stride) const {
+    const uint32_t crop_w = input_.width, crop_h = input_.height, width = window.width();
     const size_t row_floats = row_stride ? row_stride : size_t(width) * c;
     const std::shared_ptr<const std::vector<LanczosTaps>> column_taps = columnsOf(window);
     const std::vector<LanczosTaps>& columns = *column_taps;

@@ -79,6 +79,8 @@ public:
 private:
     struct ColumnCache;
     std::shared_ptr<const std::vector<LanczosTaps>> columnsOf(const RenderWindow& window) const;
+    template <uint32_t c>
+    void blendWith(const RenderWindow& window, float* rows, size_t row_stride) const;
 
     Image input_;
     std::vector<float> weights_;
