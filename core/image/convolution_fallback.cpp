@@ -215,6 +215,10 @@ void ConvolutionFallback::blendWith(const RenderWindow& window, float* rows, siz
     const size_t line = size_t(width) * c;  // floats of one row of horizontal sums
     std::vector<float> across;     // the horizontal pass of crop rows [first_row, first_row + count)
     std::vector<float> convolved(line);
+    // The weights' lerps along the columns, per output column, in the cell row of the last
+    // output row and the one below: under magnification several output rows share a cell row.
+    std::vector<float> top(width), bottom(width), surface_weight(width);
+    uint32_t lerped_cell = UINT32_MAX;
     for (uint32_t chunk = window.y_begin; chunk < window.y_end; chunk += kRowsPerChunk) {
         const uint32_t chunk_end = std::min(window.y_end, chunk + kRowsPerChunk);
         // The taps move down with the output row, so the chunk reads one run of crop rows.
@@ -238,19 +242,24 @@ void ConvolutionFallback::blendWith(const RenderWindow& window, float* rows, siz
             std::array<const float*, kLanczosTaps> tap_rows;
             for (int j = 0; j < kLanczosTaps; ++j) tap_rows[j] = across.data() + size_t(row.index[j] - first_row) * line;
             sumTaps(tap_rows, row.weight, convolved.data(), line);
-            const float* w_top = weights_.data() + size_t(row.cell) * crop_w;
-            const float* w_bottom = weights_.data() + size_t(std::min(row.cell + 1, crop_h - 1)) * crop_w;
+            if (row.cell != lerped_cell) {
+                const float* w_top = weights_.data() + size_t(row.cell) * crop_w;
+                const float* w_bottom = weights_.data() + size_t(std::min(row.cell + 1, crop_h - 1)) * crop_w;
+                for (uint32_t x = 0; x < width; ++x) {
+                    const LanczosTaps& col = columns[x];
+                    const uint32_t right = std::min(col.cell + 1, crop_w - 1);
+                    top[x] = w_top[col.cell] + col.fraction * (w_top[right] - w_top[col.cell]);
+                    bottom[x] = w_bottom[col.cell] + col.fraction * (w_bottom[right] - w_bottom[col.cell]);
+                }
+                lerped_cell = row.cell;
+            }
+            for (uint32_t x = 0; x < width; ++x) surface_weight[x] = top[x] + row.fraction * (bottom[x] - top[x]);
             float* out = rows + size_t(y - window.y_begin) * row_floats;
             for (uint32_t x = 0; x < width; ++x) {
-                const LanczosTaps& col = columns[x];
-                const uint32_t right = std::min(col.cell + 1, crop_w - 1);
-                const float top = w_top[col.cell] + col.fraction * (w_top[right] - w_top[col.cell]);
-                const float bottom = w_bottom[col.cell] + col.fraction * (w_bottom[right] - w_bottom[col.cell]);
-                const float surface_weight = top + row.fraction * (bottom - top);
                 float* pixel = out + size_t(x) * c;
                 const float* blended = convolved.data() + size_t(x) * c;
                 for (uint32_t k = 0; k < c; ++k) {
-                    float value = surface_weight * pixel[k] + (1.0f - surface_weight) * blended[k];
+                    float value = surface_weight[x] * pixel[k] + (1.0f - surface_weight[x]) * blended[k];
                     if (integer) value = std::clamp(value, 0.0f, 1.0f);
                     pixel[k] = value;
                 }
