@@ -166,11 +166,6 @@ void flipEdge(Mesh& mesh, uint32_t e) {
     patchNeighbour(mesh, n.rb, e, v.a, v.l, n.bl);
 }
 
-uint32_t farVertex(const Mesh& mesh, uint32_t neighbour, uint32_t near) {
-    if (neighbour == kNone) return kNone;
-    const EdgeVertices& v = mesh.vertices[neighbour];
-    return v.l == near ? v.r : v.l;
-}
 
 FlipStencil flipStencil(const Mesh& mesh, uint32_t e) {
     const EdgeVertices& v = mesh.vertices[e];

@@ -124,7 +124,11 @@ FlipStencil flipStencil(const Mesh& mesh, uint32_t e);
 
 // Far vertex of neighbour edge `neighbour` as seen from the triangle whose third vertex is
 // `near` (kNone if the neighbour is kNone or a boundary edge).
-uint32_t farVertex(const Mesh& mesh, uint32_t neighbour, uint32_t near);
+inline uint32_t farVertex(const Mesh& mesh, uint32_t neighbour, uint32_t near) {  // inline: four per flip gain
+    if (neighbour == kNone) return kNone;
+    const EdgeVertices& v = mesh.vertices[neighbour];
+    return v.l == near ? v.r : v.l;
+}
 
 // The neighbours of e (kNone entries included), in bl, la, ar, rb order.
 inline uint32_t neighbourAt(const EdgeNeighbours& n, int i) {
