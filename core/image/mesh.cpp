@@ -166,7 +166,6 @@ void flipEdge(Mesh& mesh, uint32_t e) {
     patchNeighbour(mesh, n.rb, e, v.a, v.l, n.bl);
 }
 
-
 FlipStencil flipStencil(const Mesh& mesh, uint32_t e) {
     const EdgeVertices& v = mesh.vertices[e];
     const EdgeNeighbours& n = mesh.neighbours[e];
