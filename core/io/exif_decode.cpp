@@ -111,7 +111,10 @@ private:
                 break;
             case exif::Reading::FourCharacters:
                 // Up to a NUL, as OpenImageIO's string attributes hold it.
-                if (entry.bytes() == 4) attributes_.set(tag->name, std::string(entry.field, std::find(entry.field, entry.field + 4, 0)));
+                if (entry.bytes() == 4) {
+                    const char* text = reinterpret_cast<const char*>(entry.field);
+                    attributes_.set(tag->name, std::string(text, strnlen(text, 4)));
+                }
                 break;
             case exif::Reading::FourBytes:
                 if (entry.bytes() == 4) {
