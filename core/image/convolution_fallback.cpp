@@ -217,7 +217,7 @@ void ConvolutionFallback::blendWith(const RenderWindow& window, float* rows, siz
     std::vector<float> convolved(line);
     // The weights' lerps along the columns, per output column, in the cell row of the last
     // output row and the one below: under magnification several output rows share a cell row.
-    std::vector<float> top(width), bottom(width), surface_weight(width);
+    std::vector<float> top(width), bottom(width);
     uint32_t lerped_cell = UINT32_MAX;
     for (uint32_t chunk = window.y_begin; chunk < window.y_end; chunk += kRowsPerChunk) {
         const uint32_t chunk_end = std::min(window.y_end, chunk + kRowsPerChunk);
@@ -253,13 +253,13 @@ void ConvolutionFallback::blendWith(const RenderWindow& window, float* rows, siz
                 }
                 lerped_cell = row.cell;
             }
-            for (uint32_t x = 0; x < width; ++x) surface_weight[x] = top[x] + row.fraction * (bottom[x] - top[x]);
             float* out = rows + size_t(y - window.y_begin) * row_floats;
             for (uint32_t x = 0; x < width; ++x) {
+                const float surface_weight = top[x] + row.fraction * (bottom[x] - top[x]);
                 float* pixel = out + size_t(x) * c;
                 const float* blended = convolved.data() + size_t(x) * c;
                 for (uint32_t k = 0; k < c; ++k) {
-                    float value = surface_weight[x] * pixel[k] + (1.0f - surface_weight[x]) * blended[k];
+                    float value = surface_weight * pixel[k] + (1.0f - surface_weight) * blended[k];
                     if (integer) value = std::clamp(value, 0.0f, 1.0f);
                     pixel[k] = value;
                 }
