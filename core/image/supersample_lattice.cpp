@@ -19,7 +19,7 @@ const size_t kRowGrain = 16;
 SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t channels,
                                        std::vector<EdgeVertices> edges, const std::vector<Triangle>& triangles)
     : width_(width), height_(height), channels_(channels), edges_(std::move(edges)), triangles_(triangles),
-      third_of_(size_t(width) * height), shared_(2 * edges_.size()), shares_(2 * edges_.size() * channels) {
+      third_of_(size_t(width) * height), slot_of_(2 * edges_.size()), shares_(2 * edges_.size() * channels) {
     // Vertex (x, y)'s supersample is at column 3x + 1 and row 3y + 1 of the 3w-wide grid:
     // (3y + 1) · 3w + 3x + 1 = 3 · (3wy + w + x) + 1.
     parallelFor(height, kRowGrain, [&](size_t begin, size_t end) {
@@ -28,7 +28,7 @@ SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t
     });
     // Counted, summed, then given out in edge order. The vertices are split into ranges, one
     // per thread, each thread going through every edge for the ends in its range: so each
-    // count and list is written by one thread, in edge order.
+    // count and slot is written by one thread, the slots given in edge order.
     const uint32_t vertices = width * height, ranges = std::max(1u, threadCount());
     auto forEachEnd = [&](auto f) {
         parallelFor(ranges, 1, [&](size_t begin, size_t end) {
@@ -44,7 +44,7 @@ SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t
     forEachEnd([&](uint32_t v, uint32_t) { ++first_share_[v + 1]; });
     for (uint32_t v = 0; v < vertices; ++v) first_share_[v + 1] += first_share_[v];
     std::vector<uint32_t> next(first_share_.begin(), first_share_.end() - 1);
-    forEachEnd([&](uint32_t v, uint32_t share) { shared_[next[v]++] = share; });
+    forEachEnd([&](uint32_t v, uint32_t share) { slot_of_[share] = next[v]++; });
 }
 
 void SupersampleLattice::evaluate(const float* values, const float* bubbles, uint32_t c, float* sub) const {

@@ -80,11 +80,13 @@ private:
     std::vector<EdgeVertices> edges_;
     const std::vector<Triangle>& triangles_;
     std::vector<uint32_t> third_of_;  // per vertex (below 3·w·h)
-    // Edge e's shares of its a's and b's projections go to shares_[2e] and [2e + 1] (`channels`
-    // floats each, left uninitialised until project writes them). Vertex v gathers the shares
-    // shared_[first_share_[v] .. first_share_[v + 1]), in edge order.
+    // Edge e's shares of its a's and b's projections go to shares_[slot_of_[2e]] and
+    // [slot_of_[2e + 1]] (`channels` floats each, left uninitialised until project writes them),
+    // so that vertex v's lie together, in edge order: shares_[first_share_[v] .. first_share_[v + 1]).
+    // The vertices then read their shares in one stream; read through an index, those loads
+    // missed the caches and took most of the vertex pass's time.
     std::vector<uint32_t> first_share_;
-    UninitialisedVector<uint32_t> shared_;
+    UninitialisedVector<uint32_t> slot_of_;
     mutable UninitialisedVector<float> shares_;
 };
 
@@ -104,15 +106,17 @@ void SupersampleLattice::project(float* g, AtVertex at_vertex, AtEdge at_edge) c
             const PixelVector<C> near_a = at(third(r.a, r.b)), near_b = at(third(r.b, r.a));
             const PixelVector<C> centroids = centroid(r.a, r.b, r.l) + centroid(r.a, r.b, r.r);
             at_edge(e, kBubbleAtThird * (near_a + near_b) + kBubbleAtCentroid * centroids);
-            storePixel<C>(shares + 2 * e * C, kTwoThirds * near_a + kThird * near_b + kHalfCentroid * centroids);
-            storePixel<C>(shares + (2 * e + 1) * C, kThird * near_a + kTwoThirds * near_b + kHalfCentroid * centroids);
+            storePixel<C>(shares + size_t(slot_of_[2 * e]) * C,
+                          kTwoThirds * near_a + kThird * near_b + kHalfCentroid * centroids);
+            storePixel<C>(shares + size_t(slot_of_[2 * e + 1]) * C,
+                          kThird * near_a + kTwoThirds * near_b + kHalfCentroid * centroids);
         }
     });
     parallelFor(size_t(width_) * height_, kGrain, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v) {
             PixelVector<C> sum = at(sampleOf(uint32_t(v)));
             for (uint32_t i = first_share_[v]; i < first_share_[v + 1]; ++i)
-                sum += loadPixel<C>(shares + size_t(shared_[i]) * C);
+                sum += loadPixel<C>(shares + size_t(i) * C);
             at_vertex(v, sum);
         }
     });
