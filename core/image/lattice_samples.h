@@ -26,7 +26,7 @@ namespace ddt {
 // nothing, if twice the triangle's area is not 1 or it touches the hull: the caller scans it.
 template <typename Sample>
 bool visitLatticeTriangle(const uint32_t x[3], const uint32_t y[3], uint32_t in_w, uint32_t in_h, uint32_t x_begin,
-                          uint32_t x_end, uint32_t y_begin, uint32_t y_end, Sample sample) {
+                          uint32_t x_end, uint32_t y_begin, uint32_t y_end, const Sample& sample) {
     const int64_t ex[3] = {int64_t(x[2]) - x[1], int64_t(x[0]) - x[2], int64_t(x[1]) - x[0]};  // edge m: m+1 → m+2
     const int64_t ey[3] = {int64_t(y[2]) - y[1], int64_t(y[0]) - y[2], int64_t(y[1]) - y[0]};
     if (ex[1] * ey[2] - ey[1] * ex[2] != 1) return false;  // twice the signed area

@@ -201,7 +201,7 @@ std::pair<uint32_t, uint32_t> samplesWithin(const std::vector<int64_t>& s, uint3
 // units, row by row; l are the barycentric weights.
 template <typename Sample>
 void scanTriangle(const SampleAxes& axes, const int64_t px[3], const int64_t py[3], uint32_t x_lo, uint32_t x_hi,
-                  uint32_t y_lo, uint32_t y_hi, Sample sample) {
+                  uint32_t y_lo, uint32_t y_hi, const Sample& sample) {
     // Edge k runs from vertex p = k + 1 to q = k + 2 (mod 3), opposite vertex k. Its edge
     // function (q − p) × (s − p) is weight[k] = slope[k]·su + offset[k] along a row, in
     // wrapping 64-bit arithmetic: the terms may pass 2^63, the sum is the exact value.
