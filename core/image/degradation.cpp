@@ -1,6 +1,7 @@
 #include "degradation.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "channel_count.h"
 #include "parallel.h"
@@ -79,10 +80,40 @@ void gatherRow(const AxisTaps& taps, uint32_t o, Source source, float* out, size
     }
 }
 
-// Along x, within one row: output pixel o gathers pixels of the input row.
+// Along x, within one row: output pixel o gathers pixels of the input row. A run's outputs are
+// summed for every float of the input's span at once (the filter at every input, of which the
+// run keeps those at its outputs' first taps), in `scratch`; each keeps its terms' order.
 template <uint32_t C>
-void gatherColumns(const AxisTaps& taps, const float* in, float* out) {
-    for (uint32_t o = 0; o < taps.outputs(); ++o) {
+void gatherColumns(const ColumnGather& gather, const float* in, float* out, std::vector<float>& scratch) {
+    for (const TapRun& run : gather.runs) {
+        const size_t span = (size_t(run.count - 1) * run.in_step + 1) * C;
+        scratch.resize(span);
+        float* sums = scratch.data();
+        const float* base = in + size_t(run.in_first) * C;
+        const float* weights = run.weights.data();
+        const size_t taps = run.weights.size();
+        // Blocks of kBlock sums stay in registers over all the taps.
+        constexpr size_t kBlock = 64;
+        size_t m0 = 0;
+        for (; m0 + kBlock <= span; m0 += kBlock) {
+            float block[kBlock];
+            for (size_t i = 0; i < kBlock; ++i) block[i] = 0.0f + weights[0] * base[m0 + i];
+            for (size_t t = 1; t < taps; ++t)
+                for (size_t i = 0; i < kBlock; ++i) block[i] += weights[t] * base[m0 + t * C + i];
+            std::copy_n(block, kBlock, sums + m0);
+        }
+        for (size_t m = m0; m < span; ++m) {
+            float sum = 0.0f + weights[0] * base[m];
+            for (size_t t = 1; t < taps; ++t) sum += weights[t] * base[m + t * C];
+            sums[m] = sum;
+        }
+        // The run's fields as locals: the stores below could alias them.
+        const size_t count = run.count, out_stride = size_t(run.out_step) * C, in_stride = size_t(run.in_step) * C;
+        float* to = out + size_t(run.out_first) * C;
+        for (size_t j = 0; j < count; ++j) std::memcpy(to + j * out_stride, sums + j * in_stride, C * sizeof(float));
+    }
+    const AxisTaps& taps = gather.taps;
+    for (uint32_t o : gather.loose) {
         PixelVector<C> sum = {};
         for (uint32_t j = taps.first[o]; j < taps.first[o + 1]; ++j)
             sum += taps.weight[j] * loadPixel<C>(in + size_t(taps.index[j]) * C);
@@ -103,11 +134,66 @@ uint32_t widestSpan(const AxisTaps& taps) {
 
 }  // namespace
 
+ColumnGather columnGatherOf(AxisTaps taps) {
+    // Fewer outputs than this stay loose: a run's filter costs its span's floats.
+    const uint32_t kShortestRun = 4;
+    ColumnGather gather{std::move(taps), {}, {}};
+    const AxisTaps& t = gather.taps;
+    std::vector<TapRun> runs;
+    std::vector<std::vector<uint32_t>> members;  // per run, its outputs
+    std::vector<uint32_t> loose;
+    for (uint32_t o = 0; o < t.outputs(); ++o) {
+        const uint32_t first = t.first[o], last = t.first[o + 1];
+        bool consecutive = first < last;
+        for (uint32_t j = first; consecutive && j < last; ++j) consecutive = t.index[j] == t.index[first] + (j - first);
+        if (!consecutive) {
+            loose.push_back(o);
+            continue;
+        }
+        const std::vector<float> weights(t.weight.begin() + first, t.weight.begin() + last);
+        const uint32_t start = t.index[first];
+        // The latest run with these weights, if o continues it.
+        size_t found = runs.size();
+        for (size_t r = runs.size(); r-- > 0;)
+            if (runs[r].weights == weights) {
+                found = r;
+                break;
+            }
+        bool extends = false;
+        if (found < runs.size()) {
+            TapRun& run = runs[found];
+            const uint32_t last_out = members[found].back(), last_in = run.in_first + (run.count - 1) * run.in_step;
+            if (run.count == 1 && o > last_out && start > last_in) {
+                run.out_step = o - last_out;
+                run.in_step = start - last_in;
+                extends = true;
+            } else if (run.count > 1) {
+                extends = o == last_out + run.out_step && start == last_in + run.in_step;
+            }
+        }
+        if (extends) {
+            ++runs[found].count;
+            members[found].push_back(o);
+        } else {
+            runs.push_back({o, 1, start, 1, 1, weights});
+            members.push_back({o});
+        }
+    }
+    for (size_t r = 0; r < runs.size(); ++r) {
+        if (runs[r].count >= kShortestRun) gather.runs.push_back(std::move(runs[r]));
+        else loose.insert(loose.end(), members[r].begin(), members[r].end());
+    }
+    std::sort(loose.begin(), loose.end());
+    gather.loose = std::move(loose);
+    return gather;
+}
+
 Degradation::Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model)
     : w_(width), h_(height), c_(channels), sub_w_(width * kSupersampling), sub_h_(height * kSupersampling),
-      apply_x_(applyTaps(width, degradationTaps(model.kernel, model.width_x))),
+      apply_x_(columnGatherOf(applyTaps(width, degradationTaps(model.kernel, model.width_x)))),
+      transpose_x_(columnGatherOf(transposeTaps(apply_x_.taps, sub_w_))),
       apply_y_(applyTaps(height, degradationTaps(model.kernel, model.width_y))),
-      transpose_x_(transposeTaps(apply_x_, sub_w_)), transpose_y_(transposeTaps(apply_y_, sub_h_)),
+      transpose_y_(transposeTaps(apply_y_, sub_h_)),
       transpose_rows_(widestSpan(transpose_y_)) {}
 
 // Each output row is done by one task from its own copy of the row between the two passes.
@@ -116,10 +202,10 @@ void Degradation::apply(const float* sub, float* degraded) const {
     withChannelCount(c_, [&](auto channels) {
         constexpr uint32_t c = decltype(channels)::value;
         parallelFor(h_, kGrain, [&](size_t begin, size_t end) {
-            std::vector<float> between(sub_row);
+            std::vector<float> between(sub_row), scratch;
             for (size_t y = begin; y < end; ++y) {
                 gatherRow(apply_y_, uint32_t(y), [&](uint32_t row) { return sub + row * sub_row; }, between.data(), sub_row);
-                gatherColumns<c>(apply_x_, between.data(), degraded + y * w_ * c);
+                gatherColumns<c>(apply_x_, between.data(), degraded + y * w_ * c, scratch);
             }
         });
     });
@@ -134,11 +220,12 @@ void Degradation::transpose(const float* residual, float* sub) const {
         parallelFor(sub_h_, kGrain, [&](size_t begin, size_t end) {
             std::vector<float> ring(transpose_rows_ * sub_row);
             std::vector<uint32_t> ring_row(transpose_rows_, UINT32_MAX);  // the input row each slot holds
+            std::vector<float> scratch;
             auto between = [&](uint32_t y) {
                 const uint32_t slot = y % transpose_rows_;
                 float* row = ring.data() + slot * sub_row;
                 if (ring_row[slot] != y) {
-                    gatherColumns<c>(transpose_x_, residual + size_t(y) * w_ * c, row);
+                    gatherColumns<c>(transpose_x_, residual + size_t(y) * w_ * c, row, scratch);
                     ring_row[slot] = y;
                 }
                 return row;

@@ -24,6 +24,27 @@ struct AxisTaps {
     uint32_t outputs() const { return uint32_t(first.size() - 1); }
 };
 
+// Outputs of an AxisTaps along x that share one list of weights on consecutive inputs, at
+// inputs and outputs in steps: output out_first + j · out_step gathers inputs
+// in_first + j · in_step + t, t < weights.size() (D's interior has one such run, with
+// in_step = kSupersampling; Dᵀ's one per phase of the supersamples, with out_step =
+// kSupersampling). A run is summed as a filter over the row's floats, many outputs to a
+// vector instruction, and each output keeps its terms in order, so its sum is the same.
+struct TapRun {
+    uint32_t out_first = 0, out_step = 1, in_first = 0, in_step = 1, count = 0;
+    std::vector<float> weights;
+};
+
+// An AxisTaps along x split into its runs and the outputs in none (the clamped ends).
+struct ColumnGather {
+    AxisTaps taps;
+    std::vector<TapRun> runs;
+    std::vector<uint32_t> loose;  // outputs gathered one tap at a time, as taps lists them
+};
+
+// The runs of `taps` (of at least a few outputs each) and the outputs left over.
+ColumnGather columnGatherOf(AxisTaps taps);
+
 class Degradation {
 public:
     Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model);
@@ -38,7 +59,8 @@ public:
 
 private:
     uint32_t w_, h_, c_, sub_w_, sub_h_;
-    AxisTaps apply_x_, apply_y_, transpose_x_, transpose_y_;
+    ColumnGather apply_x_, transpose_x_;
+    AxisTaps apply_y_, transpose_y_;
     uint32_t transpose_rows_;  // the most input rows one output row of Dᵀ along y gathers
 };
 
