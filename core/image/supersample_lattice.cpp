@@ -26,25 +26,21 @@ SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t
         for (uint32_t y = uint32_t(begin); y < end; ++y)
             for (uint32_t x = 0; x < width; ++x) third_of_[y * width + x] = 3 * width * y + width + x;
     });
-    // Counted, summed, then given out in edge order. The vertices are split into ranges, one
-    // per thread, each thread going through every edge for the ends in its range: so each
-    // count and slot is written by one thread, the slots given in edge order.
-    const uint32_t vertices = width * height, ranges = std::max(1u, threadCount());
-    auto forEachEnd = [&](auto f) {
-        parallelFor(ranges, 1, [&](size_t begin, size_t end) {
-            const uint32_t first = uint32_t(uint64_t(vertices) * begin / ranges);
-            const uint32_t last = uint32_t(uint64_t(vertices) * end / ranges);
-            for (uint32_t e = 0; e < edges_.size(); ++e) {
-                if (edges_[e].a >= first && edges_[e].a < last) f(edges_[e].a, 2 * e);
-                if (edges_[e].b >= first && edges_[e].b < last) f(edges_[e].b, 2 * e + 1);
-            }
-        });
-    };
+    // Counted, summed, then given out in edge order, in two passes over the edges. (Split by
+    // vertex ranges over the threads, each thread read every edge for the ends in its range:
+    // no sooner done, and twice the processor time on two threads.)
+    const uint32_t vertices = width * height;
     first_share_.assign(vertices + 1, 0);
-    forEachEnd([&](uint32_t v, uint32_t) { ++first_share_[v + 1]; });
+    for (const EdgeVertices& r : edges_) {
+        ++first_share_[r.a + 1];
+        ++first_share_[r.b + 1];
+    }
     for (uint32_t v = 0; v < vertices; ++v) first_share_[v + 1] += first_share_[v];
     std::vector<uint32_t> next(first_share_.begin(), first_share_.end() - 1);
-    forEachEnd([&](uint32_t v, uint32_t share) { slot_of_[share] = next[v]++; });
+    for (size_t e = 0; e < edges_.size(); ++e) {
+        slot_of_[2 * e] = next[edges_[e].a]++;
+        slot_of_[2 * e + 1] = next[edges_[e].b]++;
+    }
 }
 
 void SupersampleLattice::evaluate(const float* values, const float* bubbles, uint32_t c, float* sub) const {
