@@ -1,7 +1,7 @@
 // Stage benchmark of the Vulkan backend, for GPU machines: per input, every flip rule's
 // prepare, optimize (wall time and GPU timestamps), consistent reconstruction and render
 // times, with iterations, rounds, dispatches and flips, next to the CPU backend on the same
-// input; with --profile, the device time per kernel. Links no OpenImageIO (only ddtup_vulkan
+// input; with --profile, the device time per kernel and per iteration. Links no OpenImageIO (only ddtup_vulkan
 // and ddtup_core), so that bench/gpu-bundle can copy it with the Vulkan loader to a machine
 // that has a GPU driver and nothing else. Inputs: synthetic squares (synthetic_image.h), or
 // raw 8-bit pixels (raw_image.h), whole or as squares (--sizes) cut or mirrored from them.
@@ -10,6 +10,7 @@
 //                      [--device N] [--raw PATH --raw-size WxHxC]
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -140,6 +141,22 @@ int run(const Options& options, bool sizes_given) {
             for (const auto& [kernel, time] : backends[i]->kernelTimes())
                 std::printf("  %-18s %-12s %8llu dispatches %10.1f ms\n", rules[i].c_str(), kernel.c_str(),
                             static_cast<unsigned long long>(time.dispatches), time.ms);
+        // Where an optimisation spends its time: the first iterations test nearly every edge.
+        std::printf("\ndevice time per iteration (ms), all inputs and runs:\n");
+        for (size_t i = 0; i < backends.size(); ++i) {
+            const auto times = backends[i]->kernelTimes();
+            size_t iterations = 0;
+            for (const auto& [kernel, time] : times) iterations = std::max(iterations, time.iteration_ms.size());
+            std::printf("  %-18s iteration", rules[i].c_str());
+            for (const auto& [kernel, time] : times) std::printf(" %10s", kernel.c_str());
+            std::printf("\n");
+            for (size_t k = 0; k < iterations; ++k) {
+                std::printf("  %-18s %9zu", "", k + 1);
+                for (const auto& [kernel, time] : times)
+                    std::printf(" %10.1f", k < time.iteration_ms.size() ? time.iteration_ms[k] : 0.0);
+                std::printf("\n");
+            }
+        }
     }
     // With the validation layer on (DDTUP_VALIDATION=1, as the test suite runs), a message fails the run.
     uint32_t messages = 0;

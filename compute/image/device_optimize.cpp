@@ -2,6 +2,7 @@
 // candidates, select, flip, edge_cost), recorded into few submits.
 #include <algorithm>
 #include <cassert>
+#include <cstring>
 #include <numeric>
 
 #include "vulkan_backend_state.h"
@@ -89,16 +90,21 @@ void VulkanBackend::State::recordStep(VkCommandBuffer commands, uint32_t step, V
     markStep(commands, kLabels[step]);
 }
 
-void VulkanBackend::State::collectStepTimes() {
+void VulkanBackend::State::collectStepTimes(uint32_t first_iteration) {
     if (!step_timestamps || step_labels.size() < 2) return;
+    uint32_t iteration = first_iteration;  // each iteration's steps end with its flip
     std::vector<uint64_t> ticks(step_labels.size());
     VK_CHECK(vkGetQueryPoolResults(context->device, step_timestamps, 0, uint32_t(ticks.size()),
                                    ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     for (size_t i = 1; i < ticks.size(); ++i) {
         KernelTime& t = kernel_times[step_labels[i]];
+        const double ms = double(ticks[i] - ticks[i - 1]) * context->properties.limits.timestampPeriod * 1e-6;
         t.dispatches += 1;
-        t.ms += double(ticks[i] - ticks[i - 1]) * context->properties.limits.timestampPeriod * 1e-6;
+        t.ms += ms;
+        if (t.iteration_ms.size() <= iteration) t.iteration_ms.resize(iteration + 1, 0.0);
+        t.iteration_ms[iteration] += ms;
+        if (std::strcmp(step_labels[i], "flip") == 0) ++iteration;
     }
 }
 
@@ -175,7 +181,7 @@ OptimizeStats VulkanBackend::optimize() {
                                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
             device_ns += double(ticks[1] - ticks[0]) * c.properties.limits.timestampPeriod;
         }
-        s.collectStepTimes();
+        s.collectStepTimes(uint32_t((batches - 1) * shape.iterations));
         control = s.readControl();
     } while (control.phase != kPhaseDone && batches < max_batches);
     return s.finishStats(control, cost_init, batches * dispatches_per_batch, device_ns);

@@ -38,6 +38,7 @@ struct VulkanOptions {
 struct KernelTime {
     uint64_t dispatches = 0;
     double ms = 0.0;
+    std::vector<double> iteration_ms;  // the same split by iteration of the optimisations (0 first)
 };
 
 // One iteration's decisions, just before its flips (for tests).

@@ -123,7 +123,8 @@ struct VulkanBackend::State {
     Control readControl();
     void markStep(VkCommandBuffer commands, const char* label);
     void recordStep(VkCommandBuffer commands, uint32_t step, VkPipeline kernel);
-    void collectStepTimes();
+    // Adds the last batch's step times to kernel_times; its first iteration is `first_iteration`.
+    void collectStepTimes(uint32_t first_iteration);
     void recordIteration(VkCommandBuffer commands, uint32_t rounds, bool candidates, bool flip);
     void recordControlReadback(VkCommandBuffer commands);
     void computeRowSpans();

@@ -441,3 +441,33 @@ TEST_CASE("vulkan: an input whose edge arrays exceed a 128 MiB binding runs and 
     CHECK(worst <= 1.0 / 255.0);
     CHECK(backend.validationMessages() == 0);  // counted when scripts/test turns validation on
 }
+
+TEST_CASE("vulkan: the profile splits each kernel's device time by iteration, and the parts add up", "[vulkan]") {
+    VulkanOptions options;
+    options.rule = "localmax";
+    options.validation = true;
+    options.profile = true;
+    VulkanBackend backend(options);
+    backend.prepare(fixture("crop32_astronaut.png"));
+    const OptimizeStats stats = backend.optimize();
+    REQUIRE(stats.iterations > 1);
+    const auto times = backend.kernelTimes();
+    REQUIRE_FALSE(times.empty());
+    for (const auto& [kernel, time] : times) {
+        CAPTURE(kernel);
+        // Every iteration the optimisation ran has its slot (batches may record more, left empty).
+        CHECK(time.iteration_ms.size() >= stats.iterations);
+        double sum = 0.0;
+        for (double ms : time.iteration_ms) {
+            CHECK(ms >= 0.0);
+            sum += ms;
+        }
+        // The same terms added in another grouping: equal but for rounding.
+        CHECK(sum == Approx(time.ms).epsilon(1e-9));
+    }
+    // The first iteration tests every edge: its candidates step takes time on any device.
+    const auto candidates = std::find_if(times.begin(), times.end(), [](const auto& t) { return t.first == "candidates"; });
+    REQUIRE(candidates != times.end());
+    CHECK(candidates->second.iteration_ms[0] > 0.0);
+    CHECK(backend.validationMessages() == 0);
+}
