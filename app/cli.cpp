@@ -435,7 +435,8 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "Tile side in input pixels for images too large for the device (with --mask or a point file, "
                    "each tile's crop grows to hold the gaps between samples near it); for volumes the brick side in "
                    "voxels (optimized one by one, with a margin of 8; automatic: bricks of 128 above 2^22 voxels); "
-                   "0 = automatic")
+                   "0 = automatic (the CPU backend on two or more threads also tiles every image beyond 256 pixels, "
+                   "one tile per thread at a time)")
         ->capture_default_str();
     app.add_option("--backend", settings.backend,
                    "auto (Vulkan on a GPU; the CPU backend where the only Vulkan device runs on the CPU, such as "

@@ -339,6 +339,8 @@ OptimizeStats upscaleRows(Backend& backend, PackedImage& input, OutputSize out, 
     uint32_t side =
         options.tile ? options.tile : automaticTileSide(backend, image.width, image.height, image.channels, overlap,
                                                      options.reconstruct);
+    // A mask's tiles grow around its holes, and it keeps one piece where that fits.
+    if (!options.tile && side == 0 && !options.known && tilesAtOnce(backend) > 1) side = kParallelTileSide;
     if (side == 0 || side > largest_side) side = largest_side;
 
     RowEmitter rows(sink, size_t(out.width) * image.channels);

@@ -331,7 +331,11 @@ void ImageJob::render(Backend& backend) {
                : p == TilePhase::Reconstruct ? report_.times.reconstruct_s
                                              : report_.times.final_s;
     };
-    bool told_tiles = false;
+    // The note is for tiles that memory asks for; an image that fits goes in tiles on several
+    // threads for speed (kParallelTileSide), which needs no note.
+    const bool fits_whole = !sampled && automaticTileSide(backend, header.width, header.height, header.channels,
+                                                          kDefaultOverlap, settings_.reconstruct == "consistent") == 0;
+    bool told_tiles = fits_whole;
     auto on_step = [&](const TileStep& step) {
         timeOf(phase) += secondsSince(mark);
         mark = std::chrono::steady_clock::now();

@@ -15,9 +15,10 @@ namespace {
 
 // What the CPU backend may hold at once: by memoryNeeded's estimate enough for a 512² RGB
 // input's consistent reconstruction and fallback in one piece (about 149 MB, with the 1/8
-// that tiling keeps spare), where tiles would cost a quarter more work. Larger inputs go in
-// 256-pixel tiles, two at a time on two threads: a 512² PNG to ×8 and a 1600×1112 JPEG to ×4
-// peak at 118 and 104 MiB resident (`/usr/bin/time`), the idle process 7 MB.
+// that tiling keeps spare), which a run on one thread keeps. On more threads every image
+// beyond 256 pixels goes in 256-pixel tiles, one per thread at a time (kParallelTileSide,
+// app/tiled_upscale.h): a 512² PNG to ×8 and a 1600×1112 JPEG to ×4 peak at 79 and 90 MiB
+// resident (`/usr/bin/time`), the idle process 7 MB.
 const uint64_t kWorkingMemory = uint64_t(160) << 20;
 
 // A surface taken out of the backend with its triangle tables: it owns what the renderer reads.

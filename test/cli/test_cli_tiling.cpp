@@ -39,7 +39,9 @@ TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the
     for (const char* backend : {"vulkan", "cpu"}) {
         INFO(backend);
         const std::string whole = folder / "whole.png", tiled = folder / "tiled.png";
-        REQUIRE(runDdtup({input, whole, "-s", "2", "-q", "--backend", backend}).exit_code == 0);
+        // A tile side beyond the image makes it one piece (the CPU backend's automatic tiles
+        // would cut it for its threads).
+        REQUIRE(runDdtup({input, whole, "-s", "2", "-q", "--backend", backend, "--tile", "100000"}).exit_code == 0);
         const Run run = runDdtup({input, tiled, "-s", "2", "--tile", "64", "--progress=json", "--backend", backend});
         REQUIRE(run.exit_code == 0);
         // The issue's bar: within 1/255 on at least 99.9 % of the samples. (Measured with the
@@ -59,6 +61,36 @@ TEST_CASE("tiling cli: --tile 64 gives the untiled image, and progress names the
         }
         CHECK(tiles_seen.size() == 20);
     }
+}
+
+// On two threads the CPU backend cuts an image beyond kParallelTileSide (256) that would fit
+// in one piece into 256-pixel tiles, one per thread at a time, without the note that memory
+// asked for them; on one thread it keeps the image whole.
+TEST_CASE("tiling cli: the CPU backend on two threads tiles an image beyond 256 pixels that fits, on one keeps it whole") {
+    TempFolder folder;
+    const std::string input = writePhotoCrop(folder);  // 300 × 200: two tiles of 150 × 200
+    const std::string automatic = folder / "automatic.png", tiled = folder / "tiled.png";
+    const Run run = runDdtup({input, automatic, "-s", "2", "--threads", "2", "--backend", "cpu", "--progress=json"});
+    REQUIRE(run.exit_code == 0);
+    std::set<std::string> tiles_seen;
+    for (const auto& event : parseJsonLines(run.err)) {
+        if (event.at("event") == "notice") CHECK(event.at("message").find("memory") == std::string::npos);
+        if (event.at("event") != "stage" || !event.count("tiles")) continue;
+        CHECK(event.at("tiles") == "2");
+        tiles_seen.insert(event.at("tile"));
+    }
+    CHECK(tiles_seen.size() == 2);
+    REQUIRE(runDdtup({input, tiled, "-s", "2", "-q", "--threads", "2", "--backend", "cpu", "--tile", "256"}).exit_code == 0);
+    CHECK(readFile(automatic) == readFile(tiled));
+
+    const std::string one_thread = folder / "one-thread.png", whole = folder / "whole.png";
+    const Run single = runDdtup({input, one_thread, "-s", "2", "--threads", "1", "--backend", "cpu", "--progress=json"});
+    REQUIRE(single.exit_code == 0);
+    for (const auto& event : parseJsonLines(single.err)) CHECK(event.count("tiles") == 0);
+    REQUIRE(runDdtup({input, whole, "-s", "2", "-q", "--threads", "1", "--backend", "cpu", "--tile", "100000"}).exit_code == 0);
+    CHECK(readFile(one_thread) == readFile(whole));
+    // (On this photo 256-pixel tiles give one piece's bytes, as the first test finds for 64:
+    // the progress events, not the bytes, tell the two ways apart.)
 }
 
 // A JPEG or a PNG is decoded as the tiles reach its rows (core/image/row_decoder.h), while
