@@ -335,7 +335,7 @@ void ImageJob::render(Backend& backend) {
     // threads for speed (kParallelTileSide), which needs no note.
     const bool fits_whole = !sampled && automaticTileSide(backend, header.width, header.height, header.channels,
                                                           kDefaultOverlap, settings_.reconstruct == "consistent") == 0;
-    bool told_tiles = fits_whole;
+    bool told_tiles = false;
     auto on_step = [&](const TileStep& step) {
         timeOf(phase) += secondsSince(mark);
         mark = std::chrono::steady_clock::now();
@@ -344,7 +344,7 @@ void ImageJob::render(Backend& backend) {
         if (phase == TilePhase::Reconstruct) return;
         reporter_.stage(index_, task_.input, phase == TilePhase::Render ? Stage::Render : Stage::Optimize, step.tile,
                         step.tiles);
-        if (step.tiles > 1 && !told_tiles && !settings_.tile) {
+        if (step.tiles > 1 && !fits_whole && !told_tiles && !settings_.tile) {
             reporter_.notice(task_.input, inputName(task_.input) + ": larger than the backend's memory in one piece; " +
                                               "processed in " + std::to_string(step.tiles) + " tiles");
             told_tiles = true;

@@ -132,8 +132,7 @@ uint32_t widestSpan(const AxisTaps& taps) {
     return widest;
 }
 
-}  // namespace
-
+// The runs of `taps` (of at least a few outputs each) and the outputs left over.
 ColumnGather columnGatherOf(AxisTaps taps) {
     // Fewer outputs than this stay loose: a run's filter costs its span's floats.
     const uint32_t kShortestRun = 4;
@@ -187,6 +186,8 @@ ColumnGather columnGatherOf(AxisTaps taps) {
     gather.loose = std::move(loose);
     return gather;
 }
+
+}  // namespace
 
 Degradation::Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model)
     : w_(width), h_(height), c_(channels), sub_w_(width * kSupersampling), sub_h_(height * kSupersampling),

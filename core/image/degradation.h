@@ -42,9 +42,6 @@ struct ColumnGather {
     std::vector<uint32_t> loose;  // outputs gathered one tap at a time, as taps lists them
 };
 
-// The runs of `taps` (of at least a few outputs each) and the outputs left over.
-ColumnGather columnGatherOf(AxisTaps taps);
-
 class Degradation {
 public:
     Degradation(uint32_t width, uint32_t height, uint32_t channels, const DegradationModel& model);

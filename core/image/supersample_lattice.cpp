@@ -26,9 +26,8 @@ SupersampleLattice::SupersampleLattice(uint32_t width, uint32_t height, uint32_t
         for (uint32_t y = uint32_t(begin); y < end; ++y)
             for (uint32_t x = 0; x < width; ++x) third_of_[y * width + x] = 3 * width * y + width + x;
     });
-    // Counted, summed, then given out in edge order, in two passes over the edges. (Split by
-    // vertex ranges over the threads, each thread read every edge for the ends in its range:
-    // no sooner done, and twice the processor time on two threads.)
+    // Counted, summed, then given out in edge order, in two passes over the edges: split over
+    // threads by vertex ranges, each thread would read every edge.
     const uint32_t vertices = width * height;
     first_share_.assign(vertices + 1, 0);
     for (const EdgeVertices& r : edges_) {

@@ -49,11 +49,12 @@ std::vector<TestImage> testImages() {
             {"astronaut crop 32x32", fixture("crop32_astronaut.png")}};
 }
 
-VulkanBackend makeBackend(const std::string& rule, bool active_set = true) {
+VulkanBackend makeBackend(const std::string& rule, bool active_set = true, bool profile = false) {
     VulkanOptions options;
     options.rule = rule;
     options.active_set = active_set;
     options.validation = true;
+    options.profile = profile;
     return VulkanBackend(options);
 }
 
@@ -443,11 +444,7 @@ TEST_CASE("vulkan: an input whose edge arrays exceed a 128 MiB binding runs and 
 }
 
 TEST_CASE("vulkan: the profile splits each kernel's device time by iteration, and the parts add up", "[vulkan]") {
-    VulkanOptions options;
-    options.rule = "localmax";
-    options.validation = true;
-    options.profile = true;
-    VulkanBackend backend(options);
+    VulkanBackend backend = makeBackend("localmax", true, true);
     const Image image = fixture("crop32_astronaut.png");  // the backend reads it until prepared again
     backend.prepare(image);
     const OptimizeStats stats = backend.optimize();
