@@ -15,13 +15,13 @@
 
 namespace ddt {
 
-// Rendered rows in flight between the process and write stages, over all images: enough for
-// several bands (core's render bands are far smaller), and a small image's whole output, so
-// that the next image's optimization overlaps its encoding; not enough to matter beside the
-// process's own size. Since a strip's tiles render in one parallel loop the renderer gets
-// ahead of the encoder: 48 MiB filled up and took the photo ×4 to 276 MiB at its peak; with
-// 24 MiB it peaks at 260 MiB for 1.02 × the wall time (farm-bench, 7 pairs; 0.95–1.03).
-inline constexpr uint64_t kBandBudgetBytes = uint64_t(24) << 20;
+// Rendered rows in flight between the process and write stages, over all images: several
+// bands, and a small image's whole output, so that the next strip's or image's optimisation
+// overlaps their encoding. What is in flight when the next strip's tiles are shaped adds to
+// the run's peak, and the encoder lags most at large scales: with 24 MiB the 512² photo
+// peaked at 79–98 MiB at ×16 against 77–90 at ×8; with 12 MiB, and the bands sent as the
+// writer's codes, 79 against 76–77 (/usr/bin/time, 3 runs each), at the same wall times.
+inline constexpr uint64_t kBandBudgetBytes = uint64_t(12) << 20;
 
 // Magnifies every Ready image task (volumes go through app/volume/); failures are reported and the batch goes on. `backend` is called
 // when the first image has been read (so that a bad input is reported without starting a

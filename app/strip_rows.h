@@ -24,8 +24,8 @@ public:
     // The bytes such a strip holds.
     static double bytes(uint32_t rows, size_t row_floats, uint32_t code_bits);
 
-    // Renders `surface`'s columns [window.x_begin, window.x_end) (window's rows are ignored)
-    // into every band. Tiles of other columns may render at the same time.
+    // Renders `surface`'s window, its rows where they meet the strip's, into the bands. Other
+    // windows (other columns, or other rows) may render at the same time.
     void render(const HostSurface& surface, RenderWindow window, uint32_t channels);
 
     uint32_t bandCount() const { return uint32_t(bands_.size()); }

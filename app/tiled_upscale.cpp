@@ -210,7 +210,7 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
                 return;
             }
             job.step(first_index + uint32_t(i), total, TilePhase::Render);
-            strip->render(*surface, windowOf(job, tile, 0, 0), c);
+            strip->render(*surface, windowOf(job, tile, y0, y1), c);
         });
     };
     // At most one tile per backend at once: a device without twins (a mask's tiles on Vulkan)
@@ -232,26 +232,24 @@ OptimizeStats upscaleStripInBands(Job& job, const std::vector<Tile>& tiles, uint
         // The tiles shaped before the strip was made: into it too, then its bands go out.
         parallelFor(rendered.size(), 1, [&](size_t begin, size_t end) {
             for (size_t item = begin; item < end; ++item)
-                strip->render(*kept[rendered[item]], windowOf(job, tiles[rendered[item]], 0, 0), c);
+                strip->render(*kept[rendered[item]], windowOf(job, tiles[rendered[item]], y0, y1), c);
         });
         for (uint32_t k = 0; k < strip->bandCount(); ++k) job.rows.emit(strip->takeBand(k));
         return stats;
     }
     for (uint32_t y = y0; y < y1; y += band_rows) {
-        OutputRows band(y, std::min(y1, y + band_rows), row_floats);
+        const uint32_t y_end = std::min(y1, y + band_rows);
+        StripRows band(y, y_end, row_floats, band_rows, job.code_bits);  // one band, as the writer's codes where it takes them
         // Every kept tile's runs of rows at once, each written straight into its columns of the band.
-        const uint32_t runs = (band.rows() + kRowsPerRenderBand - 1) / kRowsPerRenderBand;
+        const uint32_t runs = (y_end - y + kRowsPerRenderBand - 1) / kRowsPerRenderBand;
         parallelFor(rendered.size() * runs, 1, [&](size_t begin, size_t end) {
             for (size_t item = begin; item < end; ++item) {
                 const uint32_t i = rendered[item / runs];
-                const uint32_t run_begin = band.y_begin + uint32_t(item % runs) * kRowsPerRenderBand;
-                const RenderWindow window =
-                    windowOf(job, tiles[i], run_begin, std::min(band.y_end, run_begin + kRowsPerRenderBand));
-                kept[i]->renderWindow(window, band.row(window.y_begin, row_floats) + size_t(window.x_begin) * c,
-                                      row_floats);
+                const uint32_t run_begin = y + uint32_t(item % runs) * kRowsPerRenderBand;
+                band.render(*kept[i], windowOf(job, tiles[i], run_begin, std::min(y_end, run_begin + kRowsPerRenderBand)), c);
             }
         });
-        job.rows.emit(std::move(band));
+        job.rows.emit(band.takeBand(0));
     }
     return stats;
 }

@@ -166,7 +166,8 @@ std::vector<Sample> codesOf(const std::vector<float>& rows, size_t row_floats) {
     return codes;
 }
 
-// Kept as codes, the strip's rows go out as the codes the writer makes of the floats rendered.
+// Kept as codes, the strip's rows go out as the codes the writer makes of the floats rendered,
+// whether the tiles render at once or from their kept surfaces band by band.
 TEST_CASE("strip rendering: a strip kept as 8- or 16-bit codes gives the writer the codes of its floats") {
     const Image image = test::photoCrop();
     const size_t row_floats = size_t(scaledOutputSize(image.width, image.height, 2.0).width) * image.channels;
@@ -180,6 +181,13 @@ TEST_CASE("strip rendering: a strip kept as 8- or 16-bit codes gives the writer 
     // rendered at once: the kept one renders into the codes too.
     const StripRun mixed = upscaleMixed(image, 2.0, 8);
     CHECK(mixed.bytes == codesOf<uint8_t>(floats.rows, row_floats));
+    // Every surface measured small: kept, and each band rendered across the tiles as codes.
+    const StripRun kept_bytes = upscaleCounted(image, 2.0, size_t(1), 8);
+    const StripRun kept_words = upscaleCounted(image, 2.0, size_t(1), 16);
+    CHECK(kept_bytes.most_surfaces == kStripTiles);
+    CHECK(std::all_of(kept_bytes.rows.begin(), kept_bytes.rows.end(), [](float v) { return v == -1.0f; }));
+    CHECK(kept_bytes.bytes == codesOf<uint8_t>(floats.rows, row_floats));
+    CHECK(kept_words.words == codesOf<uint16_t>(floats.rows, row_floats));
 }
 
 }  // namespace
