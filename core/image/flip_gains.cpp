@@ -210,13 +210,27 @@ double FlipGains::varianceGainOf(uint32_t e) const {
     return gain;
 }
 
-void FlipGains::flipped(uint32_t e) {
-    if (cost_ == CostFunction::variance) return;  // nothing kept
+double FlipGains::flipped(uint32_t e) {
+    if (cost_ == CostFunction::variance) return std::numeric_limits<double>::infinity();  // nothing kept
     assert(changed_[0] == e);
     (void)e;
-    for (Channel& channel : channels_)
+    // Flipping e back would make the old triangles again, whose costs are the kept ones bit for
+    // bit (a triangle's gradient does not depend on the edge that asks, pairCost is symmetric),
+    // and take away the new ones. scfGainOf would sum them in its order for the flipped record,
+    // whose neighbours (bl, la, ar, rb) are the old (la, ar, rb, bl): changed_ 2, 3, 4, 1.
+    double back = 0.0;
+    for (size_t ch = 0; ch < channels_.size(); ++ch) {
+        Channel& channel = channels_[ch];
+        double old[5];
+        for (int k = 0; k < 5; ++k) old[k] = channel.costs[changed_[k]];
+        const double before = channel.after[0] + channel.after[2] + channel.after[3] + channel.after[4] + channel.after[1];
+        const double after = old[0] + old[2] + old[3] + old[4] + old[1];
+        const double channel_back = before - after;
+        back = ch == 0 ? channel_back : back + channel_back;
         for (int k = 0; k < 5; ++k) channel.costs[changed_[k]] = channel.after[k];
+    }
     changed_[0] = kNone;
+    return back;
 }
 
 }  // namespace ddt

@@ -26,8 +26,9 @@ public:
     // flipGainOf(mesh, field, e, cost) for the mesh as it is now.
     double gainOf(uint32_t e);
     // After flipEdge(mesh, e) right after gainOf(e): the five edges whose triangles changed
-    // take the costs that gain computed.
-    void flipped(uint32_t e);
+    // take the costs that gain computed. Returns gainOf(e) for the mesh as it is now, the gain
+    // of flipping e back, bit for bit (+infinity for variance, which keeps no costs: unknown).
+    double flipped(uint32_t e);
 
 private:
     struct Channel {

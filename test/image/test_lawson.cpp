@@ -280,15 +280,17 @@ TEST_CASE("lawson: the sweep cap stops early and says so") {
 namespace {
 
 // Paper Fig. 3 as written: every sweep tests every edge in id order. optimizeSerial skips the
-// edges whose gain cannot have changed; it must flip exactly the same edges in the same order.
-ddt::OptimizeStats plainLawson(ddt::Mesh& mesh, const ddt::CostField& field, std::vector<ddt::Mesh>& after_sweeps) {
+// edges whose gain cannot have changed, and a flipped edge until a flip beside it (its gain
+// would be that of undoing it); it must flip exactly the same edges in the same order.
+ddt::OptimizeStats plainLawson(ddt::Mesh& mesh, const ddt::CostField& field, ddt::CostFunction cost,
+                               std::vector<ddt::Mesh>& after_sweeps) {
     ddt::OptimizeStats stats;
-    stats.cost_init = ddt::meshCost(mesh, field);
+    stats.cost_init = ddt::meshCost(mesh, field, cost);
     bool flipped = true;
     while (flipped) {
         flipped = false;
         for (uint32_t e = 0; e < mesh.edgeCount(); ++e) {
-            if (ddt::flipGainOf(mesh, field, e) > ddt::kFlipGainThreshold) {
+            if (ddt::flipGainOf(mesh, field, e, cost) > ddt::kFlipGainThreshold) {
                 ddt::flipEdge(mesh, e);
                 ++stats.flips;
                 flipped = true;
@@ -297,18 +299,19 @@ ddt::OptimizeStats plainLawson(ddt::Mesh& mesh, const ddt::CostField& field, std
         ++stats.iterations;
         after_sweeps.push_back(mesh);
     }
-    stats.cost_final = ddt::meshCost(mesh, field);
+    stats.cost_final = ddt::meshCost(mesh, field, cost);
     return stats;
 }
 
-void checkSameAsPlainSweeps(const ddt::Image& image, const std::string& name) {
-    INFO(name);
-    const ddt::CostField field = ddt::costFieldOf(image);
-    ddt::Mesh plain = ddt::buildGridMesh(image.width, image.height);
-    ddt::Mesh fast = plain;
+void checkSameAsPlainSweeps(const ddt::Mesh& initial, const ddt::CostField& field, const std::string& name,
+                            ddt::CostFunction cost = ddt::CostFunction::sederberg) {
+    INFO(name << ", " << ddt::costFunctionName(cost));
+    ddt::Mesh plain = initial;
+    ddt::Mesh fast = initial;
     std::vector<ddt::Mesh> plain_sweeps, fast_sweeps;
-    const ddt::OptimizeStats expected = plainLawson(plain, field, plain_sweeps);
+    const ddt::OptimizeStats expected = plainLawson(plain, field, cost, plain_sweeps);
     ddt::LawsonOptions options;
+    options.cost = cost;
     options.after_sweep = [&](uint32_t, const ddt::Mesh& mesh) { fast_sweeps.push_back(mesh); };
     const ddt::OptimizeStats stats = ddt::optimizeSerial(fast, field, options);
     CHECK(stats.flips == expected.flips);
@@ -323,6 +326,11 @@ void checkSameAsPlainSweeps(const ddt::Image& image, const std::string& name) {
     CHECK(ddt::test::sameRecords(fast, plain));
 }
 
+void checkSameAsPlainSweeps(const ddt::Image& image, const std::string& name,
+                            ddt::CostFunction cost = ddt::CostFunction::sederberg) {
+    checkSameAsPlainSweeps(ddt::buildGridMesh(image.width, image.height), ddt::costFieldOf(image), name, cost);
+}
+
 }  // namespace
 
 TEST_CASE("lawson: skipping unchanged edges flips exactly like testing every edge") {
@@ -332,8 +340,20 @@ TEST_CASE("lawson: skipping unchanged edges flips exactly like testing every edg
         const uint32_t channels = 1 + i % 4, levels = i % 3 == 0 ? 0 : 2 + i % 5;
         std::ostringstream name;
         name << "random " << i << ": " << w << "x" << h << ", " << channels << " channels, levels " << levels;
-        checkSameAsPlainSweeps(ddt::test::randomImage(rng, w, h, channels, levels), name.str());
+        // Every cost: Sederberg's on most, face-SCF and variance on every third.
+        const ddt::CostFunction cost = i % 3 == 1 ? ddt::CostFunction::face_scf
+                                       : i % 6 == 2 ? ddt::CostFunction::variance
+                                                    : ddt::CostFunction::sederberg;
+        checkSameAsPlainSweeps(ddt::test::randomImage(rng, w, h, channels, levels), name.str(), cost);
     }
-    checkSameAsPlainSweeps(ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png")), "crop32_astronaut");
+    const ddt::Image crop = ddt::readImage(ddt::test::testDataPath("crop32_astronaut.png"));
+    for (ddt::CostFunction cost : {ddt::CostFunction::sederberg, ddt::CostFunction::face_scf})
+        checkSameAsPlainSweeps(crop, "crop32_astronaut", cost);
     checkSameAsPlainSweeps(antiDiagonalStep(9, 7, 8, 0.0f, 1.0f), "anti-diagonal step");
+    // A mesh off the grid (explicit positions): long and thin triangles, costs far from 1.
+    for (int i = 0; i < 4; ++i) {
+        const ddt::Image image = ddt::test::randomImage(rng, 20, 14, 1 + i % 3, 0);
+        checkSameAsPlainSweeps(ddt::test::movedMesh(20, 14, rng), ddt::costFieldOf(image), "moved mesh",
+                               i % 2 ? ddt::CostFunction::face_scf : ddt::CostFunction::sederberg);
+    }
 }
