@@ -436,7 +436,7 @@ std::optional<Settings> parseCommandLine(int argc, char** argv, int& exit_code) 
                    "each tile's crop grows to hold the gaps between samples near it); for volumes the brick side in "
                    "voxels (optimized one by one, with a margin of 8; automatic: bricks of 128 above 2^22 voxels); "
                    "0 = automatic (the CPU backend on two or more threads also tiles every image beyond 256 pixels, "
-                   "one tile per thread at a time)")
+                   "one tile per thread at a time, as many tiles a strip as the threads take at once)")
         ->capture_default_str();
     app.add_option("--backend", settings.backend,
                    "auto (Vulkan on a GPU; the CPU backend where the only Vulkan device runs on the CPU, such as "

@@ -70,8 +70,8 @@ uint32_t stripSide(const Image& image, OutputSize out, uint32_t side, bool assem
     return uint32_t(std::clamp<uint64_t>(in_rows, std::min(kMinTileSide, side), side));
 }
 
-uint32_t tilesFrom(uint32_t width, uint32_t height, uint32_t y0, uint32_t side, uint32_t strip_side) {
-    uint32_t columns = (width + side - 1) / side, tiles = 0;
+uint32_t tilesFrom(uint32_t height, uint32_t y0, uint32_t columns, uint32_t strip_side) {
+    uint32_t tiles = 0;
     for (uint32_t y = y0; y < height; y = stripEnd(height, y, strip_side)) tiles += columns;
     return tiles;
 }
@@ -350,7 +350,9 @@ OptimizeStats upscaleRows(Backend& backend, PackedImage& input, OutputSize out, 
     for (uint32_t y0 = 0; y0 < image.height;) {
         const uint32_t strip_side = stripSide(image, out, side, !backends.handOverSurfaces());
         const uint32_t y1 = stripEnd(image.height, y0, strip_side);
-        std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap);
+        // Automatic tiles as many a strip as the threads take at once (a given --tile as it says).
+        const uint32_t columns = stripColumns(image.width, side, options.tile ? 1 : backends.size());
+        std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap, columns);
         // Holes wider than a tile may grow a crop by at most the tile side a side.
         if (options.known)
             for (Tile& tile : tiles) tile.crop = options.known->cropFor(tile.crop, side);
@@ -368,7 +370,7 @@ OptimizeStats upscaleRows(Backend& backend, PackedImage& input, OutputSize out, 
         job.strip_mesh = strip_mesh ? &*strip_mesh : nullptr;
         try {
             addStats(stats, upscaleStrip(job, tiles, tiles_done,
-                                         tiles_done + tilesFrom(image.width, image.height, y0, side, strip_side)));
+                                         tiles_done + tilesFrom(image.height, y0, columns, strip_side)));
         } catch (const DeviceOutOfMemory& error) {
             out_of_memory = error.what();
         } catch (const std::bad_alloc&) {

@@ -35,7 +35,9 @@ const uint32_t kMinTileSide = 64;
 // image whose longer side exceeds this goes in tiles of this side even where it would fit
 // in one piece: in one piece every thread but one waits through the flips, and the sweeps
 // slow down per pixel as a mesh outgrows the caches. A 512² PNG to ×8 took 0.51 s and
-// 120 MiB in one piece, 0.41 s and 80 MiB in 256-pixel tiles (bench/README.md).
+// 120 MiB in one piece, 0.41 s and 80 MiB in 256-pixel tiles (bench/README.md). Automatic
+// tiles come in a multiple of the threads a strip (stripColumns), so that no thread waits
+// through a strip's last tile.
 const uint32_t kParallelTileSide = 256;
 
 // Where upscaleRows is: about to prepare and optimise tile k of n, to reconstruct its

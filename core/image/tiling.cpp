@@ -29,12 +29,25 @@ uint32_t stripEnd(uint32_t height, uint32_t y0, uint32_t side) {
     return firstPartEnd(y0, height, side);
 }
 
+uint32_t stripColumns(uint32_t width, uint32_t side, uint32_t at_once) {
+    assert(side > 0);
+    const uint32_t columns = (width + side - 1) / side;
+    if (at_once <= 1 || columns <= 1 || columns % at_once == 0) return columns;
+    const uint32_t rounded = (columns + at_once - 1) / at_once * at_once;
+    return rounded <= width && width / rounded >= side / 2 ? rounded : columns;
+}
+
 std::vector<Tile> planStrip(uint32_t width, uint32_t height, OutputSize out, uint32_t y0, uint32_t y1, uint32_t side,
-                            uint32_t overlap) {
+                            uint32_t overlap, uint32_t columns) {
     assert(y0 < y1 && y1 <= height && side > 0);
+    if (columns == 0) columns = stripColumns(width, side, 1);
+    assert(columns <= width);
     std::vector<Tile> tiles;
     for (uint32_t x0 = 0; x0 < width;) {
-        const uint32_t x1 = firstPartEnd(x0, width, side);
+        // Near-equal parts of the columns left: for columns = ⌈width / side⌉ the cut that
+        // firstPartEnd makes with `side`, part by part.
+        const uint32_t parts = columns - uint32_t(tiles.size());
+        const uint32_t x1 = x0 + (width - x0 + parts - 1) / parts;
         Tile tile;
         tile.core = {x0, y0, x1, y1};
         tile.crop = {x0 > overlap ? x0 - overlap : 0, y0 > overlap ? y0 - overlap : 0,

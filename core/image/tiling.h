@@ -48,8 +48,15 @@ uint32_t firstOutputOf(uint32_t c, uint32_t in_size, uint32_t out_size);
 uint32_t stripEnd(uint32_t height, uint32_t y0, uint32_t side);
 
 // The tiles of the strip of input rows [y0, y1): its columns cut into near-equal cores of at
-// most `side` columns, left to right.
+// most `side` columns, left to right; or into `columns` near-equal cores where given (0: as
+// many as `side` asks for, stripColumns(width, side, 1)).
 std::vector<Tile> planStrip(uint32_t width, uint32_t height, OutputSize out, uint32_t y0, uint32_t y1, uint32_t side,
-                            uint32_t overlap);
+                            uint32_t overlap, uint32_t columns = 0);
+
+// The cores a strip of `width` columns is cut into for tiles of at most `side`. Where `at_once`
+// tiles run side by side, their count is rounded up to a multiple of at_once, so that the
+// strip's last round keeps every thread busy, as long as the cores stay at least half the side
+// (always, for two threads and three or more columns).
+uint32_t stripColumns(uint32_t width, uint32_t side, uint32_t at_once);
 
 }  // namespace ddt

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <tuple>
 
 #include "flat_json.h"
 #include "image_file.h"
@@ -91,6 +92,41 @@ TEST_CASE("tiling cli: the CPU backend on two threads tiles an image beyond 256 
     CHECK(readFile(one_thread) == readFile(whole));
     // (On this photo 256-pixel tiles give one piece's bytes, as the first test finds for 64:
     // the progress events, not the bytes, tell the two ways apart.)
+}
+
+// Automatic tiles come as many a strip as the threads take at once: a 600-pixel-wide image,
+// three 200-pixel cores for 256-pixel tiles, is cut into four on two threads and stays in three
+// on three; either way within a level of one piece. A given --tile is taken as it is.
+TEST_CASE("tiling cli: automatic tiles come in a multiple of the threads a strip") {
+    TempFolder folder;
+    const ddt::Image crop = ddt::test::photoCrop();
+    ddt::Image wide = crop;  // the crop and its mirror side by side: 600 × 200
+    wide.width = 2 * crop.width;
+    wide.pixels.clear();
+    const uint32_t c = crop.channels;
+    for (uint32_t y = 0; y < crop.height; ++y) {
+        const float* row = crop.pixels.data() + size_t(y) * crop.width * c;
+        wide.pixels.insert(wide.pixels.end(), row, row + size_t(crop.width) * c);
+        for (uint32_t x = crop.width; x-- > 0;) wide.pixels.insert(wide.pixels.end(), row + x * c, row + (x + 1) * c);
+    }
+    const std::string input = folder / "wide.png", whole = folder / "whole.png";
+    ddt::writeImage(input, wide);
+    REQUIRE(runDdtup({input, whole, "-s", "2", "-q", "--backend", "cpu", "--tile", "100000"}).exit_code == 0);
+    for (const auto& [threads, tile, tiles] : {std::tuple{"2", "0", "4"}, {"3", "0", "3"}, {"2", "256", "3"}}) {
+        CAPTURE(threads, tile);
+        const std::string out = folder / "out.png";
+        const Run run = runDdtup({input, out, "-s", "2", "--threads", threads, "--tile", tile, "--backend", "cpu",
+                                  "--progress=json"});
+        REQUIRE(run.exit_code == 0);
+        std::set<std::string> seen;
+        for (const auto& event : parseJsonLines(run.err)) {
+            if (event.at("event") != "stage" || !event.count("tiles")) continue;
+            CHECK(event.at("tiles") == tiles);  // one strip of 200 rows
+            seen.insert(event.at("tile"));
+        }
+        CHECK(seen.size() == std::stoul(tiles));
+        CHECK(compareFiles(whole, out).within_one_level >= 0.999);
+    }
 }
 
 // A JPEG or a PNG is decoded as the tiles reach its rows (core/image/row_decoder.h), while

@@ -151,6 +151,47 @@ TEST_CASE("tiling: strips restart anywhere and never exceed the side") {
         }
 }
 
+// Where tiles run side by side, a strip's tile count becomes a multiple of the threads, so
+// that its last round keeps them all busy, unless the tiles would fall below half the side.
+TEST_CASE("tiling: a strip's columns are a multiple of the tiles at once, and cut near-equal") {
+    CHECK(stripColumns(4224, 256, 1) == 17);
+    CHECK(stripColumns(4224, 256, 2) == 18);
+    CHECK(stripColumns(600, 256, 2) == 4);   // 3 cores of 200 → 4 of 150
+    CHECK(stripColumns(512, 256, 2) == 2);   // already even
+    CHECK(stripColumns(200, 256, 2) == 1);   // one tile: two would be below half the side
+    CHECK(stripColumns(600, 256, 16) == 3);  // 16 cores of 37 would be below half the side
+    CHECK(stripColumns(3000, 256, 4) == 12);
+    for (uint32_t width : {1u, 2u, 7u, 97u, 300u, 601u, 4224u})
+        for (uint32_t side : {1u, 16u, 64u, 256u})
+            for (uint32_t at_once : {1u, 2u, 3u}) {
+                CAPTURE(width, side, at_once);
+                const uint32_t columns = stripColumns(width, side, at_once);
+                const OutputSize out = scaledOutputSize(width, 10, 2.0);
+                const std::vector<Tile> tiles = planStrip(width, 10, out, 0, 10, side, 4, columns);
+                REQUIRE(tiles.size() == columns);
+                CHECK(columns >= (width + side - 1) / side);
+                uint32_t x = 0, narrowest = width, widest = 0;
+                for (const Tile& tile : tiles) {
+                    CHECK(tile.core.x0 == x);  // contiguous, left to right
+                    x = tile.core.x1;
+                    narrowest = std::min(narrowest, tile.core.width());
+                    widest = std::max(widest, tile.core.width());
+                }
+                CHECK(x == width);
+                CHECK(widest - narrowest <= 1);
+                CHECK(widest <= side);
+                // The count the side asks for cuts as planStrip did before counts were given:
+                // each core near-equal over what is left, in as few parts as the side allows.
+                if (at_once != 1) continue;
+                uint32_t x0 = 0;
+                for (const Tile& tile : tiles) {
+                    const uint32_t left = width - x0, parts = (left + side - 1) / side;
+                    CHECK(tile.core.x1 == x0 + (left + parts - 1) / parts);
+                    x0 = tile.core.x1;
+                }
+            }
+}
+
 // On the unoptimised grid, a crop's mesh is the whole mesh restricted to the crop: the
 // window it renders must equal the whole render bit for bit (same integers, same weights).
 TEST_CASE("tiling: a crop's grid mesh renders exactly the whole grid's pixels", "[vulkan]") {
