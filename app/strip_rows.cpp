@@ -1,7 +1,6 @@
 #include "strip_rows.h"
 
 #include <algorithm>
-#include <memory>
 
 #include "sample_quantise.h"
 #include "uninitialised_vector.h"

@@ -350,7 +350,7 @@ OptimizeStats upscaleRows(Backend& backend, PackedImage& input, OutputSize out, 
     for (uint32_t y0 = 0; y0 < image.height;) {
         const uint32_t strip_side = stripSide(image, out, side, !backends.handOverSurfaces());
         const uint32_t y1 = stripEnd(image.height, y0, strip_side);
-        // Automatic tiles as many a strip as the threads take at once (a given --tile as it says).
+        // Automatic tiles: a multiple of the threads a strip (stripColumns); a given --tile is cut as it says.
         const uint32_t columns = stripColumns(image.width, side, options.tile ? 1 : backends.size());
         std::vector<Tile> tiles = planStrip(image.width, image.height, out, y0, y1, side, overlap, columns);
         // Holes wider than a tile may grow a crop by at most the tile side a side.
